@@ -1,0 +1,84 @@
+#include "dermis/core/distribution.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dermis {
+
+Distribution1D::Distribution1D(std::span<const float> f) : func_(f.begin(), f.end()) {
+  const std::size_t n = func_.size();
+  for (float& v : func_) v = std::abs(v);
+  cdf_.assign(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) cdf_[i + 1] = cdf_[i] + double(func_[i]) / double(n);
+  integral_ = cdf_[n];
+  if (integral_ <= 0) {
+    // No information: fall back to uniform.
+    for (std::size_t i = 0; i <= n; ++i) cdf_[i] = double(i) / double(n);
+  } else {
+    for (std::size_t i = 1; i <= n; ++i) cdf_[i] /= integral_;
+  }
+}
+
+static std::size_t find_interval(const std::vector<double>& cdf, double u) {
+  // Largest i with cdf[i] <= u, clamped to [0, n-1].
+  auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
+  std::size_t i = std::size_t(std::max<std::ptrdiff_t>(0, (it - cdf.begin()) - 1));
+  return std::min(i, cdf.size() - 2);
+}
+
+float Distribution1D::sample_continuous(float u, float* pdf, std::size_t* bin) const {
+  std::size_t i = find_interval(cdf_, u);
+  // Skip zero-width bins that upper_bound may land on at their boundary.
+  while (cdf_[i + 1] - cdf_[i] <= 0 && i + 1 < func_.size()) ++i;
+  double du = u - cdf_[i];
+  double width = cdf_[i + 1] - cdf_[i];
+  if (width > 0) du /= width;
+  if (pdf) *pdf = integral_ > 0 ? float(func_[i] / integral_) : 1.0f;
+  if (bin) *bin = i;
+  double x = (double(i) + std::clamp(du, 0.0, 1.0)) / double(func_.size());
+  return float(std::min(x, 1.0 - 1e-7));
+}
+
+std::size_t Distribution1D::sample_discrete(float u, float* pmf, float* u_remapped) const {
+  std::size_t i = find_interval(cdf_, u);
+  while (cdf_[i + 1] - cdf_[i] <= 0 && i + 1 < func_.size()) ++i;
+  double width = cdf_[i + 1] - cdf_[i];
+  if (pmf) *pmf = float(width);
+  if (u_remapped) *u_remapped = width > 0 ? float(std::clamp((u - cdf_[i]) / width, 0.0, 1.0 - 1e-7)) : 0.0f;
+  return i;
+}
+
+float Distribution1D::pdf_continuous(float x) const {
+  if (x < 0 || x >= 1 || func_.empty()) return 0;
+  std::size_t i = std::min(func_.size() - 1, std::size_t(x * float(func_.size())));
+  return integral_ > 0 ? float(func_[i] / integral_) : 1.0f;
+}
+
+float Distribution1D::pmf_discrete(std::size_t i) const { return float(cdf_[i + 1] - cdf_[i]); }
+
+Distribution2D::Distribution2D(std::span<const float> f, std::size_t nu, std::size_t nv) {
+  conditional_.reserve(nv);
+  std::vector<float> marginal(nv);
+  for (std::size_t v = 0; v < nv; ++v) {
+    conditional_.emplace_back(f.subspan(v * nu, nu));
+    marginal[v] = float(conditional_.back().integral());
+  }
+  marginal_ = Distribution1D(marginal);
+}
+
+Vec2 Distribution2D::sample(Vec2 u, float* pdf) const {
+  float pdf_v, pdf_u;
+  std::size_t row;
+  float v = marginal_.sample_continuous(u.y, &pdf_v, &row);
+  float x = conditional_[row].sample_continuous(u.x, &pdf_u);
+  *pdf = pdf_u * pdf_v;
+  return {x, v};
+}
+
+float Distribution2D::pdf(Vec2 p) const {
+  if (p.x < 0 || p.x >= 1 || p.y < 0 || p.y >= 1) return 0;
+  std::size_t row = std::min(conditional_.size() - 1, std::size_t(p.y * float(conditional_.size())));
+  return marginal_.pdf_continuous(p.y) * conditional_[row].pdf_continuous(p.x);
+}
+
+}  // namespace dermis

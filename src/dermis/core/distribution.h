@@ -1,0 +1,49 @@
+// Piecewise-constant 1D and 2D distributions (tables) for importance sampling:
+// environment maps and tabulated profiles (pbrt-v4 A.4.2, A.5.6).
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "dermis/core/vec.h"
+
+namespace dermis {
+
+// A piecewise-constant density on [0, 1) over n equal bins, proportional to |f|.
+class Distribution1D {
+ public:
+  Distribution1D() = default;
+  explicit Distribution1D(std::span<const float> f);
+  std::size_t size() const { return func_.size(); }
+  // Integral of |f| over [0, 1).
+  double integral() const { return integral_; }
+  // Continuous sample in [0, 1); returns the density there and the bin.
+  float sample_continuous(float u, float* pdf, std::size_t* bin = nullptr) const;
+  // Discrete sample of a bin with probability f_i / sum f.
+  std::size_t sample_discrete(float u, float* pmf = nullptr, float* u_remapped = nullptr) const;
+  float pdf_continuous(float x) const;
+  float pmf_discrete(std::size_t i) const;
+
+ private:
+  std::vector<float> func_;
+  std::vector<double> cdf_;
+  double integral_ = 0;
+};
+
+// A piecewise-constant density on [0,1)^2 over an nu x nv grid (f given row-major, v rows).
+class Distribution2D {
+ public:
+  Distribution2D() = default;
+  Distribution2D(std::span<const float> f, std::size_t nu, std::size_t nv);
+  // Returns (u, v) in [0,1)^2 and the density with respect to area in [0,1)^2.
+  Vec2 sample(Vec2 u, float* pdf) const;
+  float pdf(Vec2 p) const;
+  double integral() const { return marginal_.integral(); }
+
+ private:
+  std::vector<Distribution1D> conditional_;
+  Distribution1D marginal_;
+};
+
+}  // namespace dermis

@@ -1,0 +1,36 @@
+// Where a piece of scene input came from, and the errors and warnings about it.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace dermis {
+
+struct SourceLoc {
+  std::string file;
+  int line = 0;
+  int column = 0;
+  // "file:line:col"
+  std::string str() const;
+};
+
+// Malformed input. what() is "file:line:col: message" ready for the user.
+class SceneError : public std::runtime_error {
+ public:
+  SceneError(const SourceLoc& loc, const std::string& message);
+  const SourceLoc& loc() const { return loc_; }
+  const std::string& message() const { return message_; }
+
+ private:
+  SourceLoc loc_;
+  std::string message_;
+};
+
+// Non-fatal remarks (unsupported directive, unused parameter): "file:line:col: warning: ...".
+struct Diagnostics {
+  std::vector<std::string> warnings;
+  void warn(const SourceLoc& loc, const std::string& message);
+};
+
+}  // namespace dermis

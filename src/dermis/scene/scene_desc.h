@@ -1,0 +1,178 @@
+// The scene as the pbrt-v4 parser hands it to the renderer: typed, validated,
+// with every parameter resolved to its default and every name to an index.
+// Nothing here depends on Embree or the integrator.
+#pragma once
+
+#include <cstdint>
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dermis/core/rgb.h"
+#include "dermis/core/transform.h"
+#include "dermis/core/vec.h"
+#include "dermis/scene/diagnostics.h"
+
+namespace dermis {
+
+// One parameter as written: `"type name" [values]`. Kept on descriptions whose
+// parameters are interpreted later (e.g. the subsurface material's methods).
+struct Param {
+  std::string type;  // integer, float, point2, vector2, point3, vector3, normal, normal3,
+                     // rgb, spectrum, blackbody, bool, string, texture, point, vector, color
+  std::string name;
+  std::vector<double> numbers;
+  std::vector<std::string> strings;
+  std::vector<bool> bools;
+  SourceLoc loc;
+};
+
+struct CameraDesc {
+  Transform camera_to_world;  // pbrt's camera space: +z forward, +y up
+  float fov = 90;             // degrees, across the shorter image axis
+  float lens_radius = 0;
+  float focal_distance = 1e6f;
+  std::optional<std::array<float, 4>> screen_window;  // xmin xmax ymin ymax, if given
+  int medium = -1;            // index into SceneDesc::media, -1: vacuum
+  SourceLoc loc;
+};
+
+struct FilterDesc {
+  enum class Type { Box, Gaussian };
+  Type type = Type::Gaussian;  // pbrt-v4's default
+  Vec2 radius{1.5f, 1.5f};     // box default 0.5
+  float sigma = 0.5f;          // gaussian
+};
+
+struct FilmDesc {
+  int xres = 1280, yres = 720;
+  std::string filename = "pbrt.exr";  // as written; resolved relative to the working directory
+  FilterDesc filter;
+};
+
+struct RenderSettingsDesc {
+  int spp = 16;
+  int max_depth = 5;
+  std::string integrator = "volpath";
+  int seed = 0;  // pbrt-v4 Sampler "integer seed"
+};
+
+struct TextureDesc {
+  enum class Type { Constant, ImageMap, Scale };
+  std::string name;
+  Type type = Type::Constant;
+  RGB value{1, 1, 1};        // constant: "value"
+  std::string filename;      // imagemap: absolute path
+  float scale = 1;           // imagemap: "scale"; scale: constant factor
+  bool invert = false;
+  std::string encoding = "sRGB";  // "sRGB", "linear" or "gamma g" for 8-bit images
+  std::string wrap = "repeat";    // repeat, black, clamp
+  float uscale = 1, vscale = 1, udelta = 0, vdelta = 0;
+  int base = -1;             // scale: texture being scaled (index), or -1
+  SourceLoc loc;
+};
+
+// An RGB constant or a texture reference (index into SceneDesc::textures).
+struct RGBTexture {
+  RGB value{0.5f, 0.5f, 0.5f};
+  int texture = -1;
+};
+
+struct MaterialDesc {
+  enum class Type { Diffuse, Dielectric, Conductor, Interface, Subsurface, CoatedDiffuse };
+  Type type = Type::Diffuse;
+  std::string name;            // MakeNamedMaterial name, or empty
+  RGBTexture reflectance;      // diffuse, coateddiffuse; conductor when has_reflectance
+  float eta = 1.5f;            // dielectric, subsurface, coateddiffuse
+  RGB conductor_eta{0.2f, 0.92f, 1.1f};  // conductor, RGB approximation (default: metal-Cu-eta)
+  RGB conductor_k{3.9f, 2.45f, 2.14f};   // conductor, RGB approximation (default: metal-Cu-k)
+  bool has_reflectance = false;          // conductor given "reflectance" instead of eta/k
+  float roughness = 0;         // only smooth surfaces are rendered; warned if > 0
+  std::vector<Param> params;   // all parameters as written (subsurface reads these)
+  SourceLoc loc;
+};
+
+struct AreaLightDesc {
+  RGB L{1, 1, 1};
+  float scale = 1;
+  bool two_sided = false;
+};
+
+struct TriangleMeshDesc {
+  std::vector<Vec3> positions;   // object space
+  std::vector<Vec3> normals;     // optional, per vertex
+  std::vector<Vec2> uvs;         // optional, per vertex
+  std::vector<uint32_t> indices; // 3 per triangle
+};
+
+struct ShapeDesc {
+  enum class Type { TriangleMesh, Sphere };
+  Type type = Type::TriangleMesh;
+  Transform object_to_world;   // to world for top-level shapes, to the object's space in instances
+  TriangleMeshDesc mesh;       // trianglemesh, plymesh, objmesh, bilinearmesh and disk (tessellated)
+  float radius = 1;            // sphere (full spheres only)
+  int material = -1;           // index into SceneDesc::materials; -1: the default diffuse
+  std::optional<AreaLightDesc> area_light;
+  int inside_medium = -1;      // indices into SceneDesc::media, -1: vacuum
+  int outside_medium = -1;
+  bool has_medium_interface = false;  // false when inside == outside (no transition)
+  bool reverse_orientation = false;
+  SourceLoc loc;
+};
+
+struct ObjectDesc {
+  std::string name;
+  std::vector<ShapeDesc> shapes;  // object_to_world here maps to the object's own space
+  SourceLoc loc;
+};
+
+struct InstanceDesc {
+  int object = -1;             // index into SceneDesc::objects
+  Transform object_to_world;
+  SourceLoc loc;
+};
+
+struct LightDesc {
+  enum class Type { Point, Spot, Distant, Infinite };
+  Type type = Type::Point;
+  Transform light_to_world;
+  RGB spectrum{1, 1, 1};       // I for point and spot, L for distant and infinite
+  float scale = 1;
+  Vec3 from{0, 0, 0};          // point, spot, distant (light space)
+  Vec3 to{0, 0, 1};            // spot, distant (light space)
+  float cone_angle = 30;       // spot, degrees
+  float cone_delta = 5;        // spot, degrees
+  std::string filename;        // infinite: absolute path of a lat-long (equirectangular) image
+  int medium = -1;             // medium the light sits in
+  SourceLoc loc;
+};
+
+struct MediumDesc {
+  std::string name;
+  std::string type = "homogeneous";
+  RGB sigma_a{1, 1, 1};        // per scene unit, before scale (pbrt-v4 defaults)
+  RGB sigma_s{1, 1, 1};
+  float scale = 1;
+  float g = 0;
+  RGB Le{0, 0, 0};             // emission: parsed, warned if non-zero
+  std::string preset;          // "name" parameter if used (Jensen et al. 2001 table)
+  SourceLoc loc;
+};
+
+struct SceneDesc {
+  CameraDesc camera;
+  FilmDesc film;
+  RenderSettingsDesc settings;
+  std::vector<TextureDesc> textures;
+  std::vector<MaterialDesc> materials;
+  std::vector<MediumDesc> media;
+  std::vector<ShapeDesc> shapes;      // top-level shapes
+  std::vector<ObjectDesc> objects;    // ObjectBegin/End definitions
+  std::vector<InstanceDesc> instances;
+  std::vector<LightDesc> lights;      // non-area lights
+  Diagnostics diagnostics;            // warnings collected while parsing
+  std::string base_directory;         // directory of the main scene file
+};
+
+}  // namespace dermis
