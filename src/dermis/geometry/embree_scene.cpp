@@ -1,0 +1,197 @@
+#include "dermis/geometry/embree_scene.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace dermis {
+
+namespace {
+
+void embree_error(void*, RTCError code, const char* str) {
+  throw std::runtime_error(fmt::format("Embree error {}: {}", int(code), str ? str : ""));
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene() {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw std::runtime_error("could not create the Embree device");
+  rtcSetDeviceErrorFunction(device_, embree_error, nullptr);
+}
+
+EmbreeScene::~EmbreeScene() {
+  for (RTCScene s : object_scenes_) rtcReleaseScene(s);
+  if (scene_) rtcReleaseScene(scene_);
+  rtcReleaseDevice(device_);
+}
+
+RTCScene EmbreeScene::make_scene(const std::vector<int>& shape_ids, std::vector<int>& geom_to_shape) {
+  RTCScene scene = rtcNewScene(device_);
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+  for (int id : shape_ids) {
+    const Shape& s = (*shapes_)[id];
+    RTCGeometry g;
+    if (s.type == Shape::Type::Mesh) {
+      g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                            3 * sizeof(float), s.positions.size()));
+      for (std::size_t i = 0; i < s.positions.size(); ++i) {
+        v[3 * i] = s.positions[i].x;
+        v[3 * i + 1] = s.positions[i].y;
+        v[3 * i + 2] = s.positions[i].z;
+      }
+      auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(unsigned), s.indices.size() / 3));
+      for (std::size_t i = 0; i < s.indices.size(); ++i) idx[i] = s.indices[i];
+    } else {
+      g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+      auto* v = static_cast<float*>(
+          rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+      v[0] = s.center.x;
+      v[1] = s.center.y;
+      v[2] = s.center.z;
+      v[3] = s.radius;
+    }
+    rtcCommitGeometry(g);
+    unsigned gid = rtcAttachGeometry(scene, g);
+    rtcReleaseGeometry(g);
+    if (geom_to_shape.size() <= gid) geom_to_shape.resize(gid + 1, -1);
+    geom_to_shape[gid] = id;
+  }
+  rtcCommitScene(scene);
+  return scene;
+}
+
+void EmbreeScene::build(const std::vector<Shape>& shapes, const std::vector<int>& top_level,
+                        const std::vector<std::vector<int>>& objects, const std::vector<Instance>& instances) {
+  shapes_ = &shapes;
+  instances_ = instances;
+  object_geom_shape_.assign(objects.size(), {});
+  for (std::size_t o = 0; o < objects.size(); ++o)
+    object_scenes_.push_back(make_scene(objects[o], object_geom_shape_[o]));
+
+  top_geom_shape_.clear();
+  scene_ = make_scene(top_level, top_geom_shape_);
+  // make_scene committed the scene; instances are attached and the scene committed again.
+  top_geom_instance_.assign(top_geom_shape_.size(), -1);
+  for (std::size_t k = 0; k < instances.size(); ++k) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, object_scenes_[instances[k].object]);
+    float xfm[12];  // 3x4 column-major
+    const Mat4& m = instances[k].object_to_world.matrix();
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 3; ++r) xfm[c * 3 + r] = float(m.m[r][c]);
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+    rtcCommitGeometry(g);
+    unsigned gid = rtcAttachGeometry(scene_, g);
+    rtcReleaseGeometry(g);
+    if (top_geom_instance_.size() <= gid) {
+      top_geom_instance_.resize(gid + 1, -1);
+      top_geom_shape_.resize(gid + 1, -1);
+    }
+    top_geom_instance_[gid] = int(k);
+  }
+  rtcCommitScene(scene_);
+
+  RTCBounds b;
+  rtcGetSceneBounds(scene_, &b);
+  if (b.lower_x > b.upper_x) {
+    center_ = {0, 0, 0};
+    radius_ = 0;
+  } else {
+    Vec3 lo{b.lower_x, b.lower_y, b.lower_z}, hi{b.upper_x, b.upper_y, b.upper_z};
+    center_ = (lo + hi) * 0.5f;
+    radius_ = length(hi - center_);
+  }
+}
+
+static void init_ray(RTCRay& r, const Ray& ray) {
+  r.org_x = ray.o.x;
+  r.org_y = ray.o.y;
+  r.org_z = ray.o.z;
+  r.dir_x = ray.d.x;
+  r.dir_y = ray.d.y;
+  r.dir_z = ray.d.z;
+  r.tnear = 0;
+  r.tfar = ray.tmax;
+  r.time = 0;
+  r.mask = 0xffffffffu;
+  r.id = 0;
+  r.flags = 0;
+}
+
+bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh;
+  init_ray(rh.ray, ray);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &ctx, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  fill_hit(rh, ray, hit);
+  return true;
+}
+
+bool EmbreeScene::occluded(const Ray& ray) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRay r;
+  init_ray(r, ray);
+  rtcOccluded1(scene_, &ctx, &r);
+  return r.tfar < 0;
+}
+
+void EmbreeScene::fill_hit(const RTCRayHit& rh, const Ray& ray, SurfaceHit& hit) const {
+  const Instance* inst = nullptr;
+  int shape_id;
+  if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+    inst = &instances_[top_geom_instance_[rh.hit.instID[0]]];
+    shape_id = object_geom_shape_[inst->object][rh.hit.geomID];
+  } else {
+    shape_id = top_geom_shape_[rh.hit.geomID];
+  }
+  const Shape& s = (*shapes_)[shape_id];
+  hit.t = rh.ray.tfar;
+  hit.shape = shape_id;
+  hit.prim = int(rh.hit.primID);
+  Vec3 p, ng, ns;
+  if (s.type == Shape::Type::Mesh) {
+    const uint32_t* tri = &s.indices[3 * rh.hit.primID];
+    float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
+    p = s.positions[tri[0]] * b0 + s.positions[tri[1]] * b1 + s.positions[tri[2]] * b2;
+    ng = s.triangle_normal(hit.prim, b1, b2, &ns);
+    if (!s.uvs.empty()) {
+      hit.uv = s.uvs[tri[0]] * b0 + s.uvs[tri[1]] * b1 + s.uvs[tri[2]] * b2;
+    } else {
+      // pbrt's default parameterisation: (0,0), (1,0), (1,1) at the three vertices.
+      hit.uv = Vec2(b1 + b2, b2);
+    }
+  } else {
+    Vec3 o = inst ? inst->object_to_world.inverse().point(ray.o) : ray.o;
+    Vec3 d = inst ? inst->object_to_world.inverse().vector(ray.d) : ray.d;
+    Vec3 l = normalize(o + d * hit.t - s.center);
+    // Re-project onto the sphere to remove the error of o + t d.
+    p = s.center + l * s.radius;
+    ng = s.flip_normals ? -l : l;
+    ns = ng;
+    float theta = std::acos(std::clamp(l.z, -1.0f, 1.0f));
+    float phi = std::atan2(l.y, l.x);
+    if (phi < 0) phi += 2 * kPi;
+    hit.uv = Vec2(phi * kInv2Pi, theta * kInvPi);
+  }
+  if (inst) {
+    p = inst->object_to_world.point(p);
+    ng = normalize(inst->object_to_world.normal(ng));
+    ns = normalize(inst->object_to_world.normal(ns));
+  }
+  hit.p = p;
+  hit.ng = ng;
+  hit.ns = ns;
+}
+
+}  // namespace dermis

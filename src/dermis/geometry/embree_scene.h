@@ -1,0 +1,58 @@
+// The Embree acceleration structure over the renderer's shapes: top-level
+// shapes, and instanced objects (one Embree scene each, one level of instancing).
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <vector>
+
+#include "dermis/core/transform.h"
+#include "dermis/geometry/ray.h"
+#include "dermis/geometry/shape.h"
+
+namespace dermis {
+
+struct Instance {
+  int object = -1;  // index into the object list given to build()
+  Transform object_to_world;
+};
+
+class EmbreeScene {
+ public:
+  EmbreeScene();
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  // shapes: every shape; top_level: indices of shapes placed in world space;
+  // objects: for each object, the indices of its shapes (in object space).
+  void build(const std::vector<Shape>& shapes, const std::vector<int>& top_level,
+             const std::vector<std::vector<int>>& objects, const std::vector<Instance>& instances);
+
+  // Closest hit with t in (0, ray.tmax). Fills hit (world space) on success.
+  bool intersect(const Ray& ray, SurfaceHit& hit) const;
+  // Any hit with t in (0, ray.tmax).
+  bool occluded(const Ray& ray) const;
+
+  RTCScene handle() const { return scene_; }
+  // World-space bounding sphere of all geometry.
+  Vec3 bounds_center() const { return center_; }
+  float bounds_radius() const { return radius_; }
+
+ private:
+  RTCScene make_scene(const std::vector<int>& shape_ids, std::vector<int>& geom_to_shape);
+  void fill_hit(const RTCRayHit& rh, const Ray& ray, SurfaceHit& hit) const;
+
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  std::vector<RTCScene> object_scenes_;
+  const std::vector<Shape>* shapes_ = nullptr;
+  std::vector<int> top_geom_shape_;     // top-level geomID -> shape index, or -1 for instances
+  std::vector<int> top_geom_instance_;  // top-level geomID -> instance index, or -1
+  std::vector<std::vector<int>> object_geom_shape_;  // per object: geomID -> shape index
+  std::vector<Instance> instances_;
+  Vec3 center_;
+  float radius_ = 0;
+};
+
+}  // namespace dermis

@@ -1,0 +1,61 @@
+// Light sources: emissive triangles and spheres (area lights), point, spot,
+// distant and infinite (uniform or lat-long) lights. A tagged struct with
+// switches (no virtual call per shadow ray).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "dermis/core/rgb.h"
+#include "dermis/core/vec.h"
+#include "dermis/geometry/ray.h"
+#include "dermis/lights/environment_map.h"
+
+namespace dermis {
+
+struct Light {
+  enum class Type { Triangle, Sphere, Point, Spot, Distant, Infinite };
+  Type type = Type::Point;
+  RGB emission;          // L for area, distant and uniform infinite lights; I for point and spot
+  bool two_sided = false;
+  // Triangle (world space) and its shape/primitive, for the normal's orientation.
+  Vec3 p0, p1, p2;
+  float area = 0;
+  int shape = -1, prim = -1;
+  // Sphere (world space).
+  Vec3 center;
+  float radius = 0;
+  bool inward = false;   // sphere's normals point inward (ReverseOrientation)
+  // Point and spot position; spot axis; distant: unit direction toward the light.
+  Vec3 position, direction;
+  float cos_falloff_start = 1, cos_falloff_end = 1;
+  std::shared_ptr<const EnvironmentMap> environment;  // infinite light with a map
+  int medium = -1;
+};
+
+struct LightSample {
+  Vec3 wi;              // unit direction from the reference point toward the light
+  float distance = 0;   // to the sampled point (infinity for distant and infinite lights)
+  float pdf = 0;        // solid angle at the reference point (1 for delta lights)
+  RGB L;                // radiance (or I/d^2 for point lights) arriving at the reference point
+  Vec3 p_light;         // sampled point on the light (finite lights)
+  Vec3 n_light;         // its normal (area lights)
+  bool delta = false;
+};
+
+struct Shape;
+
+// Samples a direction toward the light from reference point ref; `shapes` gives the
+// area light's orientation rule. Returns false when nothing can be sampled.
+bool light_sample(const Light& l, const std::vector<Shape>& shapes, Vec3 ref, Vec2 u, LightSample& s);
+// Solid-angle density that light_sample() produces wi from ref, hitting the light at
+// point p_light with normal n_light (area lights) or escaping (infinite lights).
+float light_pdf(const Light& l, Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light);
+// Radiance emitted by an area light at a point with normal n toward direction w.
+RGB area_light_radiance(const Light& l, Vec3 n, Vec3 w);
+// Radiance of an infinite light arriving from direction w (toward the light).
+RGB infinite_light_radiance(const Light& l, Vec3 w);
+// Total emitted power (approximate for lights at infinity), for light selection.
+float light_power(const Light& l, float scene_radius);
+
+}  // namespace dermis

@@ -1,0 +1,68 @@
+#include "dermis/materials/bsdf.h"
+
+#include "dermis/core/frame.h"
+#include "dermis/core/warp.h"
+#include "dermis/materials/fresnel.h"
+
+namespace dermis {
+
+RGB bsdf_eval(const BSDF& b, Vec3 wo, Vec3 wi) {
+  if (b.type != BSDF::Type::Diffuse) return RGB(0);
+  float co = dot(wo, b.n), ci = dot(wi, b.n);
+  if (co * ci <= 0) return RGB(0);  // Lambert reflects on the side of wo only
+  return b.albedo * (std::abs(ci) * kInvPi);
+}
+
+float bsdf_pdf(const BSDF& b, Vec3 wo, Vec3 wi) {
+  if (b.type != BSDF::Type::Diffuse) return 0;
+  float co = dot(wo, b.n), ci = dot(wi, b.n);
+  if (co * ci <= 0) return 0;
+  return cosine_hemisphere_pdf(std::abs(ci));
+}
+
+std::optional<BSDFSample> bsdf_sample(const BSDF& b, Vec3 wo, float u_lobe, Vec2 u) {
+  BSDFSample s;
+  float co = dot(wo, b.n);
+  if (co == 0) return std::nullopt;
+  switch (b.type) {
+    case BSDF::Type::Diffuse: {
+      Vec3 n = co > 0 ? b.n : -b.n;
+      Vec3 local = sample_cosine_hemisphere(u);
+      if (local.z <= 0) return std::nullopt;
+      s.wi = Frame(n).to_world(local);
+      s.pdf = cosine_hemisphere_pdf(local.z);
+      s.weight = b.albedo;  // (albedo/pi) cos / (cos/pi)
+      return s;
+    }
+    case BSDF::Type::Dielectric: {
+      float F = fresnel_dielectric(co, b.eta);
+      s.specular = true;
+      if (u_lobe < F) {
+        s.wi = reflect(wo, b.n);
+        s.pdf = F;
+        s.weight = RGB(1);  // F / F
+        return s;
+      }
+      auto wt = refract(wo, b.n, b.eta);
+      if (!wt) return std::nullopt;  // cannot happen when F < 1
+      float etap = co > 0 ? b.eta : 1 / b.eta;
+      s.wi = *wt;
+      s.pdf = 1 - F;
+      s.transmission = true;
+      // Radiance is scaled by 1/etap^2 across the interface (Veach 1997, sec. 5.2).
+      s.weight = RGB(1 / (etap * etap));
+      s.eta_scale = etap * etap;
+      return s;
+    }
+    case BSDF::Type::Conductor: {
+      s.wi = reflect(wo, b.n);
+      s.pdf = 1;
+      s.specular = true;
+      s.weight = fresnel_conductor(std::abs(co), b.cond_eta, b.cond_k);
+      return s;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace dermis

@@ -1,0 +1,51 @@
+#include "dermis/materials/texture.h"
+
+#include <cmath>
+
+namespace dermis {
+
+namespace {
+
+RGB texel(const ImageData& img, int x, int y, Texture::Wrap wrap) {
+  if (wrap == Texture::Wrap::Repeat) {
+    x = ((x % img.width) + img.width) % img.width;
+    y = ((y % img.height) + img.height) % img.height;
+  } else if (wrap == Texture::Wrap::Clamp) {
+    x = std::clamp(x, 0, img.width - 1);
+    y = std::clamp(y, 0, img.height - 1);
+  } else if (x < 0 || y < 0 || x >= img.width || y >= img.height) {
+    return RGB(0);
+  }
+  const float* p = &img.rgb[3 * (std::size_t(y) * img.width + x)];
+  return {p[0], p[1], p[2]};
+}
+
+}  // namespace
+
+RGB evaluate_texture(const std::vector<Texture>& textures, int index, Vec2 uv) {
+  const Texture& t = textures[index];
+  switch (t.type) {
+    case Texture::Type::Constant:
+      return t.value;
+    case Texture::Type::Scale: {
+      RGB base = t.base >= 0 ? evaluate_texture(textures, t.base, uv) : RGB(1);
+      return base * t.scale;
+    }
+    case Texture::Type::Image: {
+      const ImageData& img = *t.image;
+      // pbrt flips v: row 0 of the image is at v = 1.
+      float s = uv.x * t.uscale + t.udelta, tt = 1 - (uv.y * t.vscale + t.vdelta);
+      float x = s * float(img.width) - 0.5f, y = tt * float(img.height) - 0.5f;
+      int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+      float fx = x - float(x0), fy = y - float(y0);
+      RGB v = texel(img, x0, y0, t.wrap) * ((1 - fx) * (1 - fy)) + texel(img, x0 + 1, y0, t.wrap) * (fx * (1 - fy)) +
+              texel(img, x0, y0 + 1, t.wrap) * ((1 - fx) * fy) + texel(img, x0 + 1, y0 + 1, t.wrap) * (fx * fy);
+      v = v * t.scale;
+      if (t.invert) v = RGB(1) - v;
+      return v;
+    }
+  }
+  return RGB(0);
+}
+
+}  // namespace dermis

@@ -1,0 +1,48 @@
+#include "dermis/render/camera.h"
+
+#include <cmath>
+
+#include "dermis/core/warp.h"
+
+namespace dermis {
+
+PerspectiveCamera::PerspectiveCamera(const Transform& camera_to_world, float fov_degrees, float lens_radius,
+                                     float focal_distance, int xres, int yres,
+                                     const std::array<float, 4>* screen_window)
+    : camera_to_world_(camera_to_world),
+      tan_half_fov_(std::tan(fov_degrees * kPi / 360.0f)),
+      lens_radius_(lens_radius),
+      focal_distance_(focal_distance),
+      xres_(xres),
+      yres_(yres) {
+  if (screen_window) {
+    window_ = *screen_window;
+  } else {
+    // pbrt-v4: the shorter axis spans [-1, 1].
+    float aspect = float(xres) / float(yres);
+    if (aspect > 1)
+      window_ = {-aspect, aspect, -1, 1};
+    else
+      window_ = {-1, 1, -1 / aspect, 1 / aspect};
+  }
+}
+
+Ray PerspectiveCamera::generate_ray(Vec2 film, Vec2 u_lens) const {
+  float sx = window_[0] + film.x / float(xres_) * (window_[1] - window_[0]);
+  float sy = window_[3] - film.y / float(yres_) * (window_[3] - window_[2]);
+  Vec3 dir{sx * tan_half_fov_, sy * tan_half_fov_, 1};
+  Vec3 origin{0, 0, 0};
+  if (lens_radius_ > 0) {
+    // Thin lens: the ray through the lens point meets the pinhole ray on the plane of focus.
+    Vec2 lens = sample_uniform_disk_concentric(u_lens) * lens_radius_;
+    Vec3 focus = dir * focal_distance_;
+    origin = {lens.x, lens.y, 0};
+    dir = focus - origin;
+  }
+  Ray r;
+  r.o = camera_to_world_.point(origin);
+  r.d = normalize(camera_to_world_.vector(dir));
+  return r;
+}
+
+}  // namespace dermis

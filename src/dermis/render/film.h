@@ -1,0 +1,37 @@
+// The film: per-pixel sums of radiance samples. Reconstruction uses filter
+// importance sampling (Ernst et al. 2006; pbrt-v4 sec. 8.8): each sample's
+// position is drawn from the filter and it counts for its own pixel only, so every
+// pixel is owned by one thread and the result does not depend on the thread count.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "dermis/core/distribution.h"
+#include "dermis/core/rgb.h"
+#include "dermis/scene/scene_desc.h"
+
+namespace dermis {
+
+class FilterSampler {
+ public:
+  explicit FilterSampler(const FilterDesc& desc);
+  // Offset from the pixel centre, in pixels.
+  Vec2 sample(Vec2 u) const;
+
+ private:
+  FilterDesc desc_;
+  Distribution1D x_, y_;  // gaussian: tabulated marginals (the filter is separable)
+};
+
+struct Film {
+  int width = 0, height = 0;
+  std::vector<double> sum;         // 3 per pixel
+  std::vector<uint32_t> samples;   // samples taken per pixel (non-finite ones included, as zero)
+
+  Film(int w, int h) : width(w), height(h), sum(std::size_t(w) * h * 3, 0.0), samples(std::size_t(w) * h, 0) {}
+  // Linear RGB: the mean of each pixel's samples (0 where none were taken).
+  std::vector<float> resolve() const;
+};
+
+}  // namespace dermis

@@ -1,0 +1,232 @@
+#include "dermis/render/integrator.h"
+
+#include <cmath>
+#include <limits>
+
+#include "dermis/core/frame.h"
+#include "dermis/core/warp.h"
+
+namespace dermis {
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr int kMaxInterfaceCrossings = 256;
+
+// Veach 1997, eq. 9.13 (power heuristic, beta = 2).
+inline float power_heuristic(float f, float g) {
+  if (f == kInf) return 1;
+  float f2 = f * f, g2 = g * g;
+  return f2 + g2 > 0 ? f2 / (f2 + g2) : 0.0f;
+}
+
+inline int medium_after_crossing(const Shape& s, Vec3 dir, Vec3 ng, int current) {
+  if (!s.has_medium_interface) return current;
+  return dot(dir, ng) > 0 ? s.outside_medium : s.inside_medium;
+}
+
+// Direction with cosine `cos_theta` to `axis`, azimuth 2 pi u.
+inline Vec3 direction_about(Vec3 axis, float cos_theta, float u) {
+  float sin_theta = safe_sqrt(1 - cos_theta * cos_theta);
+  float phi = 2 * kPi * u;
+  return Frame(axis).to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
+}
+
+// Next-event estimation from point p (already offset for surfaces) in `medium`.
+// `scatter(wi)` returns f(wo, wi)|cos| (or the phase function) and its sampling pdf.
+template <class Scatter>
+RGB estimate_direct(const RenderScene& sc, Vec3 p, int medium, Rng& rng, PathCounters& counters, Scatter&& scatter) {
+  if (sc.lights.empty()) return RGB(0);
+  float pmf;
+  std::size_t li = sc.light_distribution.sample_discrete(rng.uniform(), &pmf);
+  if (pmf <= 0) return RGB(0);
+  const Light& light = sc.lights[li];
+  LightSample ls;
+  if (!light_sample(light, sc.shapes, p, {rng.uniform(), rng.uniform()}, ls) || ls.pdf <= 0) return RGB(0);
+  auto [f, scatter_pdf] = scatter(ls.wi);
+  if (f.is_black()) return RGB(0);
+  float dist = ls.delta && std::isinf(ls.distance) ? kInf : ls.distance * (1 - 1e-4f);
+  RGB tr = shadow_transmittance(sc, p, ls.wi, dist, medium, counters);
+  if (tr.is_black()) return RGB(0);
+  float light_pdf = pmf * ls.pdf;
+  float w = ls.delta ? 1.0f : power_heuristic(light_pdf, scatter_pdf);
+  return f * tr * ls.L * (w / light_pdf);
+}
+
+}  // namespace
+
+RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float distance, int medium,
+                         PathCounters& counters) {
+  RGB tr(1);
+  if (!sc.has_interfaces) {
+    // No index-matched boundary: any hit blocks, and the medium cannot change.
+    ++counters.rays;
+    if (sc.embree->occluded(Ray{origin, dir, distance})) return RGB(0);
+    if (medium >= 0) tr = sc.media[medium].transmittance(distance);
+    return tr;
+  }
+  Vec3 o = origin;
+  float remaining = distance;
+  for (int crossing = 0; crossing < kMaxInterfaceCrossings; ++crossing) {
+    ++counters.rays;
+    SurfaceHit hit;
+    if (!sc.embree->intersect(Ray{o, dir, remaining}, hit)) {
+      if (medium >= 0) tr *= sc.media[medium].transmittance(remaining);
+      return tr;
+    }
+    const Shape& s = sc.shapes[hit.shape];
+    if (!sc.materials[s.material].is_interface()) return RGB(0);
+    if (medium >= 0) tr *= sc.media[medium].transmittance(hit.t);
+    if (tr.is_black()) return tr;
+    medium = medium_after_crossing(s, dir, hit.ng, medium);
+    Vec3 next = offset_ray_origin(hit.p, hit.ng, dir);
+    if (remaining != kInf) remaining -= dot(next - o, dir);
+    o = next;
+    if (remaining <= 0) return tr;
+  }
+  ++counters.truncated;
+  return RGB(0);
+}
+
+RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounters& counters) {
+  RGB L(0), beta(1);
+  float eta_scale = 1;
+  bool specular = true;   // the last scattering was specular (or the camera): no MIS on emission
+  float prev_pdf = 0;     // solid-angle pdf of the last scattering direction
+  Vec3 prev_p = ray.o;    // position of the last scattering event
+  int depth = 0, crossings = 0;
+  const int max_depth = sc.settings.max_depth;
+
+  while (true) {
+    SurfaceHit hit;
+    ++counters.rays;
+    bool found = sc.embree->intersect(ray, hit);
+    float t_hit = found ? hit.t : kInf;
+
+    if (medium >= 0) {
+      const HomogeneousMedium& m = sc.media[medium];
+      // Choose the channel that drives the free-flight distance in proportion to the
+      // throughput; the balance heuristic over channels keeps every channel unbiased.
+      float q[3], qsum = 0;
+      for (int c = 0; c < 3; ++c) qsum += q[c] = std::abs(beta[c]);
+      if (qsum <= 0) break;
+      for (float& v : q) v /= qsum;
+      float uc = rng.uniform();
+      int c = uc < q[0] ? 0 : (uc < q[0] + q[1] ? 1 : 2);
+      float st = m.sigma_t[c];
+      float t = st > 0 ? -std::log1p(-rng.uniform()) / st : kInf;
+      if (t < t_hit) {
+        // Scattering event in the medium.
+        RGB tr = m.transmittance(t);
+        float pdf = 0;
+        for (int k = 0; k < 3; ++k) pdf += q[k] * m.sigma_t[k] * tr[k];
+        beta *= m.sigma_s * tr / pdf;
+        if (!beta.is_finite() || beta.is_black()) break;
+        Vec3 p = ray.o + ray.d * t;
+        if (depth++ >= max_depth) break;
+        Vec3 wo = -ray.d;
+        const float g = m.g;
+        L += beta * estimate_direct(sc, p, medium, rng, counters, [&](Vec3 wi) {
+               float ph = henyey_greenstein(dot(-wo, wi), g);
+               return std::pair{RGB(ph), ph};
+             });
+        // Sample the phase function about the propagation direction (weight 1).
+        float cos_theta = sample_henyey_greenstein_cos(rng.uniform(), g);
+        Vec3 wi = direction_about(ray.d, cos_theta, rng.uniform());
+        prev_pdf = henyey_greenstein(cos_theta, g);
+        specular = false;
+        prev_p = p;
+        ray = Ray{p, wi};
+        // Russian roulette (pbrt-v4 sec. 14.1.3).
+        if (depth > 1) {
+          float rr = beta.max() * eta_scale;
+          if (rr < 1) {
+            float qd = std::max(0.0f, 1 - rr);
+            if (rng.uniform() < qd) break;
+            beta /= 1 - qd;
+          }
+        }
+        continue;
+      }
+      // Passed through to the surface (or to infinity).
+      RGB tr = m.transmittance(t_hit);
+      float pdf = 0;
+      for (int k = 0; k < 3; ++k) pdf += q[k] * tr[k];
+      if (pdf <= 0) break;
+      beta *= tr / pdf;
+      if (!beta.is_finite() || beta.is_black()) break;
+    }
+
+    if (!found) {
+      for (int li : sc.infinite_lights) {
+        const Light& light = sc.lights[li];
+        RGB Le = infinite_light_radiance(light, ray.d);
+        if (Le.is_black()) continue;
+        float w = specular ? 1.0f : power_heuristic(prev_pdf, sc.light_pick_pmf(li) * light_pdf(light, prev_p, ray.d, {}, {}));
+        L += beta * Le * w;
+      }
+      break;
+    }
+
+    const Shape& s = sc.shapes[hit.shape];
+    if (s.first_light >= 0) {
+      int li = s.first_light + (s.type == Shape::Type::Mesh ? hit.prim : 0);
+      const Light& light = sc.lights[li];
+      RGB Le = area_light_radiance(light, hit.ng, -ray.d);
+      if (!Le.is_black()) {
+        float w = specular ? 1.0f
+                           : power_heuristic(prev_pdf, sc.light_pick_pmf(li) *
+                                                           light_pdf(light, prev_p, ray.d, hit.p, hit.ng));
+        L += beta * Le * w;
+      }
+    }
+
+    const Material& mat = sc.materials[s.material];
+    if (mat.is_interface()) {
+      // An index-matched boundary: change medium, keep going in the same direction.
+      if (++crossings > kMaxInterfaceCrossings * 16) {
+        ++counters.truncated;
+        break;
+      }
+      medium = medium_after_crossing(s, ray.d, hit.ng, medium);
+      ray.o = offset_ray_origin(hit.p, hit.ng, ray.d);
+      ray.tmax = kInf;
+      continue;
+    }
+    if (depth++ >= max_depth) break;
+
+    BSDF bsdf = bsdf_at(mat, sc.textures, hit);
+    Vec3 wo = -ray.d;
+    if (!bsdf.is_specular()) {
+      // Shadow rays leave on the side of the light; the medium there is the one the
+      // path is in, since Lambertian reflection stays on the side of wo.
+      Vec3 p_out = offset_ray_origin(hit.p, hit.ng, wo);
+      L += beta * estimate_direct(sc, p_out, medium, rng, counters, [&](Vec3 wi) {
+             return std::pair{bsdf_eval(bsdf, wo, wi), bsdf_pdf(bsdf, wo, wi)};
+           });
+    }
+    float u_lobe = rng.uniform();
+    Vec2 u_dir{rng.uniform(), rng.uniform()};
+    auto bs = bsdf_sample(bsdf, wo, u_lobe, u_dir);
+    if (!bs) break;
+    beta *= bs->weight;
+    eta_scale *= bs->eta_scale;
+    specular = bs->specular;
+    prev_pdf = bs->pdf;
+    prev_p = hit.p;
+    if (bs->transmission) medium = medium_after_crossing(s, bs->wi, hit.ng, medium);
+    ray = Ray{offset_ray_origin(hit.p, hit.ng, bs->wi), bs->wi};
+    if (!beta.is_finite() || beta.is_black()) break;
+    if (depth > 1) {
+      float rr = beta.max() * eta_scale;
+      if (rr < 1) {
+        float qd = std::max(0.0f, 1 - rr);
+        if (rng.uniform() < qd) break;
+        beta /= 1 - qd;
+      }
+    }
+  }
+  return L;
+}
+
+}  // namespace dermis

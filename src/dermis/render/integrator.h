@@ -1,0 +1,31 @@
+// Unidirectional volumetric path tracing (Veach 1997; pbrt-v4 ch. 14) through
+// homogeneous media bounded by dielectric or index-matched surfaces: next-event
+// estimation with multiple importance sampling (power heuristic) at surfaces and
+// in media, Russian roulette, and chromatic media sampled with one channel per
+// step and one-sample MIS over the channels (METHODS.md sec. 5).
+#pragma once
+
+#include <cstdint>
+
+#include "dermis/core/rgb.h"
+#include "dermis/core/rng.h"
+#include "dermis/geometry/ray.h"
+#include "dermis/render/render_scene.h"
+
+namespace dermis {
+
+struct PathCounters {
+  uint64_t rays = 0;       // closest-hit and shadow rays traced
+  uint64_t truncated = 0;  // paths stopped by the interface-crossing guard
+};
+
+// Radiance arriving along `ray` (from the camera), starting in `medium`.
+RGB trace_path(const RenderScene& scene, Ray ray, int medium, Rng& rng, PathCounters& counters);
+
+// Transmittance from `origin` along unit `dir` over `distance` (infinity allowed),
+// starting in `medium`: zero if an opaque or refractive surface is in the way,
+// otherwise the product of the media's transmittances across index-matched boundaries.
+RGB shadow_transmittance(const RenderScene& scene, Vec3 origin, Vec3 dir, float distance, int medium,
+                         PathCounters& counters);
+
+}  // namespace dermis

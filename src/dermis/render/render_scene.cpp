@@ -1,0 +1,297 @@
+#include "dermis/render/render_scene.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "dermis/render/image.h"
+
+namespace dermis {
+
+namespace {
+
+// A similarity transform (rotation, translation, uniform scale) keeps a sphere a sphere.
+bool similarity_scale(const Transform& t, float& scale) {
+  Vec3d x = t.vector(Vec3d(1, 0, 0)), y = t.vector(Vec3d(0, 1, 0)), z = t.vector(Vec3d(0, 0, 1));
+  double lx = length(x), ly = length(y), lz = length(z);
+  scale = float(lx);
+  double tol = 1e-6 * lx;
+  return std::abs(lx - ly) < tol && std::abs(lx - lz) < tol && std::abs(dot(x, y)) < tol * lx &&
+         std::abs(dot(x, z)) < tol * lx && std::abs(dot(y, z)) < tol * lx;
+}
+
+Material make_material(const MaterialDesc& d, Diagnostics& diag) {
+  Material m;
+  m.reflectance = d.reflectance.value;
+  m.reflectance_texture = d.reflectance.texture;
+  m.eta = d.eta;
+  switch (d.type) {
+    case MaterialDesc::Type::Diffuse:
+      m.type = Material::Type::Diffuse;
+      break;
+    case MaterialDesc::Type::Dielectric:
+      m.type = Material::Type::Dielectric;
+      break;
+    case MaterialDesc::Type::Conductor:
+      m.type = Material::Type::Conductor;
+      if (d.has_reflectance) {
+        // pbrt-v4: a conductor given a reflectance r uses eta = 1 and k = 2 sqrt(r) / sqrt(1 - r).
+        m.cond_eta = RGB(1);
+        for (int c = 0; c < 3; ++c) {
+          float r = std::clamp(d.reflectance.value[c], 0.0f, 0.9999f);
+          m.cond_k[c] = 2 * std::sqrt(r) / std::sqrt(1 - r);
+        }
+      } else {
+        m.cond_eta = d.conductor_eta;
+        m.cond_k = d.conductor_k;
+      }
+      break;
+    case MaterialDesc::Type::Interface:
+      m.type = Material::Type::Interface;
+      break;
+    case MaterialDesc::Type::CoatedDiffuse:
+      diag.warn(d.loc, "coateddiffuse is rendered as its diffuse base (no coating yet)");
+      m.type = Material::Type::Diffuse;
+      break;
+    case MaterialDesc::Type::Subsurface:
+      diag.warn(d.loc, "subsurface is rendered as diffuse with its reflectance (subsurface methods not yet built)");
+      m.type = Material::Type::Diffuse;
+      break;
+  }
+  return m;
+}
+
+Texture make_texture(const TextureDesc& d) {
+  Texture t;
+  t.value = d.value;
+  t.scale = d.scale;
+  t.invert = d.invert;
+  t.uscale = d.uscale;
+  t.vscale = d.vscale;
+  t.udelta = d.udelta;
+  t.vdelta = d.vdelta;
+  t.base = d.base;
+  t.wrap = d.wrap == "black" ? Texture::Wrap::Black : d.wrap == "clamp" ? Texture::Wrap::Clamp : Texture::Wrap::Repeat;
+  switch (d.type) {
+    case TextureDesc::Type::Constant:
+      t.type = Texture::Type::Constant;
+      break;
+    case TextureDesc::Type::Scale:
+      t.type = Texture::Type::Scale;
+      break;
+    case TextureDesc::Type::ImageMap: {
+      t.type = Texture::Type::Image;
+      Image img;
+      try {
+        img = read_image(d.filename);
+      } catch (const std::exception& e) {
+        throw SceneError(d.loc, e.what());
+      }
+      auto data = std::make_shared<ImageData>();
+      data->width = img.width;
+      data->height = img.height;
+      data->rgb = std::move(img.pixels);
+      t.image = std::move(data);
+      break;
+    }
+  }
+  return t;
+}
+
+}  // namespace
+
+void tessellate_sphere(float radius, int n, std::vector<Vec3>& positions, std::vector<uint32_t>& indices) {
+  int nu = 2 * n, nv = n;
+  positions.clear();
+  indices.clear();
+  for (int j = 0; j <= nv; ++j) {
+    float theta = kPi * float(j) / float(nv);
+    for (int i = 0; i <= nu; ++i) {
+      float phi = 2 * kPi * float(i) / float(nu);
+      positions.push_back(Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)) *
+                          radius);
+    }
+  }
+  auto id = [nu](int i, int j) { return uint32_t(j * (nu + 1) + i); };
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      // Winding chosen so that cross(p0 - p2, p1 - p2) points outward.
+      if (j != 0) indices.insert(indices.end(), {id(i, j), id(i, j + 1), id(i + 1, j)});
+      if (j != nv - 1) indices.insert(indices.end(), {id(i + 1, j), id(i, j + 1), id(i + 1, j + 1)});
+    }
+}
+
+namespace {
+
+// Converts a shape description into the renderer's shape, positioned by `xf`.
+Shape make_shape(const ShapeDesc& d, const Transform& xf, int default_material) {
+  Shape s;
+  s.material = d.material >= 0 ? d.material : default_material;
+  s.inside_medium = d.inside_medium;
+  s.outside_medium = d.outside_medium;
+  s.has_medium_interface = d.has_medium_interface;
+  s.flip_normals = d.reverse_orientation != xf.swaps_handedness();
+  float scale;
+  if (d.type == ShapeDesc::Type::Sphere && similarity_scale(xf, scale)) {
+    s.type = Shape::Type::Sphere;
+    s.center = xf.point(Vec3(0, 0, 0));
+    s.radius = d.radius * scale;
+    s.flip_normals = d.reverse_orientation;  // a sphere's outward normal survives reflections
+    return s;
+  }
+  s.type = Shape::Type::Mesh;
+  if (d.type == ShapeDesc::Type::Sphere) {
+    // An ellipsoid: tessellated finely.
+    tessellate_sphere(d.radius, 256, s.positions, s.indices);
+  } else {
+    s.positions = d.mesh.positions;
+    s.indices = d.mesh.indices;
+    s.normals = d.mesh.normals;
+    s.uvs = d.mesh.uvs;
+  }
+  for (Vec3& p : s.positions) p = xf.point(p);
+  for (Vec3& n : s.normals) {
+    n = normalize(xf.normal(n));
+    if (d.reverse_orientation) n = -n;  // pbrt-v4 flips vertex normals of reversed meshes
+  }
+  return s;
+}
+
+}  // namespace
+
+std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnostics& diag) {
+  auto sc = std::make_unique<RenderScene>();
+  sc->film = desc.film;
+  sc->settings = desc.settings;
+  sc->camera_medium = desc.camera.medium;
+  sc->camera = PerspectiveCamera(desc.camera.camera_to_world, desc.camera.fov, desc.camera.lens_radius,
+                                 desc.camera.focal_distance, desc.film.xres, desc.film.yres,
+                                 desc.camera.screen_window ? &*desc.camera.screen_window : nullptr);
+
+  for (const TextureDesc& t : desc.textures) sc->textures.push_back(make_texture(t));
+  for (const MaterialDesc& m : desc.materials) sc->materials.push_back(make_material(m, diag));
+  const int default_material = int(sc->materials.size());
+  sc->materials.push_back(Material{});  // pbrt's default: diffuse, reflectance 0.5
+
+  for (const MediumDesc& m : desc.media) {
+    if (!m.Le.is_black()) diag.warn(m.loc, "medium emission (Le) is not rendered");
+    sc->media.push_back(HomogeneousMedium::from_coefficients(m.sigma_a, m.sigma_s, m.scale, m.g));
+  }
+
+  std::vector<int> top_level;
+  for (const ShapeDesc& d : desc.shapes) {
+    Shape s = make_shape(d, d.object_to_world, default_material);
+    int id = int(sc->shapes.size());
+    if (d.area_light) {
+      RGB L = d.area_light->L * d.area_light->scale;
+      if (!L.is_black()) {
+        s.first_light = int(sc->lights.size());
+        if (s.type == Shape::Type::Sphere) {
+          Light l;
+          l.type = Light::Type::Sphere;
+          l.emission = L;
+          l.two_sided = d.area_light->two_sided;
+          l.center = s.center;
+          l.radius = s.radius;
+          l.inward = s.flip_normals;
+          l.shape = id;
+          l.medium = d.outside_medium;
+          sc->lights.push_back(l);
+        } else {
+          for (std::size_t t = 0; t < s.indices.size() / 3; ++t) {
+            Light l;
+            l.type = Light::Type::Triangle;
+            l.emission = L;
+            l.two_sided = d.area_light->two_sided;
+            l.p0 = s.positions[s.indices[3 * t]];
+            l.p1 = s.positions[s.indices[3 * t + 1]];
+            l.p2 = s.positions[s.indices[3 * t + 2]];
+            l.area = 0.5f * length(cross(l.p1 - l.p0, l.p2 - l.p0));
+            l.shape = id;
+            l.prim = int(t);
+            // Degenerate triangles get a zero selection probability through their power.
+            sc->lights.push_back(l);
+          }
+        }
+      }
+    }
+    if (sc->materials[s.material].is_interface()) sc->has_interfaces = true;
+    sc->shapes.push_back(std::move(s));
+    top_level.push_back(id);
+  }
+
+  std::vector<std::vector<int>> objects;
+  for (const ObjectDesc& o : desc.objects) {
+    std::vector<int> ids;
+    for (const ShapeDesc& d : o.shapes) {
+      if (d.area_light) diag.warn(d.loc, "area lights inside object instances are not supported (as in pbrt-v4); ignored");
+      Shape s = make_shape(d, d.object_to_world, default_material);
+      if (sc->materials[s.material].is_interface()) sc->has_interfaces = true;
+      ids.push_back(int(sc->shapes.size()));
+      sc->shapes.push_back(std::move(s));
+    }
+    objects.push_back(std::move(ids));
+  }
+  std::vector<Instance> instances;
+  for (const InstanceDesc& i : desc.instances) instances.push_back({i.object, i.object_to_world});
+  for (std::size_t o = 0; o < objects.size(); ++o)
+    for (int id : objects[o]) sc->shapes[id].instance = int(o);
+
+  sc->embree = std::make_unique<EmbreeScene>();
+  sc->embree->build(sc->shapes, top_level, objects, instances);
+
+  for (const LightDesc& d : desc.lights) {
+    Light l;
+    l.medium = d.medium;
+    RGB e = d.spectrum * d.scale;
+    l.emission = e;
+    switch (d.type) {
+      case LightDesc::Type::Point:
+        l.type = Light::Type::Point;
+        l.position = d.light_to_world.point(d.from);
+        break;
+      case LightDesc::Type::Spot: {
+        l.type = Light::Type::Spot;
+        l.position = d.light_to_world.point(d.from);
+        Vec3 axis = d.light_to_world.point(d.to) - l.position;
+        if (length(axis) == 0) throw SceneError(d.loc, "spot light: 'from' and 'to' coincide");
+        l.direction = normalize(axis);
+        l.cos_falloff_end = std::cos(d.cone_angle * kPi / 180);
+        l.cos_falloff_start = std::cos((d.cone_angle - d.cone_delta) * kPi / 180);
+        break;
+      }
+      case LightDesc::Type::Distant: {
+        l.type = Light::Type::Distant;
+        Vec3 w = d.light_to_world.vector(d.from - d.to);
+        if (length(w) == 0) throw SceneError(d.loc, "distant light: 'from' and 'to' coincide");
+        l.direction = normalize(w);
+        break;
+      }
+      case LightDesc::Type::Infinite: {
+        l.type = Light::Type::Infinite;
+        if (!d.filename.empty()) {
+          Image img;
+          try {
+            img = read_image(d.filename);
+          } catch (const std::exception& ex) {
+            throw SceneError(d.loc, ex.what());
+          }
+          l.environment = std::make_shared<EnvironmentMap>(img.width, img.height, std::move(img.pixels),
+                                                           d.light_to_world, d.scale);
+          l.emission = RGB(d.scale);
+        }
+        sc->infinite_lights.push_back(int(sc->lights.size()));
+        break;
+      }
+    }
+    sc->lights.push_back(l);
+  }
+
+  std::vector<float> power(sc->lights.size());
+  float radius = sc->embree->bounds_radius();
+  for (std::size_t i = 0; i < sc->lights.size(); ++i) power[i] = std::max(0.0f, light_power(sc->lights[i], radius));
+  if (!power.empty()) sc->light_distribution = Distribution1D(power);
+  return sc;
+}
+
+}  // namespace dermis

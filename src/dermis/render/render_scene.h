@@ -1,0 +1,46 @@
+// Everything the integrator reads, built once from a parsed SceneDesc: shapes in
+// Embree, materials, textures, media, lights with their selection distribution,
+// and the camera.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "dermis/core/distribution.h"
+#include "dermis/geometry/embree_scene.h"
+#include "dermis/geometry/shape.h"
+#include "dermis/lights/light.h"
+#include "dermis/materials/material.h"
+#include "dermis/materials/medium.h"
+#include "dermis/materials/texture.h"
+#include "dermis/render/camera.h"
+#include "dermis/scene/scene_desc.h"
+
+namespace dermis {
+
+struct RenderScene {
+  std::vector<Shape> shapes;
+  std::unique_ptr<EmbreeScene> embree;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<HomogeneousMedium> media;
+  std::vector<Light> lights;
+  Distribution1D light_distribution;  // light selection in proportion to power
+  std::vector<int> infinite_lights;
+  bool has_interfaces = false;        // any shape with an `interface` material
+  int camera_medium = -1;
+  PerspectiveCamera camera;
+  FilmDesc film;
+  RenderSettingsDesc settings;
+
+  float light_pick_pmf(int light) const { return light_distribution.pmf_discrete(std::size_t(light)); }
+};
+
+// Throws SceneError for problems found while building (e.g. an unreadable texture),
+// and adds warnings to `diagnostics`.
+std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnostics& diagnostics);
+
+// A triangulated unit sphere: (2n x n) quads in latitude/longitude, outward winding.
+void tessellate_sphere(float radius, int n, std::vector<Vec3>& positions, std::vector<uint32_t>& indices);
+
+}  // namespace dermis

@@ -1,0 +1,42 @@
+// The render loop: image tiles in parallel (oneTBB), samples in passes so that a
+// time limit or an interrupt stops between tiles with a consistent image. Each
+// pixel sample has its own random stream Rng(seed, pixel, sample) and each pixel
+// is accumulated by one thread in sample order: the same seed gives the same image
+// whatever the number of threads.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "dermis/render/render_scene.h"
+
+namespace dermis {
+
+struct RenderOptions {
+  int spp = 16;
+  int threads = 0;            // 0: all cores
+  uint64_t seed = 0;
+  double time_limit = 0;      // seconds; 0: none
+  const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop early
+  // Called from worker threads with the number of pixel samples just finished.
+  std::function<void(int64_t)> progress;
+};
+
+struct RenderResult {
+  int width = 0, height = 0;
+  std::vector<float> rgb;     // linear, row-major, top row first
+  uint64_t samples = 0;       // pixel samples taken
+  uint64_t nonfinite = 0;     // samples that were NaN or infinite (counted as zero)
+  uint64_t rays = 0;
+  uint64_t truncated = 0;
+  uint32_t min_spp = 0, max_spp = 0;
+  double seconds = 0;
+  bool interrupted = false;   // stopped by `cancel`
+  bool time_limited = false;  // stopped by the time limit
+};
+
+RenderResult render_image(const RenderScene& scene, const RenderOptions& options);
+
+}  // namespace dermis
