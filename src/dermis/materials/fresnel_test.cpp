@@ -1,0 +1,107 @@
+#include "dermis/materials/fresnel.h"
+
+#include <gtest/gtest.h>
+
+#include "dermis/core/rng.h"
+#include "dermis/core/warp.h"
+#include "dermis/materials/bsdf.h"
+
+namespace dermis {
+namespace {
+
+TEST(Fresnel, NormalIncidenceMatchesClosedForm) {
+  for (float eta : {1.0f, 1.33f, 1.5f, 2.4f}) {
+    float r0 = sqr((eta - 1) / (eta + 1));
+    EXPECT_NEAR(fresnel_dielectric(1, eta), r0, 1e-6);
+    EXPECT_NEAR(fresnel_dielectric(-1, eta), r0, 1e-6);  // same from the other side
+  }
+}
+
+TEST(Fresnel, GrazingIncidenceReflectsEverything) {
+  EXPECT_NEAR(fresnel_dielectric(1e-6f, 1.5f), 1, 1e-4);
+}
+
+TEST(Fresnel, TotalInternalReflectionBeyondCriticalAngle) {
+  float eta = 1.5f;
+  float cos_critical = std::sqrt(1 - 1 / (eta * eta));
+  EXPECT_EQ(fresnel_dielectric(-(cos_critical - 0.01f), eta), 1.0f);
+  EXPECT_LT(fresnel_dielectric(-(cos_critical + 0.01f), eta), 1.0f);
+}
+
+TEST(Fresnel, TransmittanceIsReciprocalAcrossTheInterface) {
+  // T(theta_i, eta) from outside equals T(theta_t, 1/eta) from inside (Stokes relations).
+  float eta = 1.4f;
+  for (float cos_i : {0.2f, 0.5f, 0.9f}) {
+    float sin_t = std::sqrt(1 - cos_i * cos_i) / eta;
+    float cos_t = std::sqrt(1 - sin_t * sin_t);
+    EXPECT_NEAR(fresnel_dielectric(cos_i, eta), fresnel_dielectric(-cos_t, eta), 1e-5);
+  }
+}
+
+TEST(Fresnel, ConductorWithoutAbsorptionIsADielectric) {
+  for (float c : {0.1f, 0.5f, 1.0f}) EXPECT_NEAR(fresnel_conductor(c, 1.5f, 0.0f), fresnel_dielectric(c, 1.5f), 1e-5);
+}
+
+TEST(Fresnel, ConductorNormalIncidenceMatchesClosedForm) {
+  float n = 0.2f, k = 3.9f;  // ((n-1)^2 + k^2) / ((n+1)^2 + k^2)
+  EXPECT_NEAR(fresnel_conductor(1, n, k), (sqr(n - 1) + k * k) / (sqr(n + 1) + k * k), 1e-5);
+}
+
+TEST(Refract, ObeysSnellsLaw) {
+  Vec3 n{0, 0, 1};
+  Vec3 wo = normalize(Vec3(0.6f, 0, 0.8f));
+  auto wt = refract(wo, n, 1.5f);
+  ASSERT_TRUE(wt);
+  EXPECT_NEAR(length(*wt), 1, 1e-5);
+  float sin_i = 0.6f, sin_t = std::sqrt(1 - sqr(wt->z));
+  EXPECT_NEAR(sin_i, 1.5f * sin_t, 1e-5);
+  EXPECT_LT(wt->z, 0);
+  EXPECT_LT(wt->x, 0);  // continues to the other side of the normal
+  // From inside beyond the critical angle: nothing.
+  EXPECT_FALSE(refract(normalize(Vec3(0.9f, 0, -0.436f)), n, 1.5f));
+}
+
+TEST(Bsdf, DielectricSamplingSplitsEnergyByFresnel) {
+  BSDF b;
+  b.type = BSDF::Type::Dielectric;
+  b.n = {0, 0, 1};
+  b.eta = 1.5f;
+  Vec3 wo = normalize(Vec3(0.5f, 0.2f, 0.7f));
+  float F = fresnel_dielectric(wo.z, 1.5f);
+  Rng rng(3, 4);
+  int reflected = 0, n = 200000;
+  for (int i = 0; i < n; ++i) {
+    auto s = bsdf_sample(b, wo, rng.uniform(), {rng.uniform(), rng.uniform()});
+    ASSERT_TRUE(s);
+    if (!s->transmission) {
+      ++reflected;
+      EXPECT_NEAR(dot(s->wi, b.n), dot(wo, b.n), 1e-5);
+    } else {
+      EXPECT_NEAR(s->weight[0], 1 / (1.5f * 1.5f), 1e-6);
+    }
+  }
+  // Binomial: within 4 standard errors.
+  double p = double(reflected) / n, sigma = std::sqrt(F * (1 - F) / n);
+  EXPECT_NEAR(p, F, 4 * sigma);
+}
+
+TEST(Bsdf, LambertPdfMatchesSampledDirections) {
+  BSDF b;
+  b.n = normalize(Vec3(0.3f, -0.2f, 0.9f));
+  b.albedo = RGB(0.8f);
+  Vec3 wo = normalize(Vec3(0.1f, 0.4f, 0.9f));
+  Rng rng(5, 6);
+  for (int i = 0; i < 1000; ++i) {
+    auto s = bsdf_sample(b, wo, rng.uniform(), {rng.uniform(), rng.uniform()});
+    ASSERT_TRUE(s);
+    EXPECT_GT(dot(s->wi, b.n), 0);
+    EXPECT_NEAR(s->pdf, bsdf_pdf(b, wo, s->wi), 1e-4);
+    RGB f = bsdf_eval(b, wo, s->wi);
+    EXPECT_NEAR(s->weight[0], f[0] / s->pdf, 1e-4);
+  }
+  // Light arriving from the other side is not reflected.
+  EXPECT_EQ(bsdf_eval(b, wo, -wo)[0], 0.0f);
+}
+
+}  // namespace
+}  // namespace dermis
