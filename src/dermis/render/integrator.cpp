@@ -126,10 +126,11 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
         if (depth++ >= max_depth) break;
         Vec3 wo = -ray.d;
         const float g = m.g;
-        L += beta * estimate_direct(sc, p, medium, rng, counters, [&](Vec3 wi) {
-               float ph = henyey_greenstein(dot(-wo, wi), g);
-               return std::pair{RGB(ph), ph};
-             });
+        if (sc.medium_sees_lights[medium])
+          L += beta * estimate_direct(sc, p, medium, rng, counters, [&](Vec3 wi) {
+                 float ph = henyey_greenstein(dot(-wo, wi), g);
+                 return std::pair{RGB(ph), ph};
+               });
         // Sample the phase function about the propagation direction (weight 1).
         float cos_theta = sample_henyey_greenstein_cos(rng.uniform(), g);
         Vec3 wi = direction_about(ray.d, cos_theta, rng.uniform());

@@ -287,6 +287,19 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnosti
     sc->lights.push_back(l);
   }
 
+  // A medium is enclosed when it appears only inside non-interface boundaries.
+  sc->medium_sees_lights.assign(sc->media.size(), 0);
+  auto open_medium = [&](int m) {
+    if (m >= 0) sc->medium_sees_lights[m] = 1;
+  };
+  open_medium(sc->camera_medium);
+  for (const Light& l : sc->lights) open_medium(l.medium);
+  for (const Shape& s : sc->shapes) {
+    if (!s.has_medium_interface) continue;
+    open_medium(s.outside_medium);
+    if (sc->materials[s.material].is_interface() || s.first_light >= 0) open_medium(s.inside_medium);
+  }
+
   std::vector<float> power(sc->lights.size());
   float radius = sc->embree->bounds_radius();
   for (std::size_t i = 0; i < sc->lights.size(); ++i) power[i] = std::max(0.0f, light_power(sc->lights[i], radius));

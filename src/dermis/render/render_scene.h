@@ -28,6 +28,10 @@ struct RenderScene {
   Distribution1D light_distribution;  // light selection in proportion to power
   std::vector<int> infinite_lights;
   bool has_interfaces = false;        // any shape with an `interface` material
+  // Per medium: can a shadow ray from inside it reach a light? Not when the medium only
+  // fills shapes with opaque or refractive boundaries and holds no light (e.g. skin
+  // under a dielectric): next-event estimation there would only find the boundary.
+  std::vector<char> medium_sees_lights;
   int camera_medium = -1;
   PerspectiveCamera camera;
   FilmDesc film;
