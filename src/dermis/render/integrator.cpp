@@ -61,6 +61,7 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
   if (!sc.has_interfaces) {
     // No index-matched boundary: any hit blocks, and the medium cannot change.
     ++counters.rays;
+    if (counters.recorded_rays) counters.recorded_rays->push_back(Ray{origin, dir, distance});
     if (sc.embree->occluded(Ray{origin, dir, distance})) return RGB(0);
     if (medium >= 0) tr = sc.media[medium].transmittance(distance);
     return tr;
@@ -69,6 +70,7 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
   float remaining = distance;
   for (int crossing = 0; crossing < kMaxInterfaceCrossings; ++crossing) {
     ++counters.rays;
+    if (counters.recorded_rays) counters.recorded_rays->push_back(Ray{o, dir, remaining});
     SurfaceHit hit;
     if (!sc.embree->intersect(Ray{o, dir, remaining}, hit)) {
       if (medium >= 0) tr *= sc.media[medium].transmittance(remaining);
@@ -100,6 +102,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
   while (true) {
     SurfaceHit hit;
     ++counters.rays;
+    if (counters.recorded_rays) counters.recorded_rays->push_back(ray);
     bool found = sc.embree->intersect(ray, hit);
     float t_hit = found ? hit.t : kInf;
 

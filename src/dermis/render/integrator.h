@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "dermis/core/rgb.h"
 #include "dermis/core/rng.h"
@@ -17,6 +18,8 @@ namespace dermis {
 struct PathCounters {
   uint64_t rays = 0;       // closest-hit and shadow rays traced
   uint64_t truncated = 0;  // paths stopped by the interface-crossing guard
+  // When set, every closest-hit ray traced is appended here (benchmarks replay them).
+  std::vector<Ray>* recorded_rays = nullptr;
 };
 
 // Radiance arriving along `ray` (from the camera), starting in `medium`.

@@ -1,0 +1,141 @@
+// End-to-end tests of the `dermis` command line: the real binary, real files.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "dermis/render/image.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Run {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+Run run(const std::string& args) {
+  Run r;
+  std::string cmd = std::string(DERMIS_BINARY) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
+  int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("dermis_cli_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+const char* kSmallScene = R"(
+LookAt 0 0 -4  0 0 0  0 1 0
+Camera "perspective" "float fov" 40
+Film "rgb" "integer xresolution" 24 "integer yresolution" 16 "string filename" "x.exr"
+Sampler "independent" "integer pixelsamples" 4
+WorldBegin
+LightSource "infinite" "rgb L" [0.5 0.5 0.5]
+MakeNamedMedium "milk" "string type" "homogeneous" "string preset" "Wholemilk" "float scale" 0.5
+AttributeBegin
+  MediumInterface "milk" ""
+  Material "dielectric" "float eta" 1.33
+  Shape "sphere" "float radius" 1
+AttributeEnd
+)";
+
+TEST_F(Cli, VersionAndHelp) {
+  Run v = run("--version");
+  EXPECT_EQ(v.status, 0);
+  EXPECT_NE(v.output.find("dermis"), std::string::npos);
+  Run h = run("render --help");
+  EXPECT_EQ(h.status, 0);
+  EXPECT_NE(h.output.find("--time-limit"), std::string::npos);
+}
+
+TEST_F(Cli, RendersAScene) {
+  std::string scene = write("s.pbrt", kSmallScene);
+  Run r = run("render " + scene + " -q -o " + path("out.exr"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(path("out.exr")));
+  EXPECT_TRUE(fs::exists(path("out.png")));
+  dermis::Image img = dermis::read_image(path("out.exr"));
+  EXPECT_EQ(img.width, 24);
+  EXPECT_EQ(img.height, 16);
+}
+
+TEST_F(Cli, SameSeedSameImageWithOneAndTwoThreads) {
+  std::string scene = write("s.pbrt", kSmallScene);
+  ASSERT_EQ(run("render " + scene + " -q --threads 1 --seed 9 -o " + path("a.exr")).status, 0);
+  ASSERT_EQ(run("render " + scene + " -q --threads 2 --seed 9 -o " + path("b.exr")).status, 0);
+  dermis::Image a = dermis::read_image(path("a.exr")), b = dermis::read_image(path("b.exr"));
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)));
+}
+
+TEST_F(Cli, MissingSceneIsAnErrorWithStatus2) {
+  Run r = run("render " + path("nope.pbrt") + " -o " + path("o.exr"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("nope.pbrt"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("o.exr")));
+}
+
+TEST_F(Cli, MalformedSceneReportsLineAndColumnAndWritesNothing) {
+  std::string scene = write("bad.pbrt", "WorldBegin\nShape \"sphere\" \"float radius\" [ 1\n");
+  Run r = run("render " + scene + " -o " + path("o.exr"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("bad.pbrt:"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("o.exr")));
+  EXPECT_FALSE(fs::exists(path("o.png")));
+}
+
+TEST_F(Cli, BadOptionsExitWithStatus2) {
+  std::string scene = write("s.pbrt", kSmallScene);
+  EXPECT_EQ(run("render " + scene + " --res 12by5 -o " + path("o.exr")).status, 2);
+  EXPECT_EQ(run("render " + scene + " --spp -3 -o " + path("o.exr")).status, 2);
+  EXPECT_EQ(run("render " + scene + " -o " + path("o.bmpx")).status, 2);
+  EXPECT_EQ(run("render " + scene + " -o " + path("missing_dir/o.exr")).status, 2);
+  EXPECT_EQ(run("frobnicate").status, 2);
+  EXPECT_FALSE(fs::exists(path("o.exr")));
+}
+
+TEST_F(Cli, TimeLimitKeepsTheSamplesTaken) {
+  std::string scene = write("s.pbrt", kSmallScene);
+  Run r = run("render " + scene + " -q --spp 100000 --time-limit 0.5 -o " + path("t.exr"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(path("t.exr")));
+}
+
+TEST_F(Cli, CompareReportsDifferences) {
+  std::string scene = write("s.pbrt", kSmallScene);
+  ASSERT_EQ(run("render " + scene + " -q --seed 1 -o " + path("a.exr")).status, 0);
+  ASSERT_EQ(run("render " + scene + " -q --seed 2 -o " + path("b.exr")).status, 0);
+  Run r = run("compare " + path("a.exr") + " " + path("b.exr") + " --diff " + path("d.exr"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("RMSE"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(path("d.exr")));
+  EXPECT_EQ(run("compare " + path("a.exr") + " " + path("nope.exr")).status, 2);
+}
+
+}  // namespace
