@@ -62,6 +62,7 @@ struct TextureDesc {
   enum class Type { Constant, ImageMap, Scale };
   std::string name;
   Type type = Type::Constant;
+  bool is_float = false;     // declared "float" (value holds the float in all channels), else "spectrum"
   RGB value{1, 1, 1};        // constant: "value"
   std::string filename;      // imagemap: absolute path
   float scale = 1;           // imagemap: "scale"; scale: constant factor
@@ -117,6 +118,10 @@ struct ShapeDesc {
   int inside_medium = -1;      // indices into SceneDesc::media, -1: vacuum
   int outside_medium = -1;
   bool has_medium_interface = false;  // false when inside == outside (no transition)
+  // pbrt's ReverseOrientation XOR "object_to_world swaps handedness": when true the
+  // renderer flips the geometric normal computed as cross(p1 - p0, p2 - p0) in world space
+  // (and pbrt's +z disk / outward sphere normal). For instanced shapes the instance
+  // transform's handedness is NOT included.
   bool reverse_orientation = false;
   SourceLoc loc;
 };

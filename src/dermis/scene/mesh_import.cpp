@@ -1,0 +1,109 @@
+#include "dermis/scene/mesh_import.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+#include <assimp/cimport.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <fmt/format.h>
+
+namespace dermis {
+
+namespace {
+
+struct Collected {
+  const aiMesh* mesh;
+  aiMatrix4x4 to_root;
+};
+
+void collect(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent, std::vector<Collected>& out) {
+  aiMatrix4x4 m = parent * node->mTransformation;
+  for (unsigned i = 0; i < node->mNumMeshes; ++i) out.push_back({scene->mMeshes[node->mMeshes[i]], m});
+  for (unsigned i = 0; i < node->mNumChildren; ++i) collect(scene, node->mChildren[i], m, out);
+}
+
+}  // namespace
+
+ImportedMesh import_mesh_assimp(const std::string& path) {
+  {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) throw std::runtime_error(std::strerror(errno));
+  }
+  const aiScene* scene = aiImportFile(path.c_str(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+  if (!scene) throw std::runtime_error(fmt::format("Assimp: {}", aiGetErrorString()));
+  struct Release {
+    const aiScene* s;
+    ~Release() { aiReleaseImport(s); }
+  } release{scene};
+  if (!scene->mRootNode || scene->mNumMeshes == 0) throw std::runtime_error("the file contains no meshes");
+
+  std::vector<Collected> parts;
+  collect(scene, scene->mRootNode, aiMatrix4x4(), parts);
+  bool all_normals = true, all_uvs = true;
+  for (const Collected& c : parts) {
+    all_normals = all_normals && c.mesh->HasNormals();
+    all_uvs = all_uvs && c.mesh->HasTextureCoords(0);
+  }
+
+  ImportedMesh out;
+  TriangleMeshDesc& mesh = out.mesh;
+  size_t dropped = 0;
+  for (const Collected& c : parts) {
+    const aiMesh* m = c.mesh;
+    uint32_t base = uint32_t(mesh.positions.size());
+    aiMatrix3x3 normal_matrix(c.to_root);
+    normal_matrix.Inverse().Transpose();
+    for (unsigned v = 0; v < m->mNumVertices; ++v) {
+      aiVector3D p = c.to_root * m->mVertices[v];
+      mesh.positions.emplace_back(p.x, p.y, p.z);
+      if (all_normals) {
+        aiVector3D n = normal_matrix * m->mNormals[v];
+        mesh.normals.emplace_back(n.x, n.y, n.z);
+      }
+      if (all_uvs) mesh.uvs.emplace_back(m->mTextureCoords[0][v].x, m->mTextureCoords[0][v].y);
+    }
+    for (unsigned f = 0; f < m->mNumFaces; ++f) {
+      const aiFace& face = m->mFaces[f];
+      if (face.mNumIndices != 3) {
+        ++dropped;
+        continue;
+      }
+      for (int k = 0; k < 3; ++k) mesh.indices.push_back(base + face.mIndices[k]);
+    }
+  }
+  if (dropped) out.notes.push_back(fmt::format("{} point/line primitives dropped", dropped));
+  bool any_normals = false;
+  for (const Collected& c : parts) any_normals = any_normals || c.mesh->HasNormals();
+  if (any_normals && !all_normals) out.notes.push_back("normals dropped: only some meshes of the file have them");
+  if (parts.size() > 1) out.notes.push_back(fmt::format("{} meshes merged into one", parts.size()));
+  if (mesh.indices.empty()) throw std::runtime_error("the file contains no triangles");
+  return out;
+}
+
+void validate_mesh(const TriangleMeshDesc& mesh) {
+  if (mesh.indices.size() % 3 != 0)
+    throw std::runtime_error(fmt::format("{} indices is not a multiple of 3", mesh.indices.size()));
+  const size_t n = mesh.positions.size();
+  for (size_t i = 0; i < mesh.indices.size(); ++i)
+    if (mesh.indices[i] >= n)
+      throw std::runtime_error(fmt::format("index {} (value {}) is out of range: the mesh has {} vertices", i,
+                                           mesh.indices[i], n));
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3& p = mesh.positions[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw std::runtime_error(fmt::format("vertex {} has a non-finite coordinate", i));
+  }
+  if (!mesh.normals.empty() && mesh.normals.size() != n)
+    throw std::runtime_error(fmt::format("{} normals for {} vertices", mesh.normals.size(), n));
+  if (!mesh.uvs.empty() && mesh.uvs.size() != n)
+    throw std::runtime_error(fmt::format("{} uvs for {} vertices", mesh.uvs.size(), n));
+  for (const Vec3& nn : mesh.normals)
+    if (!std::isfinite(nn.x) || !std::isfinite(nn.y) || !std::isfinite(nn.z))
+      throw std::runtime_error("a normal has a non-finite component");
+}
+
+}  // namespace dermis

@@ -1,0 +1,66 @@
+// Parameter lists of pbrt-v4 directives: `"type name" value` or `"type name" [values]`,
+// with typed getters that check the type and the number of values and mark the
+// parameter used, so that the ones nobody read can be reported.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "dermis/core/vec.h"
+#include "dermis/scene/diagnostics.h"
+#include "dermis/scene/scene_desc.h"
+#include "dermis/scene/tokenizer.h"
+
+namespace dermis {
+
+struct ParsedParam {
+  Param param;                 // as written (type spelled as in the file)
+  std::string type;            // canonical type: integer float point2 vector2 point3 vector3
+                               // normal3 rgb spectrum blackbody bool string texture
+  SourceLoc value_loc;         // first token of the value ('[' or the single value)
+  std::vector<std::pair<int, int>> value_pos;  // line and column of every value
+  mutable bool used = false;
+
+  size_t size() const;         // number of values of whatever kind
+  SourceLoc value_at(size_t i) const;
+};
+
+class ParamList {
+ public:
+  // Reads parameters while the next token is a string. Throws on a malformed list.
+  static ParamList parse(TokenStream& ts);
+
+  const ParsedParam* find(const std::string& name) const;
+  bool has(const std::string& name) const { return find(name) != nullptr; }
+
+  // Single values; the default when absent. Wrong type or count: SceneError.
+  float get_float(const std::string& name, float def) const;
+  int get_int(const std::string& name, int def) const;
+  bool get_bool(const std::string& name, bool def) const;
+  std::string get_string(const std::string& name, const std::string& def) const;
+  // "texture name" parameters: the texture name, if present.
+  std::optional<std::string> get_texture(const std::string& name) const;
+  // Arrays: every value of a parameter of one of `types` (canonical); empty when absent.
+  // `arity` values form one element: an error when the count is not a multiple of it.
+  std::vector<double> get_numbers(const std::string& name, std::initializer_list<const char*> types,
+                                  size_t arity) const;
+  std::vector<Vec3> get_vec3s(const std::string& name, std::initializer_list<const char*> types) const;
+  std::optional<Vec3> get_vec3(const std::string& name, std::initializer_list<const char*> types) const;
+
+  // Throws unless the parameter has one of the canonical types (marks it used).
+  const ParsedParam& expect_type(const ParsedParam& p, std::initializer_list<const char*> types) const;
+
+  void mark_all_used() const;
+  // One warning per parameter that no getter read, naming its file:line:col.
+  void warn_unused(Diagnostics& diag, const std::string& context) const;
+  // All parameters as written.
+  std::vector<Param> as_written() const;
+  const std::vector<ParsedParam>& items() const { return items_; }
+
+ private:
+  std::vector<ParsedParam> items_;
+};
+
+}  // namespace dermis

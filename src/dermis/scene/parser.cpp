@@ -1,0 +1,450 @@
+#include "dermis/scene/parser.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "dermis/scene/scene_parser.h"
+
+namespace dermis {
+
+namespace fs = std::filesystem;
+
+std::string resolve_path(const std::string& file, const std::string& dir) {
+  fs::path p(file);
+  if (p.is_relative()) p = fs::path(dir) / p;
+  std::string s = fs::absolute(p).lexically_normal().string();
+  if (s.size() > 1 && s.back() == '/') s.pop_back();
+  return s;
+}
+
+namespace {
+
+std::string read_text(const std::string& path, std::string& why) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    why = std::strerror(errno);
+    return {};
+  }
+  if (fs::is_directory(path)) {
+    why = "it is a directory";
+    return {};
+  }
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string describe(const Token* t) {
+  if (!t) return "the end of the file";
+  return fmt::format("{} '{}'", token_kind_name(t->kind), t->text);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- files
+
+void SceneParser::parse_file(const std::string& path, const SourceLoc* from) {
+  std::string canonical = resolve_path(path, ".");
+  if (std::find(include_stack_.begin(), include_stack_.end(), canonical) != include_stack_.end()) {
+    std::string chain;
+    for (const std::string& f : include_stack_) chain += f + " -> ";
+    throw SceneError(*from, fmt::format("Include cycle: {}{}", chain, canonical));
+  }
+  std::string why;
+  std::string text = read_text(canonical, why);
+  if (!why.empty()) {
+    if (from) throw SceneError(*from, fmt::format("could not read included file '{}': {}", canonical, why));
+    throw SceneError({path, 1, 1}, fmt::format("could not read scene file '{}': {}", path, why));
+  }
+  include_stack_.push_back(canonical);
+  TokenStream ts(tokenize(text, path), path);
+  run(ts, fs::path(canonical).parent_path().string());
+  include_stack_.pop_back();
+}
+
+void SceneParser::parse_text(const std::string& text, const std::string& name, const std::string& base_dir) {
+  TokenStream ts(tokenize(text, name), name);
+  run(ts, resolve_path(".", base_dir));
+}
+
+void SceneParser::include(const Token& d, TokenStream& ts, const std::string& dir) {
+  SourceLoc loc;
+  std::string file = string_arg(ts, d, &loc);
+  std::string path = resolve_path(file, dir);
+  // Messages about the included file name it as resolved.
+  parse_file(path, &loc);
+}
+
+void SceneParser::run(TokenStream& ts, const std::string& dir) {
+  while (const Token* t = ts.peek()) {
+    const Token d = ts.next();
+    if (d.kind != Token::Kind::Identifier)
+      throw SceneError(ts.loc(d), fmt::format("expected a directive, found {} '{}'", token_kind_name(d.kind), d.text));
+    directive(d, ts, dir);
+    (void)t;
+  }
+}
+
+void SceneParser::finish(const std::string& main_file) {
+  if (open_object_ >= 0)
+    throw SceneError(s_.objects[open_object_].loc,
+                     fmt::format("ObjectBegin \"{}\" has no matching ObjectEnd", s_.objects[open_object_].name));
+  for (const Block& b : blocks_)
+    s_.diagnostics.warn(b.loc, b.kind == BlockKind::Attribute ? "AttributeBegin has no matching AttributeEnd"
+                                                              : "TransformBegin has no matching TransformEnd");
+  for (const PendingInstance& p : pending_instances_) {
+    auto it = objects_.find(p.name);
+    if (it == objects_.end()) {
+      std::string known;
+      for (const auto& [name, index] : objects_) known += (known.empty() ? "" : ", ") + name;
+      throw SceneError(p.loc, fmt::format("ObjectInstance of unknown object \"{}\" (defined objects: {})", p.name,
+                                          known.empty() ? "none" : known));
+    }
+    s_.instances[p.index].object = it->second;
+  }
+  s_.base_directory = main_file.empty() ? s_.base_directory : fs::path(resolve_path(main_file, ".")).parent_path().string();
+}
+
+// ---------------------------------------------------------------- arguments
+
+double SceneParser::number_arg(TokenStream& ts, const Token& d) {
+  const Token* t = ts.peek();
+  if (!t || t->kind != Token::Kind::Number)
+    throw SceneError(t ? ts.loc(*t) : ts.end_loc(),
+                     fmt::format("{} expects a number here, found {}", d.text, describe(t)));
+  return ts.next().number;
+}
+
+std::vector<double> SceneParser::numbers_arg(TokenStream& ts, const Token& d, size_t n, std::vector<SourceLoc>* locs) {
+  std::vector<double> v;
+  for (size_t i = 0; i < n; ++i) {
+    const Token* t = ts.peek();
+    if (!t || t->kind != Token::Kind::Number)
+      throw SceneError(t ? ts.loc(*t) : ts.end_loc(),
+                       fmt::format("{} expects {} numbers, found {} after {}", d.text, n, describe(t), i));
+    if (locs) locs->push_back(ts.loc(*t));
+    v.push_back(ts.next().number);
+  }
+  return v;
+}
+
+std::string SceneParser::string_arg(TokenStream& ts, const Token& d, SourceLoc* loc) {
+  const Token* t = ts.peek();
+  if (!t || t->kind != Token::Kind::String)
+    throw SceneError(t ? ts.loc(*t) : ts.end_loc(),
+                     fmt::format("{} expects a quoted string here, found {}", d.text, describe(t)));
+  if (loc) *loc = ts.loc(*t);
+  return ts.next().text;
+}
+
+Transform SceneParser::matrix_arg(TokenStream& ts, const Token& d) {
+  const Token* open = ts.peek();
+  bool bracketed = open && open->kind == Token::Kind::LBracket;
+  SourceLoc start = open ? ts.loc(*open) : ts.end_loc();
+  if (bracketed) ts.next();
+  std::vector<double> v = numbers_arg(ts, d, 16);
+  if (bracketed) {
+    const Token* close = ts.peek();
+    if (!close || close->kind != Token::Kind::RBracket)
+      throw SceneError(close ? ts.loc(*close) : ts.end_loc(),
+                       fmt::format("{}: missing ']' after 16 numbers, found {}", d.text, describe(close)));
+    ts.next();
+  }
+  // pbrt writes the matrix column by column (it transposes on input).
+  Mat4 m;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) m.m[j][i] = v[4 * i + j];
+  Mat4 inv;
+  if (!m.invert(inv)) throw SceneError(start, fmt::format("{}: the matrix is singular", d.text));
+  return Transform(m, inv);
+}
+
+void SceneParser::skip_arguments(TokenStream& ts) {
+  while (const Token* t = ts.peek()) {
+    if (t->kind == Token::Kind::Identifier && t->text != "true" && t->text != "false") return;
+    ts.next();
+  }
+}
+
+void SceneParser::require_world(const Token& d, TokenStream& ts) const {
+  if (!in_world_) throw SceneError(ts.loc(d), fmt::format("{} is only allowed after WorldBegin", d.text));
+}
+
+void SceneParser::require_options(const Token& d, TokenStream& ts) const {
+  if (in_world_) throw SceneError(ts.loc(d), fmt::format("{} is only allowed before WorldBegin", d.text));
+}
+
+// ---------------------------------------------------------------- dispatch
+
+void SceneParser::directive(const Token& d, TokenStream& ts, const std::string& dir) {
+  const std::string& n = d.text;
+  const SourceLoc loc = ts.loc(d);
+  if (n == "Identity") {
+    gs_.ctm = Transform();
+  } else if (n == "Translate") {
+    std::vector<double> v = numbers_arg(ts, d, 3);
+    apply(Transform::translate({v[0], v[1], v[2]}));
+  } else if (n == "Scale") {
+    std::vector<SourceLoc> locs;
+    std::vector<double> v = numbers_arg(ts, d, 3, &locs);
+    for (int i = 0; i < 3; ++i)
+      if (v[i] == 0) throw SceneError(locs[i], "Scale by zero makes the transformation singular");
+    apply(Transform::scale({v[0], v[1], v[2]}));
+  } else if (n == "Rotate") {
+    std::vector<double> v = numbers_arg(ts, d, 4);
+    if (v[1] == 0 && v[2] == 0 && v[3] == 0) throw SceneError(loc, "Rotate: the rotation axis has zero length");
+    apply(Transform::rotate(v[0], {v[1], v[2], v[3]}));
+  } else if (n == "LookAt") {
+    std::vector<double> v = numbers_arg(ts, d, 9);
+    try {
+      apply(Transform::look_at({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}));
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(loc, fmt::format("degenerate LookAt ({})", e.what()));
+    }
+  } else if (n == "Transform") {
+    gs_.ctm = matrix_arg(ts, d);
+  } else if (n == "ConcatTransform") {
+    apply(matrix_arg(ts, d));
+  } else if (n == "CoordinateSystem") {
+    coordinate_systems_[string_arg(ts, d)] = gs_.ctm;
+  } else if (n == "CoordSysTransform") {
+    std::string name = string_arg(ts, d);
+    auto it = coordinate_systems_.find(name);
+    if (it == coordinate_systems_.end())
+      s_.diagnostics.warn(loc, fmt::format("CoordSysTransform: no coordinate system named \"{}\" (ignored)", name));
+    else
+      gs_.ctm = it->second;
+  } else if (n == "ActiveTransform") {
+    const Token* t = ts.peek();
+    if (t && t->kind == Token::Kind::Identifier && (t->text == "All" || t->text == "StartTime" || t->text == "EndTime"))
+      ts.next();
+    else
+      throw SceneError(t ? ts.loc(*t) : ts.end_loc(),
+                       fmt::format("ActiveTransform expects All, StartTime or EndTime, found {}", describe(t)));
+    s_.diagnostics.warn(loc, "ActiveTransform ignored: Dermis has no motion blur (one transform for all times)");
+  } else if (n == "TransformTimes") {
+    numbers_arg(ts, d, 2);
+    s_.diagnostics.warn(loc, "TransformTimes ignored: Dermis has no motion blur");
+  } else if (n == "ReverseOrientation") {
+    gs_.reverse_orientation = !gs_.reverse_orientation;
+  } else if (n == "AttributeBegin" || n == "TransformBegin") {
+    if (n == "TransformBegin")
+      s_.diagnostics.warn(loc, "TransformBegin is deprecated in pbrt-v4 (use AttributeBegin); accepted");
+    blocks_.push_back({n == "AttributeBegin" ? BlockKind::Attribute : BlockKind::Transform, gs_, loc});
+  } else if (n == "AttributeEnd") {
+    block_end(d, ts, BlockKind::Attribute);
+  } else if (n == "TransformEnd") {
+    s_.diagnostics.warn(loc, "TransformEnd is deprecated in pbrt-v4 (use AttributeEnd); accepted");
+    block_end(d, ts, BlockKind::Transform);
+  } else if (n == "Camera") {
+    camera(d, ts);
+  } else if (n == "Film") {
+    film(d, ts);
+  } else if (n == "PixelFilter") {
+    pixel_filter(d, ts);
+  } else if (n == "Sampler") {
+    sampler(d, ts);
+  } else if (n == "Integrator") {
+    integrator(d, ts);
+  } else if (n == "Accelerator") {
+    require_options(d, ts);
+    string_arg(ts, d);
+    ParamList::parse(ts);
+    s_.diagnostics.warn(loc, "Accelerator ignored (Dermis uses Embree's BVH)");
+  } else if (n == "ColorSpace") {
+    std::string cs = string_arg(ts, d);
+    s_.diagnostics.warn(loc, fmt::format("ColorSpace \"{}\" ignored: Dermis renders in linear Rec.709 (sRGB) RGB", cs));
+  } else if (n == "Option") {
+    ParamList pl = ParamList::parse(ts);
+    std::string what = pl.items().empty() ? "" : pl.items()[0].param.name;
+    s_.diagnostics.warn(loc, fmt::format("Option \"{}\" ignored", what));
+  } else if (n == "WorldBegin") {
+    if (in_world_) throw SceneError(loc, "WorldBegin given twice");
+    in_world_ = true;
+    gs_.ctm = Transform();
+    coordinate_systems_["world"] = gs_.ctm;
+  } else if (n == "WorldEnd") {
+    // pbrt-v3's end marker: pbrt-v4 has none; accepted silently.
+  } else if (n == "Include" || n == "Import") {
+    include(d, ts, dir);
+  } else if (n == "Shape") {
+    shape(d, ts, dir);
+  } else if (n == "ObjectBegin") {
+    object_begin(d, ts);
+  } else if (n == "ObjectEnd") {
+    object_end(d, ts);
+  } else if (n == "ObjectInstance") {
+    object_instance(d, ts);
+  } else if (n == "Material") {
+    material(d, ts);
+  } else if (n == "MakeNamedMaterial") {
+    make_named_material(d, ts);
+  } else if (n == "NamedMaterial") {
+    named_material(d, ts);
+  } else if (n == "Texture") {
+    texture(d, ts, dir);
+  } else if (n == "LightSource") {
+    light_source(d, ts, dir);
+  } else if (n == "AreaLightSource") {
+    area_light_source(d, ts);
+  } else if (n == "MakeNamedMedium") {
+    make_named_medium(d, ts);
+  } else if (n == "MediumInterface") {
+    medium_interface(d, ts);
+  } else if (n == "Attribute") {
+    std::string target = string_arg(ts, d);
+    ParamList pl = ParamList::parse(ts);
+    std::string names;
+    for (const ParsedParam& p : pl.items()) names += (names.empty() ? "" : ", ") + p.param.name;
+    s_.diagnostics.warn(loc, fmt::format("Attribute \"{}\" ignored (parameters: {})", target, names));
+  } else {
+    s_.diagnostics.warn(loc, fmt::format("unknown directive '{}' ignored with its arguments", n));
+    skip_arguments(ts);
+  }
+}
+
+void SceneParser::block_end(const Token& d, TokenStream& ts, BlockKind kind) {
+  const SourceLoc loc = ts.loc(d);
+  const char* begin = kind == BlockKind::Attribute ? "AttributeBegin" : "TransformBegin";
+  if (blocks_.empty()) throw SceneError(loc, fmt::format("{} without a matching {}", d.text, begin));
+  const Block& b = blocks_.back();
+  if (b.kind == BlockKind::Object)
+    throw SceneError(loc, fmt::format("{} closes the ObjectBegin at {} (use ObjectEnd)", d.text, b.loc.str()));
+  if (b.kind != kind)
+    throw SceneError(loc, fmt::format("{} closes the {} at {}", d.text,
+                                      b.kind == BlockKind::Attribute ? "AttributeBegin" : "TransformBegin",
+                                      b.loc.str()));
+  if (kind == BlockKind::Attribute)
+    gs_ = b.saved;
+  else
+    gs_.ctm = b.saved.ctm;
+  blocks_.pop_back();
+}
+
+// ---------------------------------------------------------------- rendering options
+
+void SceneParser::camera(const Token& d, TokenStream& ts) {
+  require_options(d, ts);
+  const SourceLoc loc = ts.loc(d);
+  std::string type = string_arg(ts, d);
+  ParamList pl = ParamList::parse(ts);
+  if (type != "perspective")
+    s_.diagnostics.warn(loc, fmt::format("Camera \"{}\" is not supported; rendered as \"perspective\"", type));
+  CameraDesc& c = s_.camera;
+  c.loc = loc;
+  c.camera_to_world = gs_.ctm.inverse();  // pbrt: the CTM at Camera is camera-from-world
+  coordinate_systems_["camera"] = c.camera_to_world;
+  c.medium = gs_.outside_medium;
+  c.fov = pl.get_float("fov", 90);
+  if (!(c.fov > 0 && c.fov < 180))
+    throw SceneError(pl.find("fov")->value_loc, fmt::format("fov must be in (0, 180) degrees, got {}", c.fov));
+  c.lens_radius = pl.get_float("lensradius", 0);
+  if (c.lens_radius < 0) throw SceneError(pl.find("lensradius")->value_loc, "lensradius must not be negative");
+  c.focal_distance = pl.get_float("focaldistance", 1e6f);
+  if (c.focal_distance <= 0) throw SceneError(pl.find("focaldistance")->value_loc, "focaldistance must be positive");
+  std::vector<double> sw = pl.get_numbers("screenwindow", {"float"}, 1);
+  if (!sw.empty()) {
+    if (sw.size() != 4)
+      throw SceneError(pl.find("screenwindow")->value_loc,
+                       fmt::format("screenwindow expects 4 values (xmin xmax ymin ymax), got {}", sw.size()));
+    c.screen_window = std::array<float, 4>{float(sw[0]), float(sw[1]), float(sw[2]), float(sw[3])};
+  }
+  pl.warn_unused(s_.diagnostics, "Camera");
+}
+
+void SceneParser::film(const Token& d, TokenStream& ts) {
+  require_options(d, ts);
+  const SourceLoc loc = ts.loc(d);
+  std::string type = string_arg(ts, d);
+  ParamList pl = ParamList::parse(ts);
+  if (type == "gbuffer" || type == "spectral")
+    s_.diagnostics.warn(loc, fmt::format("Film \"{}\" is written as an \"rgb\" film", type));
+  else if (type != "rgb")
+    s_.diagnostics.warn(loc, fmt::format("unknown Film \"{}\"; using \"rgb\"", type));
+  FilmDesc& f = s_.film;
+  f.xres = pl.get_int("xresolution", f.xres);
+  if (f.xres <= 0) throw SceneError(pl.find("xresolution")->value_loc, fmt::format("xresolution must be positive, got {}", f.xres));
+  f.yres = pl.get_int("yresolution", f.yres);
+  if (f.yres <= 0) throw SceneError(pl.find("yresolution")->value_loc, fmt::format("yresolution must be positive, got {}", f.yres));
+  f.filename = pl.get_string("filename", f.filename);
+  pl.warn_unused(s_.diagnostics, fmt::format("Film \"{}\"", type));
+}
+
+void SceneParser::pixel_filter(const Token& d, TokenStream& ts) {
+  require_options(d, ts);
+  const SourceLoc loc = ts.loc(d);
+  std::string type = string_arg(ts, d);
+  ParamList pl = ParamList::parse(ts);
+  FilterDesc& f = s_.film.filter;
+  if (type == "box") {
+    f.type = FilterDesc::Type::Box;
+    f.radius = Vec2(0.5f, 0.5f);
+  } else {
+    if (type != "gaussian")
+      s_.diagnostics.warn(loc, fmt::format("PixelFilter \"{}\" is not supported; using \"gaussian\"", type));
+    f.type = FilterDesc::Type::Gaussian;
+    f.radius = Vec2(1.5f, 1.5f);
+    f.sigma = pl.get_float("sigma", 0.5f);
+    if (f.sigma <= 0) throw SceneError(pl.find("sigma")->value_loc, "sigma must be positive");
+  }
+  f.radius.x = pl.get_float("xradius", f.radius.x);
+  f.radius.y = pl.get_float("yradius", f.radius.y);
+  if (f.radius.x <= 0) throw SceneError(pl.find("xradius")->value_loc, "xradius must be positive");
+  if (f.radius.y <= 0) throw SceneError(pl.find("yradius")->value_loc, "yradius must be positive");
+  pl.warn_unused(s_.diagnostics, fmt::format("PixelFilter \"{}\"", type));
+}
+
+void SceneParser::sampler(const Token& d, TokenStream& ts) {
+  require_options(d, ts);
+  std::string type = string_arg(ts, d);
+  ParamList pl = ParamList::parse(ts);
+  s_.settings.spp = pl.get_int("pixelsamples", s_.settings.spp);
+  if (s_.settings.spp <= 0)
+    throw SceneError(pl.find("pixelsamples")->value_loc, fmt::format("pixelsamples must be positive, got {}", s_.settings.spp));
+  s_.settings.seed = pl.get_int("seed", s_.settings.seed);
+  pl.warn_unused(s_.diagnostics, fmt::format("Sampler \"{}\" (Dermis uses its own sampler)", type));
+}
+
+void SceneParser::integrator(const Token& d, TokenStream& ts) {
+  require_options(d, ts);
+  const SourceLoc loc = ts.loc(d);
+  std::string type = string_arg(ts, d);
+  ParamList pl = ParamList::parse(ts);
+  if (type == "volpath" || type == "path") {
+    s_.settings.integrator = type;
+  } else {
+    s_.diagnostics.warn(loc, fmt::format("Integrator \"{}\" is not supported; using \"volpath\"", type));
+    s_.settings.integrator = "volpath";
+  }
+  s_.settings.max_depth = pl.get_int("maxdepth", s_.settings.max_depth);
+  if (s_.settings.max_depth < 0) throw SceneError(pl.find("maxdepth")->value_loc, "maxdepth must not be negative");
+  pl.warn_unused(s_.diagnostics, fmt::format("Integrator \"{}\"", type));
+}
+
+// ---------------------------------------------------------------- entry points
+
+SceneDesc parse_scene_file(const std::string& path) {
+  SceneDesc scene;
+  SceneParser parser(scene);
+  parser.parse_file(path, nullptr);
+  parser.finish(path);
+  return scene;
+}
+
+SceneDesc parse_scene_string(const std::string& text, const std::string& name, const std::string& base_dir) {
+  SceneDesc scene;
+  scene.base_directory = resolve_path(".", base_dir);
+  SceneParser parser(scene);
+  parser.parse_text(text, name, base_dir);
+  parser.finish("");
+  return scene;
+}
+
+}  // namespace dermis

@@ -1,0 +1,408 @@
+// Material, MakeNamedMaterial, NamedMaterial, Texture, LightSource, AreaLightSource,
+// MakeNamedMedium, MediumInterface.
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "dermis/scene/medium_presets.h"
+#include "dermis/scene/scene_parser.h"
+#include "dermis/scene/spectra.h"
+
+namespace dermis {
+
+namespace {
+
+std::string names_of(const std::map<std::string, int>& m) {
+  std::string s;
+  for (const auto& [name, index] : m) s += (s.empty() ? "" : ", ") + name;
+  return s.empty() ? "none" : s;
+}
+
+RGB rgb_param(const ParamList& pl, const std::string& name, RGB def, Diagnostics& diag) {
+  const ParsedParam* p = pl.find(name);
+  return p ? spectrum_param_rgb(*p, diag) : def;
+}
+
+std::string existing_file(const ParamList& pl, const std::string& name, const std::string& dir,
+                          const std::string& what) {
+  const ParsedParam* p = pl.find(name);
+  std::string file = resolve_path(pl.get_string(name, ""), dir);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw SceneError(p->value_loc, fmt::format("{}: could not read '{}': no such file", what, file));
+  return file;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- materials
+
+RGBTexture SceneParser::spectrum_or_texture(const ParamList& pl, const std::string& name, RGB def) {
+  RGBTexture t;
+  t.value = def;
+  const ParsedParam* p = pl.find(name);
+  if (!p) return t;
+  if (p->type == "texture") {
+    std::string tex = *pl.get_texture(name);
+    auto it = spectrum_textures_.find(tex);
+    if (it == spectrum_textures_.end())
+      throw SceneError(p->value_loc, fmt::format("unknown spectrum texture \"{}\" for \"{}\"{} (defined: {})", tex,
+                                                 name, float_textures_.count(tex) ? " (a float texture has that name)" : "",
+                                                 names_of(spectrum_textures_)));
+    t.texture = it->second;
+    return t;
+  }
+  t.value = spectrum_param_rgb(*p, s_.diagnostics);
+  return t;
+}
+
+MaterialDesc SceneParser::build_material(const std::string& type, const ParamList& pl, const SourceLoc& loc) {
+  MaterialDesc m;
+  m.loc = loc;
+  m.params = pl.as_written();
+  auto roughness = [&](const char* what) {
+    float r = 0;
+    for (const char* name : {"roughness", "uroughness", "vroughness"}) {
+      const ParsedParam* p = pl.find(name);
+      if (!p) continue;
+      if (p->type == "texture") {
+        p->used = true;
+        s_.diagnostics.warn(p->param.loc, fmt::format("textured {} ignored: {} is rendered smooth", name, what));
+        continue;
+      }
+      r = std::max(r, pl.get_float(name, 0));
+    }
+    if (const ParsedParam* p = pl.find("remaproughness")) pl.expect_type(*p, {"bool"});
+    if (r > 0)
+      s_.diagnostics.warn(loc, fmt::format("{} roughness {} ignored: only smooth surfaces are rendered (rendered smooth)",
+                                           what, r));
+    m.roughness = r;
+  };
+  if (type == "diffuse") {
+    m.type = MaterialDesc::Type::Diffuse;
+    m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));
+  } else if (type == "dielectric" || type == "thindielectric") {
+    if (type == "thindielectric") s_.diagnostics.warn(loc, "thindielectric is rendered as dielectric");
+    m.type = MaterialDesc::Type::Dielectric;
+    if (const ParsedParam* p = pl.find("eta")) m.eta = ior_param(*p, s_.diagnostics);
+    roughness("dielectric");
+  } else if (type == "conductor") {
+    m.type = MaterialDesc::Type::Conductor;
+    if (pl.has("reflectance")) {
+      m.has_reflectance = true;
+      m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(1.0f));
+      if (pl.has("eta") || pl.has("k"))
+        s_.diagnostics.warn(loc, "conductor: \"reflectance\" given, so \"eta\" and \"k\" are ignored");
+      if (const ParsedParam* p = pl.find("eta")) p->used = true;
+      if (const ParsedParam* p = pl.find("k")) p->used = true;
+    } else {
+      m.conductor_eta = *named_spectrum_rgb("metal-Cu-eta");  // pbrt-v4's defaults
+      m.conductor_k = *named_spectrum_rgb("metal-Cu-k");
+      m.conductor_eta = rgb_param(pl, "eta", m.conductor_eta, s_.diagnostics);
+      m.conductor_k = rgb_param(pl, "k", m.conductor_k, s_.diagnostics);
+    }
+    roughness("conductor");
+  } else if (type == "interface" || type == "" || type == "none") {
+    m.type = MaterialDesc::Type::Interface;
+  } else if (type == "coateddiffuse") {
+    m.type = MaterialDesc::Type::CoatedDiffuse;
+    m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));
+    if (const ParsedParam* p = pl.find("eta")) m.eta = ior_param(*p, s_.diagnostics);
+    roughness("coateddiffuse");
+  } else if (type == "subsurface") {
+    m.type = MaterialDesc::Type::Subsurface;
+    m.eta = pl.get_float("eta", 1.33f);
+    if (pl.has("reflectance")) m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(1.0f));
+    roughness("subsurface");
+    pl.mark_all_used();  // the subsurface methods read MaterialDesc::params
+  } else {
+    s_.diagnostics.warn(loc, fmt::format("unsupported material \"{}\"; using diffuse", type));
+    m.type = MaterialDesc::Type::Diffuse;
+    m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));
+    pl.mark_all_used();
+  }
+  if (m.eta <= 0) throw SceneError(pl.find("eta") ? pl.find("eta")->value_loc : loc, "eta must be positive");
+  pl.warn_unused(s_.diagnostics, fmt::format("material \"{}\"", type));
+  return m;
+}
+
+void SceneParser::material(const Token& d, TokenStream& ts) {
+  require_world(d, ts);
+  std::string type = string_arg(ts, d);
+  ParamList pl = ParamList::parse(ts);
+  s_.materials.push_back(build_material(type, pl, ts.loc(d)));
+  gs_.material = int(s_.materials.size()) - 1;
+}
+
+void SceneParser::make_named_material(const Token& d, TokenStream& ts) {
+  require_world(d, ts);
+  const SourceLoc loc = ts.loc(d);
+  SourceLoc name_loc;
+  std::string name = string_arg(ts, d, &name_loc);
+  ParamList pl = ParamList::parse(ts);
+  if (named_materials_.count(name))
+    throw SceneError(name_loc, fmt::format("named material \"{}\" is defined twice (first at {})", name,
+                                           s_.materials[named_materials_[name]].loc.str()));
+  if (!pl.has("type")) throw SceneError(loc, fmt::format("MakeNamedMaterial \"{}\" needs \"string type\"", name));
+  std::string type = pl.get_string("type", "");
+  MaterialDesc m = build_material(type, pl, loc);
+  m.name = name;
+  named_materials_[name] = int(s_.materials.size());
+  s_.materials.push_back(std::move(m));
+}
+
+void SceneParser::named_material(const Token& d, TokenStream& ts) {
+  require_world(d, ts);
+  SourceLoc name_loc;
+  std::string name = string_arg(ts, d, &name_loc);
+  auto it = named_materials_.find(name);
+  if (it == named_materials_.end())
+    throw SceneError(name_loc, fmt::format("unknown named material \"{}\" (defined: {})", name, names_of(named_materials_)));
+  gs_.material = it->second;
+}
+
+// ---------------------------------------------------------------- textures
+
+void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& dir) {
+  require_world(d, ts);
+  const SourceLoc loc = ts.loc(d);
+  SourceLoc type_loc;
+  std::string name = string_arg(ts, d);
+  std::string value_type = string_arg(ts, d, &type_loc);
+  std::string cls = string_arg(ts, d);
+  ParamList pl = ParamList::parse(ts);
+  if (value_type == "color") {
+    s_.diagnostics.warn(type_loc, "texture type \"color\" (pbrt-v3) read as \"spectrum\"");
+    value_type = "spectrum";
+  }
+  if (value_type != "spectrum" && value_type != "float")
+    throw SceneError(type_loc, fmt::format("texture type must be \"spectrum\" or \"float\", got \"{}\"", value_type));
+  TextureDesc t;
+  t.name = name;
+  t.loc = loc;
+  t.is_float = value_type == "float";
+  auto value_param = [&](const std::string& pname, RGB def) {
+    const ParsedParam* p = pl.find(pname);
+    if (!p) return def;
+    if (p->type == "float") return RGB(pl.get_float(pname, 0));
+    return spectrum_param_rgb(*p, s_.diagnostics);
+  };
+  if (cls == "imagemap") {
+    t.type = TextureDesc::Type::ImageMap;
+    if (!pl.has("filename")) throw SceneError(loc, "imagemap texture needs \"string filename\"");
+    t.filename = existing_file(pl, "filename", dir, "imagemap texture");
+    t.scale = pl.get_float("scale", 1);
+    t.invert = pl.get_bool("invert", false);
+    t.encoding = pl.get_string("encoding", t.encoding);
+    if (t.encoding != "sRGB" && t.encoding != "linear" && t.encoding.rfind("gamma ", 0) != 0)
+      throw SceneError(pl.find("encoding")->value_loc,
+                       fmt::format("encoding must be \"sRGB\", \"linear\" or \"gamma <value>\", got \"{}\"", t.encoding));
+    t.wrap = pl.get_string("wrap", t.wrap);
+    if (t.wrap != "repeat" && t.wrap != "black" && t.wrap != "clamp" && t.wrap != "octahedralsphere")
+      throw SceneError(pl.find("wrap")->value_loc,
+                       fmt::format("wrap must be \"repeat\", \"black\" or \"clamp\", got \"{}\"", t.wrap));
+    if (const ParsedParam* f = pl.find("filter")) {
+      f->used = true;
+      s_.diagnostics.warn(f->param.loc, "imagemap \"filter\" ignored (Dermis filters bilinearly)");
+    }
+  } else if (cls == "constant") {
+    t.type = TextureDesc::Type::Constant;
+    t.value = value_param("value", RGB(1));
+  } else if (cls == "scale") {
+    t.type = TextureDesc::Type::Scale;
+    if (const ParsedParam* p = pl.find("tex")) {
+      if (p->type == "texture") {
+        std::string base = *pl.get_texture("tex");
+        auto& table = t.is_float ? float_textures_ : spectrum_textures_;
+        auto it = table.find(base);
+        if (it == table.end())
+          throw SceneError(p->value_loc, fmt::format("unknown {} texture \"{}\" (defined: {})", value_type, base,
+                                                     names_of(table)));
+        t.base = it->second;
+      } else {
+        t.value = value_param("tex", RGB(1));
+      }
+    }
+    if (const ParsedParam* p = pl.find("scale")) {
+      if (p->type == "texture") {
+        p->used = true;
+        s_.diagnostics.warn(p->param.loc, "textured \"scale\" of a scale texture ignored (1 used)");
+      } else {
+        t.scale = pl.get_float("scale", 1);
+      }
+    }
+  } else {
+    s_.diagnostics.warn(loc, fmt::format("unsupported texture class \"{}\"; texture \"{}\" is the constant 1", cls, name));
+    t.type = TextureDesc::Type::Constant;
+    t.value = RGB(1);
+    pl.mark_all_used();
+  }
+  pl.warn_unused(s_.diagnostics, fmt::format("Texture \"{}\"", cls));
+  auto& table = t.is_float ? float_textures_ : spectrum_textures_;
+  table[name] = int(s_.textures.size());  // pbrt-v4 lets a later definition replace an earlier one
+  s_.textures.push_back(std::move(t));
+}
+
+// ---------------------------------------------------------------- lights
+
+void SceneParser::light_source(const Token& d, TokenStream& ts, const std::string& dir) {
+  require_world(d, ts);
+  const SourceLoc loc = ts.loc(d);
+  std::string type = string_arg(ts, d);
+  ParamList pl = ParamList::parse(ts);
+  LightDesc l;
+  l.loc = loc;
+  l.light_to_world = gs_.ctm;
+  l.medium = gs_.outside_medium;
+  for (const char* ignored : {"power", "illuminance"})
+    if (const ParsedParam* p = pl.find(ignored)) {
+      p->used = true;
+      s_.diagnostics.warn(p->param.loc, fmt::format("\"{}\" ignored: Dermis uses the given radiance/intensity and "
+                                                    "\"scale\" only",
+                                                    ignored));
+    }
+  if (type == "point") {
+    l.type = LightDesc::Type::Point;
+    l.spectrum = rgb_param(pl, "I", RGB(1), s_.diagnostics);
+    l.from = pl.get_vec3("from", {"point3"}).value_or(l.from);
+  } else if (type == "spot") {
+    l.type = LightDesc::Type::Spot;
+    l.spectrum = rgb_param(pl, "I", RGB(1), s_.diagnostics);
+    l.from = pl.get_vec3("from", {"point3"}).value_or(l.from);
+    l.to = pl.get_vec3("to", {"point3"}).value_or(l.to);
+    l.cone_angle = pl.get_float("coneangle", l.cone_angle);
+    l.cone_delta = pl.get_float("conedelta", l.cone_delta);
+    if (l.cone_angle <= 0 || l.cone_angle > 180)
+      throw SceneError(pl.find("coneangle")->value_loc, "coneangle must be in (0, 180] degrees");
+    if (l.cone_delta < 0) throw SceneError(pl.find("conedelta")->value_loc, "conedelta must not be negative");
+    if (l.from == l.to) throw SceneError(loc, "spot light: \"from\" and \"to\" coincide");
+  } else if (type == "distant") {
+    l.type = LightDesc::Type::Distant;
+    l.spectrum = rgb_param(pl, "L", RGB(1), s_.diagnostics);
+    l.from = pl.get_vec3("from", {"point3"}).value_or(l.from);
+    l.to = pl.get_vec3("to", {"point3"}).value_or(l.to);
+    if (l.from == l.to) throw SceneError(loc, "distant light: \"from\" and \"to\" coincide");
+  } else if (type == "infinite") {
+    l.type = LightDesc::Type::Infinite;
+    if (pl.has("L") && pl.has("filename"))
+      throw SceneError(pl.find("filename")->param.loc, "infinite light: give either \"L\" or \"filename\", not both");
+    l.spectrum = rgb_param(pl, "L", RGB(1), s_.diagnostics);
+    if (pl.has("filename")) l.filename = existing_file(pl, "filename", dir, "infinite light");
+    if (const ParsedParam* p = pl.find("portal")) {
+      p->used = true;
+      s_.diagnostics.warn(p->param.loc, "infinite light \"portal\" ignored");
+    }
+  } else {
+    s_.diagnostics.warn(loc, fmt::format("LightSource \"{}\" is not supported and is ignored", type));
+    pl.mark_all_used();
+    return;
+  }
+  l.scale = pl.get_float("scale", 1);
+  pl.warn_unused(s_.diagnostics, fmt::format("LightSource \"{}\"", type));
+  s_.lights.push_back(std::move(l));
+}
+
+void SceneParser::area_light_source(const Token& d, TokenStream& ts) {
+  require_world(d, ts);
+  const SourceLoc loc = ts.loc(d);
+  std::string type = string_arg(ts, d);
+  ParamList pl = ParamList::parse(ts);
+  if (type != "diffuse") {
+    s_.diagnostics.warn(loc, fmt::format("AreaLightSource \"{}\" is not supported; shapes stay non-emissive", type));
+    pl.mark_all_used();
+    gs_.area_light.reset();
+    return;
+  }
+  AreaLightDesc a;
+  a.L = rgb_param(pl, "L", RGB(1), s_.diagnostics);
+  a.scale = pl.get_float("scale", 1);
+  a.two_sided = pl.get_bool("twosided", false);
+  for (const char* ignored : {"power", "filename"})
+    if (const ParsedParam* p = pl.find(ignored)) {
+      p->used = true;
+      s_.diagnostics.warn(p->param.loc, fmt::format("area light \"{}\" ignored", ignored));
+    }
+  pl.warn_unused(s_.diagnostics, "AreaLightSource \"diffuse\"");
+  gs_.area_light = a;
+}
+
+// ---------------------------------------------------------------- media
+
+void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
+  const SourceLoc loc = ts.loc(d);
+  SourceLoc name_loc;
+  std::string name = string_arg(ts, d, &name_loc);
+  ParamList pl = ParamList::parse(ts);
+  if (media_.count(name))
+    throw SceneError(name_loc, fmt::format("medium \"{}\" is defined twice", name));
+  if (!pl.has("type")) throw SceneError(loc, fmt::format("MakeNamedMedium \"{}\" needs \"string type\"", name));
+  std::string type = pl.get_string("type", "");
+  if (type != "homogeneous") {
+    s_.diagnostics.warn(loc, fmt::format("medium type \"{}\" is not supported; medium \"{}\" is treated as vacuum",
+                                         type, name));
+    pl.mark_all_used();
+    media_[name] = -1;
+    return;
+  }
+  MediumDesc m;
+  m.name = name;
+  m.loc = loc;
+  m.type = type;
+  const ParsedParam* preset = pl.find("preset");
+  if (!preset) preset = pl.find("name");  // pbrt-v3 spelling
+  if (preset) {
+    std::string pname = pl.get_string(preset->param.name, "");
+    auto p = find_medium_preset(pname);
+    if (!p)
+      throw SceneError(preset->value_loc,
+                       fmt::format("unknown medium preset \"{}\" (valid: {})", pname, medium_preset_names()));
+    m.preset = p->name;
+    m.sigma_a = p->sigma_a;
+    m.sigma_s = p->sigma_s_prime;  // as pbrt: sigma_s' with g = 0
+    m.g = 0;
+    for (const char* ignored : {"sigma_a", "sigma_s", "g"})
+      if (const ParsedParam* q = pl.find(ignored)) {
+        q->used = true;
+        s_.diagnostics.warn(q->param.loc, fmt::format("\"{}\" ignored: preset \"{}\" sets it", ignored, m.preset));
+      }
+  } else {
+    m.sigma_a = rgb_param(pl, "sigma_a", m.sigma_a, s_.diagnostics);
+    m.sigma_s = rgb_param(pl, "sigma_s", m.sigma_s, s_.diagnostics);
+    m.g = pl.get_float("g", 0);
+    if (!(m.g > -1 && m.g < 1)) throw SceneError(pl.find("g")->value_loc, fmt::format("g must be in (-1, 1), got {}", m.g));
+  }
+  for (int c = 0; c < 3; ++c)
+    if (m.sigma_a[c] < 0 || m.sigma_s[c] < 0)
+      throw SceneError(loc, fmt::format("medium \"{}\": sigma_a and sigma_s must not be negative", name));
+  m.scale = pl.get_float("scale", 1);
+  if (m.scale < 0) throw SceneError(pl.find("scale")->value_loc, "scale must not be negative");
+  m.Le = rgb_param(pl, "Le", RGB(0), s_.diagnostics) * pl.get_float("Lescale", 1);
+  if (!m.Le.is_black()) s_.diagnostics.warn(loc, fmt::format("medium \"{}\": emission Le is recorded but not rendered", name));
+  pl.warn_unused(s_.diagnostics, "MakeNamedMedium \"homogeneous\"");
+  media_[name] = int(s_.media.size());
+  s_.media.push_back(std::move(m));
+}
+
+void SceneParser::medium_interface(const Token& d, TokenStream& ts) {
+  const SourceLoc loc = ts.loc(d);
+  SourceLoc in_loc, out_loc;
+  std::string inside = string_arg(ts, d, &in_loc), outside = inside;
+  out_loc = in_loc;
+  if (const Token* t = ts.peek(); t && t->kind == Token::Kind::String) outside = string_arg(ts, d, &out_loc);
+  auto lookup = [&](const std::string& name, const SourceLoc& at) {
+    if (name.empty()) return -1;
+    auto it = media_.find(name);
+    if (it == media_.end())
+      throw SceneError(at, fmt::format("unknown medium \"{}\" (defined: {})", name, names_of(media_)));
+    return it->second;
+  };
+  int in = lookup(inside, in_loc), out = lookup(outside, out_loc);
+  if (open_object_ >= 0) {
+    s_.diagnostics.warn(loc, "MediumInterface inside ObjectBegin/ObjectEnd ignored (instanced shapes get no media)");
+    return;
+  }
+  gs_.inside_medium = in;
+  gs_.outside_medium = out;
+}
+
+}  // namespace dermis

@@ -1,0 +1,221 @@
+// Shape, ObjectBegin, ObjectEnd, ObjectInstance.
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "dermis/scene/mesh_import.h"
+#include "dermis/scene/ply_reader.h"
+#include "dermis/scene/scene_parser.h"
+#include "dermis/scene/shape_tessellation.h"
+
+namespace dermis {
+
+namespace {
+
+// Indices from an "integer indices" parameter, each checked against the vertex count
+// (the error points at the offending number).
+std::vector<uint32_t> checked_indices(const ParamList& pl, size_t nverts, size_t per_primitive) {
+  const ParsedParam* p = pl.find("indices");
+  if (!p) return {};
+  std::vector<double> v = pl.get_numbers("indices", {"integer"}, per_primitive);
+  std::vector<uint32_t> out(v.size());
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (v[i] < 0 || v[i] >= double(nverts))
+      throw SceneError(p->value_at(i), fmt::format("index {} is out of range: the mesh has {} vertices (valid: 0 to {})",
+                                                   v[i], nverts, nverts == 0 ? 0 : nverts - 1));
+    out[i] = uint32_t(v[i]);
+  }
+  return out;
+}
+
+std::vector<Vec2> read_uvs(const ParamList& pl, size_t nverts) {
+  const char* name = pl.has("uv") ? "uv" : (pl.has("st") ? "st" : nullptr);
+  if (!name) return {};
+  std::vector<double> v = pl.get_numbers(name, {"point2", "float"}, 2);
+  if (v.size() / 2 != nverts)
+    throw SceneError(pl.find(name)->value_loc, fmt::format("\"{}\" has {} entries but \"P\" has {} vertices", name,
+                                                           v.size() / 2, nverts));
+  std::vector<Vec2> uv(nverts);
+  for (size_t i = 0; i < nverts; ++i) uv[i] = Vec2(float(v[2 * i]), float(v[2 * i + 1]));
+  return uv;
+}
+
+std::vector<Vec3> read_normals(const ParamList& pl, size_t nverts) {
+  std::vector<Vec3> n = pl.get_vec3s("N", {"normal3"});
+  if (!n.empty() && n.size() != nverts)
+    throw SceneError(pl.find("N")->value_loc,
+                     fmt::format("\"N\" has {} normals but \"P\" has {} vertices", n.size(), nverts));
+  return n;
+}
+
+std::vector<Vec3> read_positions(const ParamList& pl, const SourceLoc& shape_loc, const std::string& type) {
+  const ParsedParam* p = pl.find("P");
+  if (!p) throw SceneError(shape_loc, fmt::format("Shape \"{}\" needs \"point3 P\"", type));
+  return pl.get_vec3s("P", {"point3"});
+}
+
+}  // namespace
+
+void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir) {
+  require_world(d, ts);
+  const SourceLoc loc = ts.loc(d);
+  SourceLoc type_loc;
+  std::string type = string_arg(ts, d, &type_loc);
+  ParamList pl = ParamList::parse(ts);
+
+  ShapeDesc sh;
+  sh.loc = loc;
+  sh.object_to_world = gs_.ctm;
+  sh.material = gs_.material;
+  sh.reverse_orientation = gs_.reverse_orientation != gs_.ctm.swaps_handedness();
+  if (open_object_ < 0) {
+    sh.area_light = gs_.area_light;
+    sh.inside_medium = gs_.inside_medium;
+    sh.outside_medium = gs_.outside_medium;
+    sh.has_medium_interface = sh.inside_medium != sh.outside_medium;
+  } else if (gs_.area_light) {
+    s_.diagnostics.warn(loc, "area lights are not supported on instanced shapes (as in pbrt-v4); the shape is not emissive");
+  }
+
+  auto mesh_error = [&](const std::string& file, const std::exception& e) {
+    return SceneError(loc, fmt::format("Shape \"{}\": could not read mesh file '{}': {}", type, file, e.what()));
+  };
+
+  if (type == "sphere") {
+    sh.type = ShapeDesc::Type::Sphere;
+    sh.radius = pl.get_float("radius", 1);
+    if (!(sh.radius > 0)) throw SceneError(pl.find("radius")->value_loc, "sphere radius must be positive");
+    float zmin = pl.get_float("zmin", -sh.radius), zmax = pl.get_float("zmax", sh.radius);
+    float phimax = pl.get_float("phimax", 360);
+    if (zmin > -sh.radius || zmax < sh.radius || phimax < 360)
+      s_.diagnostics.warn(loc, "partial spheres (zmin/zmax/phimax) are not supported; the full sphere is rendered");
+  } else if (type == "trianglemesh") {
+    std::vector<Vec3> P = read_positions(pl, loc, type);
+    if (P.size() < 3) throw SceneError(pl.find("P")->value_loc, fmt::format("trianglemesh needs at least 3 vertices, got {}", P.size()));
+    sh.mesh.positions = P;
+    if (pl.has("indices")) {
+      sh.mesh.indices = checked_indices(pl, P.size(), 3);
+    } else if (P.size() == 3) {
+      sh.mesh.indices = {0, 1, 2};
+    } else {
+      throw SceneError(loc, fmt::format("trianglemesh with {} vertices needs \"integer indices\" (they may be "
+                                        "omitted only for exactly 3 vertices)",
+                                        P.size()));
+    }
+    sh.mesh.normals = read_normals(pl, P.size());
+    sh.mesh.uvs = read_uvs(pl, P.size());
+  } else if (type == "bilinearmesh") {
+    std::vector<Vec3> P = read_positions(pl, loc, type);
+    std::vector<uint32_t> idx;
+    if (pl.has("indices")) {
+      idx = checked_indices(pl, P.size(), 4);
+    } else if (P.size() == 4) {
+      idx = {0, 1, 2, 3};
+    } else {
+      throw SceneError(loc, fmt::format("bilinearmesh with {} vertices needs \"integer indices\" (they may be "
+                                        "omitted only for exactly 4 vertices)",
+                                        P.size()));
+    }
+    std::vector<Vec3> N = read_normals(pl, P.size());
+    std::vector<Vec2> uv = read_uvs(pl, P.size());
+    sh.mesh = tessellate_bilinear_patches(P, idx, uv, N);
+  } else if (type == "disk") {
+    float height = pl.get_float("height", 0), radius = pl.get_float("radius", 1);
+    float inner = pl.get_float("innerradius", 0);
+    if (!(radius > 0)) throw SceneError(pl.find("radius")->value_loc, "disk radius must be positive");
+    if (inner < 0 || inner >= radius)
+      throw SceneError(pl.find("innerradius")->value_loc, "innerradius must be in [0, radius)");
+    if (pl.get_float("phimax", 360) < 360)
+      s_.diagnostics.warn(loc, "partial disks (phimax) are not supported; the full disk is rendered");
+    sh.mesh = tessellate_disk(height, radius, inner);
+  } else if (type == "plymesh" || type == "objmesh") {
+    const ParsedParam* fp = pl.find("filename");
+    if (!fp) throw SceneError(loc, fmt::format("Shape \"{}\" needs \"string filename\"", type));
+    std::string file = resolve_path(pl.get_string("filename", ""), dir);
+    try {
+      if (type == "plymesh") {
+        sh.mesh = read_ply(file);
+      } else {
+        ImportedMesh im = import_mesh_assimp(file);
+        for (const std::string& note : im.notes) s_.diagnostics.warn(loc, fmt::format("'{}': {}", file, note));
+        sh.mesh = std::move(im.mesh);
+      }
+    } catch (const SceneError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw mesh_error(file, e);
+    }
+    if (type == "plymesh" && (pl.has("displacement") || pl.has("edgelength")))
+      s_.diagnostics.warn(loc, "plymesh displacement is not supported (ignored)");
+  } else {
+    s_.diagnostics.warn(loc, fmt::format("unsupported Shape \"{}\" ignored", type));
+    pl.mark_all_used();
+    return;
+  }
+
+  if (sh.type == ShapeDesc::Type::TriangleMesh) {
+    try {
+      validate_mesh(sh.mesh);
+    } catch (const std::exception& e) {
+      throw SceneError(loc, fmt::format("Shape \"{}\": invalid mesh: {}", type, e.what()));
+    }
+  }
+  pl.warn_unused(s_.diagnostics, fmt::format("Shape \"{}\"", type));
+  if (open_object_ >= 0)
+    s_.objects[open_object_].shapes.push_back(std::move(sh));
+  else
+    s_.shapes.push_back(std::move(sh));
+}
+
+void SceneParser::object_begin(const Token& d, TokenStream& ts) {
+  require_world(d, ts);
+  const SourceLoc loc = ts.loc(d);
+  SourceLoc name_loc;
+  std::string name = string_arg(ts, d, &name_loc);
+  if (open_object_ >= 0)
+    throw SceneError(loc, fmt::format("ObjectBegin \"{}\" inside the definition of \"{}\" (started at {}): objects "
+                                      "cannot be nested",
+                                      name, s_.objects[open_object_].name, s_.objects[open_object_].loc.str()));
+  if (objects_.count(name))
+    throw SceneError(name_loc, fmt::format("object \"{}\" is defined twice (first at {})", name,
+                                           s_.objects[objects_[name]].loc.str()));
+  // pbrt-v4: ObjectBegin implies AttributeBegin.
+  blocks_.push_back({BlockKind::Object, gs_, loc});
+  ObjectDesc obj;
+  obj.name = name;
+  obj.loc = loc;
+  open_object_ = int(s_.objects.size());
+  objects_[name] = open_object_;
+  s_.objects.push_back(std::move(obj));
+}
+
+void SceneParser::object_end(const Token& d, TokenStream& ts) {
+  require_world(d, ts);
+  const SourceLoc loc = ts.loc(d);
+  if (open_object_ < 0) throw SceneError(loc, "ObjectEnd without a matching ObjectBegin");
+  if (blocks_.empty() || blocks_.back().kind != BlockKind::Object)
+    throw SceneError(loc, fmt::format("ObjectEnd while the block opened at {} is still open",
+                                      blocks_.empty() ? std::string("?") : blocks_.back().loc.str()));
+  gs_ = blocks_.back().saved;
+  blocks_.pop_back();
+  open_object_ = -1;
+}
+
+void SceneParser::object_instance(const Token& d, TokenStream& ts) {
+  require_world(d, ts);
+  const SourceLoc loc = ts.loc(d);
+  SourceLoc name_loc;
+  std::string name = string_arg(ts, d, &name_loc);
+  if (open_object_ >= 0)
+    throw SceneError(loc, fmt::format("ObjectInstance inside the definition of object \"{}\" is not allowed",
+                                      s_.objects[open_object_].name));
+  InstanceDesc inst;
+  inst.object_to_world = gs_.ctm;
+  inst.loc = loc;
+  // pbrt-v4 resolves instance names after parsing, so an instance may precede its object.
+  pending_instances_.push_back({name, s_.instances.size(), name_loc});
+  s_.instances.push_back(inst);
+}
+
+}  // namespace dermis

@@ -1,0 +1,104 @@
+// Internal: the state of the pbrt-v4 parser while it walks the directives. Split over
+// parser.cpp (files, transforms, rendering options, block structure), parser_shapes.cpp
+// (shapes and object instancing) and parser_appearance.cpp (materials, textures, lights,
+// media).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dermis/scene/params.h"
+#include "dermis/scene/scene_desc.h"
+#include "dermis/scene/tokenizer.h"
+
+namespace dermis {
+
+class SceneParser {
+ public:
+  explicit SceneParser(SceneDesc& scene) : s_(scene) {}
+
+  // Parses one file; `from` is the Include directive's filename token, if any.
+  void parse_file(const std::string& path, const SourceLoc* from);
+  void parse_text(const std::string& text, const std::string& name, const std::string& base_dir);
+  // After the last file: resolves ObjectInstance names, reports unclosed blocks.
+  void finish(const std::string& main_file);
+
+ private:
+  // What AttributeBegin saves (pbrt-v4's graphics state, the parts Dermis uses).
+  struct GraphicsState {
+    Transform ctm;
+    int material = -1;
+    std::optional<AreaLightDesc> area_light;
+    int inside_medium = -1, outside_medium = -1;
+    bool reverse_orientation = false;
+  };
+  enum class BlockKind { Attribute, Transform, Object };
+  struct Block {
+    BlockKind kind;
+    GraphicsState saved;
+    SourceLoc loc;
+  };
+  struct PendingInstance {
+    std::string name;
+    size_t index;  // into s_.instances
+    SourceLoc loc;
+  };
+
+  void run(TokenStream& ts, const std::string& dir);
+  void directive(const Token& d, TokenStream& ts, const std::string& dir);
+
+  // Fixed arguments.
+  double number_arg(TokenStream& ts, const Token& d);
+  std::vector<double> numbers_arg(TokenStream& ts, const Token& d, size_t n, std::vector<SourceLoc>* locs = nullptr);
+  std::string string_arg(TokenStream& ts, const Token& d, SourceLoc* loc = nullptr);
+  Transform matrix_arg(TokenStream& ts, const Token& d);
+  void skip_arguments(TokenStream& ts);
+
+  void require_world(const Token& d, TokenStream& ts) const;
+  void require_options(const Token& d, TokenStream& ts) const;
+  void apply(const Transform& t) { gs_.ctm = gs_.ctm * t; }
+
+  // parser.cpp
+  void camera(const Token& d, TokenStream& ts);
+  void film(const Token& d, TokenStream& ts);
+  void pixel_filter(const Token& d, TokenStream& ts);
+  void sampler(const Token& d, TokenStream& ts);
+  void integrator(const Token& d, TokenStream& ts);
+  void include(const Token& d, TokenStream& ts, const std::string& dir);
+  void block_end(const Token& d, TokenStream& ts, BlockKind kind);
+
+  // parser_shapes.cpp
+  void shape(const Token& d, TokenStream& ts, const std::string& dir);
+  void object_begin(const Token& d, TokenStream& ts);
+  void object_end(const Token& d, TokenStream& ts);
+  void object_instance(const Token& d, TokenStream& ts);
+
+  // parser_appearance.cpp
+  void material(const Token& d, TokenStream& ts);
+  void make_named_material(const Token& d, TokenStream& ts);
+  void named_material(const Token& d, TokenStream& ts);
+  MaterialDesc build_material(const std::string& type, const ParamList& pl, const SourceLoc& loc);
+  RGBTexture spectrum_or_texture(const ParamList& pl, const std::string& name, RGB def);
+  void texture(const Token& d, TokenStream& ts, const std::string& dir);
+  void light_source(const Token& d, TokenStream& ts, const std::string& dir);
+  void area_light_source(const Token& d, TokenStream& ts);
+  void make_named_medium(const Token& d, TokenStream& ts);
+  void medium_interface(const Token& d, TokenStream& ts);
+
+  SceneDesc& s_;
+  GraphicsState gs_;
+  std::vector<Block> blocks_;
+  bool in_world_ = false;
+  std::map<std::string, Transform> coordinate_systems_;
+  std::map<std::string, int> named_materials_, spectrum_textures_, float_textures_, media_, objects_;
+  int open_object_ = -1;  // index into s_.objects while between ObjectBegin and ObjectEnd
+  std::vector<PendingInstance> pending_instances_;
+  std::vector<std::string> include_stack_;  // canonical paths of the files being read
+};
+
+// An absolute, normalized path for `file` written in a scene whose directory is `dir`.
+std::string resolve_path(const std::string& file, const std::string& dir);
+
+}  // namespace dermis
