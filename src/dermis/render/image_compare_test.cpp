@@ -188,7 +188,10 @@ TEST_F(CompareCommand, PrintsTableAndWritesDifferenceImage) {
     found = true;
     double v;
     int count = 0;
-    while (words >> v) EXPECT_EQ(v, 0.5) << line, ++count;
+    while (words >> v) {
+      EXPECT_EQ(v, 0.5) << line;
+      ++count;
+    }
     EXPECT_EQ(count, 4) << line;
   }
   EXPECT_TRUE(found) << out;
