@@ -14,11 +14,13 @@ namespace dermis {
 class Distribution1D {
  public:
   Distribution1D() = default;
+  // Throws std::invalid_argument if f is empty or has a non-finite value.
   explicit Distribution1D(std::span<const float> f);
   std::size_t size() const { return func_.size(); }
   // Integral of |f| over [0, 1).
   double integral() const { return integral_; }
-  // Continuous sample in [0, 1); returns the density there and the bin.
+  // Continuous sample in [0, 1); returns the density there and the bin (the point is
+  // always in that bin as pdf_continuous() computes it, so the two densities agree).
   float sample_continuous(float u, float* pdf, std::size_t* bin = nullptr) const;
   // Discrete sample of a bin with probability f_i / sum f.
   std::size_t sample_discrete(float u, float* pmf = nullptr, float* u_remapped = nullptr) const;
@@ -35,6 +37,7 @@ class Distribution1D {
 class Distribution2D {
  public:
   Distribution2D() = default;
+  // Throws std::invalid_argument unless f has nu * nv > 0 finite values.
   Distribution2D(std::span<const float> f, std::size_t nu, std::size_t nv);
   // Returns (u, v) in [0,1)^2 and the density with respect to area in [0,1)^2.
   Vec2 sample(Vec2 u, float* pdf) const;

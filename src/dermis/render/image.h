@@ -1,4 +1,4 @@
-// PROVISIONAL (replaced by the image I/O branch): linear RGB images through OpenImageIO.
+// Images in memory (linear RGB float) and their files, through OpenImageIO.
 #pragma once
 
 #include <string>
@@ -8,20 +8,41 @@
 
 namespace dermis {
 
+// Linear RGB float, row-major, top row first, 3 floats per pixel.
 struct Image {
   int width = 0, height = 0;
   std::vector<float> pixels;
+
+  Image() = default;
+  // A width x height image filled with `fill`; throws std::invalid_argument on negative sizes.
+  Image(int w, int h, RGB fill = RGB(0));
+
   RGB at(int x, int y) const {
-    const float* p = &pixels[3 * (std::size_t(y) * width + x)];
+    const float* p = &pixels[3 * (std::size_t(y) * std::size_t(width) + std::size_t(x))];
     return {p[0], p[1], p[2]};
   }
   void set(int x, int y, RGB v) {
-    float* p = &pixels[3 * (std::size_t(y) * width + x)];
-    p[0] = v[0]; p[1] = v[1]; p[2] = v[2];
+    float* p = &pixels[3 * (std::size_t(y) * std::size_t(width) + std::size_t(x))];
+    p[0] = v[0], p[1] = v[1], p[2] = v[2];
   }
+  std::size_t pixel_count() const { return std::size_t(width) * std::size_t(height); }
 };
 
+// The sRGB transfer curve (IEC 61966-2-1:1999), one channel.
+float srgb_to_linear(float encoded);
+float linear_to_srgb(float linear);
+
+// Reads any format OpenImageIO reads. Gray (1 channel) is replicated, gray+alpha
+// and RGBA drop the alpha, extra channels beyond the fourth are ignored. 8- and
+// 16-bit integer data tagged (or, untagged, presumed) sRGB is linearized.
+// Throws std::runtime_error("PATH: could not read image: REASON").
 Image read_image(const std::string& path);
+
+// Writes by extension: .exr (32-bit float, zip), .hdr (RGBE), .tif/.tiff (32-bit float),
+// .png/.jpg/.jpeg (sRGB-encoded 8-bit, clamped to [0, 1]). The file appears
+// atomically: it is written to "PATH.tmp-PID" beside PATH, then renamed. Throws
+// std::runtime_error for an unknown extension, a non-finite pixel, or a failed write
+// (leaving no file behind).
 void write_image(const std::string& path, const Image& img);
 
 }  // namespace dermis
