@@ -15,13 +15,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Run {
+struct CommandResult {
   int status = -1;
   std::string output;  // stdout and stderr
 };
 
-Run run(const std::string& args) {
-  Run r;
+CommandResult run_dermis(const std::string& args) {
+  CommandResult r;
   std::string cmd = std::string(DERMIS_BINARY) + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
@@ -66,17 +66,17 @@ AttributeEnd
 )";
 
 TEST_F(Cli, VersionAndHelp) {
-  Run v = run("--version");
+  CommandResult v = run_dermis("--version");
   EXPECT_EQ(v.status, 0);
   EXPECT_NE(v.output.find("dermis"), std::string::npos);
-  Run h = run("render --help");
+  CommandResult h = run_dermis("render --help");
   EXPECT_EQ(h.status, 0);
   EXPECT_NE(h.output.find("--time-limit"), std::string::npos);
 }
 
 TEST_F(Cli, RendersAScene) {
   std::string scene = write("s.pbrt", kSmallScene);
-  Run r = run("render " + scene + " -q -o " + path("out.exr"));
+  CommandResult r = run_dermis("render " + scene + " -q -o " + path("out.exr"));
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(fs::exists(path("out.exr")));
   EXPECT_TRUE(fs::exists(path("out.png")));
@@ -87,15 +87,15 @@ TEST_F(Cli, RendersAScene) {
 
 TEST_F(Cli, SameSeedSameImageWithOneAndTwoThreads) {
   std::string scene = write("s.pbrt", kSmallScene);
-  ASSERT_EQ(run("render " + scene + " -q --threads 1 --seed 9 -o " + path("a.exr")).status, 0);
-  ASSERT_EQ(run("render " + scene + " -q --threads 2 --seed 9 -o " + path("b.exr")).status, 0);
+  ASSERT_EQ(run_dermis("render " + scene + " -q --threads 1 --seed 9 -o " + path("a.exr")).status, 0);
+  ASSERT_EQ(run_dermis("render " + scene + " -q --threads 2 --seed 9 -o " + path("b.exr")).status, 0);
   dermis::Image a = dermis::read_image(path("a.exr")), b = dermis::read_image(path("b.exr"));
   ASSERT_EQ(a.pixels.size(), b.pixels.size());
   EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)));
 }
 
 TEST_F(Cli, MissingSceneIsAnErrorWithStatus2) {
-  Run r = run("render " + path("nope.pbrt") + " -o " + path("o.exr"));
+  CommandResult r = run_dermis("render " + path("nope.pbrt") + " -o " + path("o.exr"));
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("nope.pbrt"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(path("o.exr")));
@@ -103,7 +103,7 @@ TEST_F(Cli, MissingSceneIsAnErrorWithStatus2) {
 
 TEST_F(Cli, MalformedSceneReportsLineAndColumnAndWritesNothing) {
   std::string scene = write("bad.pbrt", "WorldBegin\nShape \"sphere\" \"float radius\" [ 1\n");
-  Run r = run("render " + scene + " -o " + path("o.exr"));
+  CommandResult r = run_dermis("render " + scene + " -o " + path("o.exr"));
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("bad.pbrt:"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(path("o.exr")));
@@ -112,30 +112,30 @@ TEST_F(Cli, MalformedSceneReportsLineAndColumnAndWritesNothing) {
 
 TEST_F(Cli, BadOptionsExitWithStatus2) {
   std::string scene = write("s.pbrt", kSmallScene);
-  EXPECT_EQ(run("render " + scene + " --res 12by5 -o " + path("o.exr")).status, 2);
-  EXPECT_EQ(run("render " + scene + " --spp -3 -o " + path("o.exr")).status, 2);
-  EXPECT_EQ(run("render " + scene + " -o " + path("o.bmpx")).status, 2);
-  EXPECT_EQ(run("render " + scene + " -o " + path("missing_dir/o.exr")).status, 2);
-  EXPECT_EQ(run("frobnicate").status, 2);
+  EXPECT_EQ(run_dermis("render " + scene + " --res 12by5 -o " + path("o.exr")).status, 2);
+  EXPECT_EQ(run_dermis("render " + scene + " --spp -3 -o " + path("o.exr")).status, 2);
+  EXPECT_EQ(run_dermis("render " + scene + " -o " + path("o.bmpx")).status, 2);
+  EXPECT_EQ(run_dermis("render " + scene + " -o " + path("missing_dir/o.exr")).status, 2);
+  EXPECT_EQ(run_dermis("frobnicate").status, 2);
   EXPECT_FALSE(fs::exists(path("o.exr")));
 }
 
 TEST_F(Cli, TimeLimitKeepsTheSamplesTaken) {
   std::string scene = write("s.pbrt", kSmallScene);
-  Run r = run("render " + scene + " -q --spp 100000 --time-limit 0.5 -o " + path("t.exr"));
+  CommandResult r = run_dermis("render " + scene + " -q --spp 100000 --time-limit 0.5 -o " + path("t.exr"));
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(fs::exists(path("t.exr")));
 }
 
 TEST_F(Cli, CompareReportsDifferences) {
   std::string scene = write("s.pbrt", kSmallScene);
-  ASSERT_EQ(run("render " + scene + " -q --seed 1 -o " + path("a.exr")).status, 0);
-  ASSERT_EQ(run("render " + scene + " -q --seed 2 -o " + path("b.exr")).status, 0);
-  Run r = run("compare " + path("a.exr") + " " + path("b.exr") + " --diff " + path("d.exr"));
+  ASSERT_EQ(run_dermis("render " + scene + " -q --seed 1 -o " + path("a.exr")).status, 0);
+  ASSERT_EQ(run_dermis("render " + scene + " -q --seed 2 -o " + path("b.exr")).status, 0);
+  CommandResult r = run_dermis("compare " + path("a.exr") + " " + path("b.exr") + " --diff " + path("d.exr"));
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("RMSE"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(path("d.exr")));
-  EXPECT_EQ(run("compare " + path("a.exr") + " " + path("nope.exr")).status, 2);
+  EXPECT_EQ(run_dermis("compare " + path("a.exr") + " " + path("nope.exr")).status, 2);
 }
 
 }  // namespace

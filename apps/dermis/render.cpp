@@ -1,11 +1,139 @@
-// dermis render SCENE
+// dermis render SCENE [--spp N] [--threads N] [--seed S] [-o OUT] [--res WxH] [--time-limit SEC]
+#include <fmt/format.h>
+
+#include <atomic>
+#include <csignal>
+#include <filesystem>
+
 #include "commands.h"
+#include "dermis/render/image.h"
+#include "dermis/render/progress.h"
+#include "dermis/render/render_scene.h"
+#include "dermis/render/renderer.h"
+#include "dermis/scene/parser.h"
 
 namespace dermis::app {
 
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void on_sigint(int) {
+  g_interrupted = true;
+  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the program at once
+}
+
+struct RenderArgs {
+  std::string scene;
+  int spp = 0, threads = 0;
+  int64_t seed = -1;
+  std::string output, res;
+  double time_limit = 0;
+  bool quiet = false, no_png = false;
+};
+
+int run_render(const RenderArgs& a) {
+  SceneDesc desc;
+  std::unique_ptr<RenderScene> scene;
+  try {
+    desc = parse_scene_file(a.scene);
+    if (!a.res.empty()) {
+      int w = 0, h = 0;
+      char x = 0;
+      if (std::sscanf(a.res.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') || w <= 0 || h <= 0 ||
+          w > 65536 || h > 65536)
+        throw std::invalid_argument(fmt::format("--res {}: expected WIDTHxHEIGHT with positive integers, e.g. 640x480", a.res));
+      desc.film.xres = w;
+      desc.film.yres = h;
+    }
+    if (a.spp > 0) desc.settings.spp = a.spp;
+    for (const auto& w : desc.diagnostics.warnings) fmt::print(stderr, "{}\n", w);
+    Diagnostics build_diag;
+    scene = build_render_scene(desc, build_diag);
+    for (const auto& w : build_diag.warnings) fmt::print(stderr, "{}\n", w);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "dermis render: {}\n", e.what());
+    return 2;
+  }
+
+  std::string out = a.output.empty() ? desc.film.filename : a.output;
+  std::filesystem::path out_path(out);
+  std::string ext = out_path.extension().string();
+  for (char& c : ext) c = char(std::tolower(c));
+  if (ext != ".exr" && ext != ".png" && ext != ".hdr" && ext != ".tif" && ext != ".tiff" && ext != ".jpg") {
+    fmt::print(stderr, "dermis render: {}: unsupported output format '{}' (use .exr, .png, .hdr, .tif or .jpg)\n", out, ext);
+    return 2;
+  }
+  if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path())) {
+    fmt::print(stderr, "dermis render: {}: output directory '{}' does not exist\n", out, out_path.parent_path().string());
+    return 2;
+  }
+
+  RenderOptions opt;
+  opt.spp = desc.settings.spp;
+  opt.threads = a.threads;
+  opt.seed = a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
+  opt.time_limit = a.time_limit;
+  opt.cancel = &g_interrupted;
+  const int64_t total = int64_t(scene->film.xres) * scene->film.yres * opt.spp;
+  Progress progress("Rendering", total, a.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto);
+  opt.progress = [&progress](int64_t n) { progress.advance(n); };
+
+  if (!a.quiet)
+    fmt::print(stderr, "dermis: {} — {}x{}, {} spp, {} shapes, {} lights\n", a.scene, scene->film.xres, scene->film.yres,
+               opt.spp, scene->shapes.size(), scene->lights.size());
+  g_interrupted = false;
+  std::signal(SIGINT, on_sigint);
+  RenderResult r = render_image(*scene, opt);
+  std::signal(SIGINT, SIG_DFL);
+  progress.finish();
+
+  Image img;
+  img.width = r.width;
+  img.height = r.height;
+  img.pixels = std::move(r.rgb);
+  try {
+    write_image(out, img);
+    if (ext == ".exr" && !a.no_png) write_image(out_path.replace_extension(".png").string(), img);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "dermis render: {}\n", e.what());
+    return 2;
+  }
+
+  double mrays = r.seconds > 0 ? double(r.rays) / r.seconds * 1e-6 : 0;
+  fmt::print(stderr, "dermis: wrote {}{} in {:.1f} s ({:.2f} Mrays/s, {} samples)\n", out,
+             ext == ".exr" && !a.no_png ? " and its .png" : "", r.seconds, mrays, r.samples);
+  if (r.nonfinite > 0)
+    fmt::print(stderr, "dermis: warning: {} samples were NaN or infinite; they were dropped (counted as zero)\n",
+               r.nonfinite);
+  if (r.truncated > 0) fmt::print(stderr, "dermis: warning: {} paths were cut by the interface-crossing guard\n", r.truncated);
+  if (r.interrupted) {
+    fmt::print(stderr, "dermis: interrupted: the image holds the samples finished so far ({}..{} per pixel of {})\n",
+               r.min_spp, r.max_spp, opt.spp);
+    return 130;
+  }
+  if (r.time_limited)
+    fmt::print(stderr, "dermis: time limit reached: {}..{} samples per pixel of {}\n", r.min_spp, r.max_spp, opt.spp);
+  return 0;
+}
+
+}  // namespace
+
 void register_render(CLI::App& app, int& exit_code) {
-  auto* cmd = app.add_subcommand("render", "Render a pbrt-v4 scene");
-  cmd->callback([&exit_code] { exit_code = 2; });
+  auto args = std::make_shared<RenderArgs>();
+  auto* cmd = app.add_subcommand("render", "Render a pbrt-v4 scene to EXR (and a PNG preview)");
+  cmd->add_option("scene", args->scene, "pbrt-v4 scene file")->required();
+  cmd->add_option("--spp", args->spp, "samples per pixel (default: the scene's Sampler pixelsamples)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--threads", args->threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", args->seed, "random seed (default: the scene's, else 0)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("-o,--output", args->output, "output image (.exr, .png, ...; default: the Film's filename)");
+  cmd->add_option("--res", args->res, "resolution WIDTHxHEIGHT, overriding the Film's");
+  cmd->add_option("--time-limit", args->time_limit, "stop after this many seconds, keeping the samples taken")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("-q,--quiet", args->quiet, "no progress bar or summary");
+  cmd->add_flag("--no-png", args->no_png, "with an .exr output, do not also write a .png preview");
+  cmd->callback([args, &exit_code] { exit_code = run_render(*args); });
 }
 
 }  // namespace dermis::app
