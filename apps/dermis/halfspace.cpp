@@ -36,7 +36,8 @@ int run_halfspace(const HalfspaceOptions& o) {
   } else if (o.sigma_a && o.sigma_s) {
     if (!(*o.sigma_a >= 0 && *o.sigma_s >= 0)) throw std::invalid_argument("--sigma-a and --sigma-s must be >= 0");
     c.sigma_t = *o.sigma_a + *o.sigma_s;
-    c.albedo = c.sigma_t > 0 ? *o.sigma_s / c.sigma_t : -1;
+    if (!(c.sigma_t > 0)) throw std::invalid_argument("--sigma-a + --sigma-s must be positive");
+    c.albedo = *o.sigma_s / c.sigma_t;
   } else {
     throw std::invalid_argument("give --albedo A, or both --sigma-a and --sigma-s");
   }
