@@ -25,4 +25,3 @@ BENCHMARK(BM_HalfspacePaths)->Arg(500)->Arg(900)->Arg(990)->Unit(benchmark::kMil
 
 }  // namespace
 
-BENCHMARK_MAIN();
