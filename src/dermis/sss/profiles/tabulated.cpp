@@ -13,9 +13,13 @@ namespace {
 
 constexpr double kLogFloor = -700;  // ln of a zero value (exp(-700) ~ 1e-304)
 
+// Uniform in logit(A) = ln(A / (1 - A)) over [0.002, 0.998]: the dipole's shape changes
+// fastest near both ends (its sigma_tr goes like 1 - A as A -> 1).
 std::vector<double> default_albedos() {
-  std::vector<double> a(67);
-  for (int i = 0; i < 67; ++i) a[i] = 0.005 + 0.99 * i / 66.0;
+  constexpr int kNodes = 161;
+  const double lo = std::log(0.002 / 0.998), hi = -lo;
+  std::vector<double> a(kNodes);
+  for (int i = 0; i < kNodes; ++i) a[i] = 1 / (1 + std::exp(-(lo + (hi - lo) * i / (kNodes - 1))));
   return a;
 }
 
@@ -115,8 +119,23 @@ ProfileTable::Lookup ProfileTable::lookup(double albedo) const {
   Lookup q;
   q.node = j;
   q.t = (albedo - albedos_[j]) / (albedos_[j + 1] - albedos_[j]);
-  q.scale = std::exp((1 - q.t) * log_scale_[j] + q.t * log_scale_[j + 1]);
-  q.energy = (1 - q.t) * energy_[j] + q.t * energy_[j + 1];
+  // The scale and the energy vary smoothly with A: cubic Lagrange interpolation through
+  // nodes j-1 .. j+2 (fewer at the ends), so that a curved ln L(A) does not shift the
+  // profile between nodes.
+  const int first = std::max(0, j - 1), last = std::min(int(albedos_.size()) - 1, j + 2);
+  double log_scale = 0, energy = 0;
+  q.first = first;
+  q.count = last - first + 1;
+  for (int i = first; i <= last; ++i) {
+    double w = 1;
+    for (int m = first; m <= last; ++m)
+      if (m != i) w *= (albedo - albedos_[m]) / (albedos_[i] - albedos_[m]);
+    q.weight[i - first] = w;
+    log_scale += w * log_scale_[i];
+    energy += w * energy_[i];
+  }
+  q.scale = std::exp(log_scale);
+  q.energy = energy;
   return q;
 }
 
@@ -129,19 +148,20 @@ int ProfileTable::cell_of(double x) const {
   return k;
 }
 
-double ProfileTable::interpolate_log_shape(int node, double x) const {
+double ProfileTable::interpolate_log_shape(int node, int k, double w) const {
   const double* g = &log_shape_[std::size_t(node) * n_];
-  // Position in ln x, linear extrapolation below x_1 (at most 3 decades).
-  double u = (std::log(std::max(x, x_min_ * 1e-3)) - log_x_min_) / log_step_;
-  int k = std::clamp(int(std::floor(u)), 0, n_ - 2);
-  const double w = u - k;
   return (1 - w) * g[k] + w * g[k + 1];
 }
 
 double ProfileTable::eval(const Lookup& q, double r) const {
   const double x = r / q.scale;
   if (x > x_max_ || x < 0) return 0;
-  const double g = (1 - q.t) * interpolate_log_shape(q.node, x) + q.t * interpolate_log_shape(q.node + 1, x);
+  // Position in ln x; linear extrapolation below x_1 (at most 3 decades).
+  const double u = (std::log(std::max(x, x_min_ * 1e-3)) - log_x_min_) / log_step_;
+  const int k = std::clamp(int(std::floor(u)), 0, n_ - 2);
+  const double w = u - k;
+  double g = 0;
+  for (int i = 0; i < q.count; ++i) g += q.weight[i] * interpolate_log_shape(q.first + i, k, w);
   return q.energy * std::exp(g) / (q.scale * q.scale);
 }
 

@@ -8,8 +8,8 @@
 // interpolating between nodes moves the profile's scale smoothly instead of blending two
 // differently sized profiles. Values are stored as g = ln(L^2 R / M) (M: the node's
 // energy in the table) on a log-spaced grid x = r / L in [x_min, x_max] (plus 0), and
-// evaluation interpolates g linearly in ln x and in A, ln L linearly in A and M
-// linearly in A. Sampling at an A between nodes j and j+1 (weight t) picks node j with
+// evaluation interpolates g linearly in ln x, and g, ln L and M with cubic Lagrange
+// polynomials in A (through nodes j-1 .. j+2). Sampling at an A between nodes j and j+1 (weight t) picks node j with
 // probability 1 - t, else j+1, then the node's piecewise-constant density in x
 // (exact cell energies); pdf_radius is exactly that mixture density.
 #pragma once
@@ -26,11 +26,12 @@ using RadialFunction = std::function<double(double r)>;
 using ProfileFamily = std::function<RadialFunction(double albedo)>;
 
 struct ProfileTableOptions {
-  // Albedo nodes, strictly increasing, in (0, 1]; empty: 67 uniform nodes in [0.005, 0.995].
+  // Albedo nodes, strictly increasing, in (0, 1]; empty: 161 nodes uniform in
+  // logit(A) over [0.002, 0.998] (dense near 0 and 1).
   std::vector<double> albedos;
   int radial_nodes = 1024;  // log-spaced nodes x_1 .. x_n (plus x_0 = 0)
   double x_min = 1e-5;      // first radial node, in units of the node's median radius
-  double x_max = 64;        // last radial node (the truncation), in the same units
+  double x_max = 1000;      // last radial node (the truncation), in the same units
 };
 
 class ProfileTable {
@@ -45,6 +46,9 @@ class ProfileTable {
     double t = 0;       // interpolation weight of node j + 1
     double scale = 1;   // interpolated median radius L(A)
     double energy = 0;  // interpolated table energy M(A) (at l = 1)
+    int first = 0;      // cubic Lagrange nodes first .. first + count - 1 and their weights
+    int count = 0;
+    double weight[4] = {0, 0, 0, 0};
   };
   Lookup lookup(double albedo) const;
 
@@ -64,7 +68,7 @@ class ProfileTable {
  private:
   double node_cdf(int node, double x) const;  // CDF of node j's piecewise-constant density in x
   int cell_of(double x) const;                // radial cell k with x in [x_k, x_{k+1})
-  double interpolate_log_shape(int node, double x) const;
+  double interpolate_log_shape(int node, int k, double w) const;
 
   std::vector<double> albedos_;
   int n_ = 0;  // radial nodes (cells: x_0 = 0 .. x_n)
