@@ -3,6 +3,8 @@
 // Sampled by inverting its exact radial CDF, a quintic, with safeguarded Newton.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -50,15 +52,28 @@ class CubicProfile {
   static double invert_cdf(double xi) {
     if (!(xi > 0)) return 0;
     if (!(xi < 1)) return 1;
-    double lo = 0, hi = 1;
-    double x = 0.5 * std::sqrt(xi);  // cdf(x) ~ 10 x^2 near 0 and the mode is at 1/4
+    // Start from a 64-entry inverse table of the (parameter-free) CDF, built once.
+    static const std::array<double, 65> table = [] {
+      std::array<double, 65> t{};
+      for (int i = 0; i <= 64; ++i) {
+        double lo = 0, hi = 1;
+        for (int it = 0; it < 60; ++it) (cdf(0.5 * (lo + hi)) < i / 64.0 ? lo : hi) = 0.5 * (lo + hi);
+        t[i] = 0.5 * (lo + hi);
+      }
+      return t;
+    }();
+    const double u = xi * 64;
+    const int i = std::min(int(u), 63);
+    double lo = table[i], hi = table[i + 1];
+    double x = lo + (u - i) * (hi - lo);
     for (int it = 0; it < 100; ++it) {
       const double f = cdf(x) - xi;
+      if (f == 0) return x;
       if (f < 0) lo = x; else hi = x;
       const double y = 1 - x;
       const double df = 20 * x * y * y * y;
       double next = df > 0 ? x - f / df : 0.5 * (lo + hi);
-      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      if (!(next >= lo && next <= hi)) next = 0.5 * (lo + hi);
       if (std::abs(next - x) <= 1e-15 || hi - lo <= 1e-15) return next;
       x = next;
     }

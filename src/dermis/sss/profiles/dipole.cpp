@@ -16,7 +16,7 @@ void check_eta(double eta) {
                                 std::to_string(eta) + ")");
 }
 
-constexpr int kInverseCdfSize = 129;
+constexpr int kInverseCdfSize = 513;
 
 // Jensen et al. 2001, eq. 4, divided by alpha' (so that a zero albedo keeps a shape).
 double dipole_shape(double r, double sigma_tr, double z_r, double z_v) {
@@ -105,7 +105,7 @@ DipoleProfile::DipoleProfile(double alpha, double sigma_t_reduced, double eta, d
   truncated_shape_energy_ = dipole_shape_energy(r_max_, sigma_tr_, z_r_, z_v_);
   const double total = truncated_shape_energy_;
   for (int i = 1; i + 1 < kInverseCdfSize; ++i)
-    (*table)[i] = solve_energy(total * i / (kInverseCdfSize - 1), (*table)[i - 1], r_max_);
+    (*table)[i] = solve_energy(total * i / (kInverseCdfSize - 1), (*table)[i - 1], r_max_, -1);
   inverse_cdf_ = std::move(table);
 }
 
@@ -115,14 +115,15 @@ double DipoleProfile::energy_within(double r) const {
   return alpha_ * dipole_shape_energy(r, sigma_tr_, z_r_, z_v_);
 }
 
-double DipoleProfile::solve_energy(double target_shape_energy, double lo, double hi) const {
-  double r = 0.5 * (lo + hi);
+double DipoleProfile::solve_energy(double target_shape_energy, double lo, double hi, double start) const {
+  double r = start > lo && start < hi ? start : 0.5 * (lo + hi);
   for (int it = 0; it < 200; ++it) {
     const double f = dipole_shape_energy(r, sigma_tr_, z_r_, z_v_) - target_shape_energy;
+    if (f == 0) return r;
     if (f < 0) lo = r; else hi = r;
     const double df = 2 * kPiD * r * dipole_shape(r, sigma_tr_, z_r_, z_v_);
     double next = df > 0 ? r - f / df : 0.5 * (lo + hi);
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (!(next >= lo && next <= hi)) next = 0.5 * (lo + hi);
     if (std::abs(next - r) <= 1e-13 * r_max_ || hi - lo <= 1e-14 * hi) return next;
     r = next;
   }
@@ -148,7 +149,8 @@ double DipoleProfile::sample_radius(double xi) const {
   const double total = truncated_shape_energy_;
   const double x = std::clamp(xi, 0.0, 1.0) * (kInverseCdfSize - 1);
   const int i = std::min(int(x), kInverseCdfSize - 2);
-  return solve_energy(xi * total, table[i], table[i + 1]);
+  const double start = table[i] + (x - i) * (table[i + 1] - table[i]);
+  return solve_energy(xi * total, table[i], table[i + 1], start);
 }
 
 double DipoleProfile::pdf_radius(double r) const {

@@ -59,14 +59,15 @@ class DipoleProfile {
 
  private:
   DipoleProfile(double alpha, double sigma_t_reduced, double eta, double kept_fraction);
-  // Solves energy_within(r) = target in [lo, hi] by Newton kept inside a bisection bracket.
-  double solve_energy(double target, double lo, double hi) const;
+  // Solves energy_within(r) / alpha' = target in [lo, hi] by Newton from `start` (the
+  // midpoint if outside), kept inside a shrinking bisection bracket.
+  double solve_energy(double target, double lo, double hi, double start) const;
 
   double alpha_ = 0, sigma_t_reduced_ = 1, eta_ = 1;
   double sigma_tr_ = 0, z_r_ = 1, z_v_ = 1;
   double albedo_ = 0, kept_ = kDefaultKeptFraction, r_max_ = 0;
   double truncated_shape_energy_ = 1;  // energy_within(r_max) / alpha'
-  // Inverse CDF at xi = i / (n - 1) (of the truncated distribution): the Newton start.
+  // Inverse CDF at xi = i / 512 (of the truncated distribution): the Newton start.
   std::shared_ptr<const std::vector<double>> inverse_cdf_;
 };
 
