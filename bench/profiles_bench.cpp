@@ -81,4 +81,3 @@ BENCHMARK(BM_ProfilePdfRadius)->DenseRange(0, 5);
 
 }  // namespace
 
-BENCHMARK_MAIN();
