@@ -83,12 +83,11 @@ void SceneParser::include(const Token& d, TokenStream& ts, const std::string& di
 }
 
 void SceneParser::run(TokenStream& ts, const std::string& dir) {
-  while (const Token* t = ts.peek()) {
+  while (!ts.at_end()) {
     const Token d = ts.next();
     if (d.kind != Token::Kind::Identifier)
       throw SceneError(ts.loc(d), fmt::format("expected a directive, found {} '{}'", token_kind_name(d.kind), d.text));
     directive(d, ts, dir);
-    (void)t;
   }
 }
 

@@ -187,6 +187,15 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
     if (p->type == "float") return RGB(pl.get_float(pname, 0));
     return spectrum_param_rgb(*p, s_.diagnostics);
   };
+  // pbrt's (u, v) texture mapping, common to all classes.
+  const std::string mapping = pl.get_string("mapping", "uv");
+  if (mapping != "uv")
+    s_.diagnostics.warn(pl.find("mapping")->param.loc,
+                        fmt::format("texture mapping \"{}\" is not supported; using \"uv\"", mapping));
+  t.uscale = pl.get_float("uscale", 1);
+  t.vscale = pl.get_float("vscale", 1);
+  t.udelta = pl.get_float("udelta", 0);
+  t.vdelta = pl.get_float("vdelta", 0);
   if (cls == "imagemap") {
     t.type = TextureDesc::Type::ImageMap;
     if (!pl.has("filename")) throw SceneError(loc, "imagemap texture needs \"string filename\"");

@@ -1,0 +1,256 @@
+// Materials, textures, lights, media and spectra as the parser records them.
+#include <gtest/gtest.h>
+
+#include "dermis/scene/medium_presets.h"
+#include "dermis/scene/parser.h"
+#include "dermis/scene/scene_test_util.h"
+#include "dermis/scene/spectra.h"
+
+namespace dermis {
+namespace {
+
+using test::has_warning;
+using test::parse_world;
+
+void expect_rgb(RGB a, RGB b, float tol = 1e-6f) {
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], tol) << "channel " << i;
+}
+
+TEST(ParserMaterials, DiffuseAndDefaults) {
+  SceneDesc s = parse_world("Material \"diffuse\" \"rgb reflectance\" [0.1 0.2 0.3]\nShape \"sphere\"\n"
+                            "Material \"diffuse\"\nShape \"sphere\"\n");
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_EQ(s.materials[0].type, MaterialDesc::Type::Diffuse);
+  expect_rgb(s.materials[0].reflectance.value, RGB(0.1f, 0.2f, 0.3f));
+  expect_rgb(s.materials[1].reflectance.value, RGB(0.5f));
+  EXPECT_EQ(s.shapes[0].material, 0);
+  EXPECT_EQ(s.shapes[1].material, 1);
+  ASSERT_EQ(s.materials[0].params.size(), 1u);
+  EXPECT_EQ(s.materials[0].params[0].name, "reflectance");
+  EXPECT_EQ(s.materials[0].params[0].numbers.size(), 3u);
+}
+
+TEST(ParserMaterials, DielectricEtaFloatNamedAndRoughWarning) {
+  SceneDesc s = parse_world("Material \"dielectric\" \"float eta\" 1.33\n"
+                            "Material \"dielectric\" \"spectrum eta\" \"glass-BK7\" \"float roughness\" 0.2\n"
+                            "Material \"dielectric\"\n");
+  EXPECT_EQ(s.materials[0].type, MaterialDesc::Type::Dielectric);
+  EXPECT_FLOAT_EQ(s.materials[0].eta, 1.33f);
+  EXPECT_NEAR(s.materials[1].eta, 1.5196f, 1e-4);  // BK7: n_d = 1.5168; mean over 400-700 nm
+  EXPECT_FLOAT_EQ(s.materials[1].roughness, 0.2f);
+  EXPECT_TRUE(has_warning(s, "test.pbrt:3:1: warning: dielectric roughness 0.2 ignored"));
+  EXPECT_TRUE(has_warning(s, "rendered smooth"));
+  EXPECT_FLOAT_EQ(s.materials[2].eta, 1.5f);
+}
+
+TEST(ParserMaterials, ConductorNamedRgbAndReflectance) {
+  SceneDesc s = parse_world(
+      "Material \"conductor\" \"spectrum eta\" \"metal-Au-eta\" \"spectrum k\" \"metal-Au-k\"\n"
+      "Material \"conductor\" \"rgb eta\" [0.2 0.3 0.4] \"rgb k\" [3 2 1]\n"
+      "Material \"conductor\" \"rgb reflectance\" [0.9 0.8 0.7]\n"
+      "Material \"conductor\"\n");
+  EXPECT_EQ(s.materials[0].type, MaterialDesc::Type::Conductor);
+  expect_rgb(s.materials[0].conductor_eta, *named_spectrum_rgb("metal-Au-eta"));
+  expect_rgb(s.materials[0].conductor_k, *named_spectrum_rgb("metal-Au-k"));
+  // Gold: red has a low index and a high extinction; blue the reverse.
+  EXPECT_LT(s.materials[0].conductor_eta[0], s.materials[0].conductor_eta[2]);
+  EXPECT_GT(s.materials[0].conductor_k[0], s.materials[0].conductor_k[2]);
+  expect_rgb(s.materials[1].conductor_eta, RGB(0.2f, 0.3f, 0.4f));
+  expect_rgb(s.materials[1].conductor_k, RGB(3, 2, 1));
+  EXPECT_TRUE(s.materials[2].has_reflectance);
+  expect_rgb(s.materials[2].reflectance.value, RGB(0.9f, 0.8f, 0.7f));
+  expect_rgb(s.materials[3].conductor_eta, *named_spectrum_rgb("metal-Cu-eta"));  // pbrt-v4's default
+}
+
+TEST(ParserMaterials, InterfaceCoatedSubsurfaceAndUnknown) {
+  SceneDesc s = parse_world(
+      "Material \"interface\"\nMaterial \"\"\nMaterial \"none\"\n"
+      "Material \"coateddiffuse\" \"rgb reflectance\" [0.4 0.4 0.4] \"float roughness\" 0 \"float eta\" 1.4\n"
+      "Material \"subsurface\" \"float eta\" 1.4 \"string name\" \"Skin1\" \"float scale\" 10 \"rgb mfp\" [1 2 3]\n"
+      "Material \"hair\" \"float beta_m\" 0.3\n");
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(s.materials[i].type, MaterialDesc::Type::Interface);
+  EXPECT_EQ(s.materials[3].type, MaterialDesc::Type::CoatedDiffuse);
+  EXPECT_FLOAT_EQ(s.materials[3].eta, 1.4f);
+  expect_rgb(s.materials[3].reflectance.value, RGB(0.4f));
+  const MaterialDesc& ss = s.materials[4];
+  EXPECT_EQ(ss.type, MaterialDesc::Type::Subsurface);
+  EXPECT_FLOAT_EQ(ss.eta, 1.4f);
+  ASSERT_EQ(ss.params.size(), 4u);
+  EXPECT_EQ(ss.params[1].strings.at(0), "Skin1");
+  EXPECT_EQ(ss.params[3].name, "mfp");
+  EXPECT_EQ(ss.params[3].loc.line, 6);
+  EXPECT_FALSE(has_warning(s, "unused parameter \"float scale\""));  // kept for the subsurface methods
+  EXPECT_EQ(s.materials[5].type, MaterialDesc::Type::Diffuse);
+  EXPECT_TRUE(has_warning(s, "test.pbrt:7:1: warning: unsupported material \"hair\""));
+}
+
+TEST(ParserMaterials, NamedMaterials) {
+  SceneDesc s = parse_world("MakeNamedMaterial \"gold\" \"string type\" \"conductor\"\n"
+                            "MakeNamedMaterial \"white\" \"string type\" \"diffuse\" \"rgb reflectance\" [1 1 1]\n"
+                            "NamedMaterial \"white\"\nShape \"sphere\"\nNamedMaterial \"gold\"\nShape \"sphere\"\n");
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_EQ(s.materials[0].name, "gold");
+  EXPECT_EQ(s.shapes[0].material, 1);
+  EXPECT_EQ(s.shapes[1].material, 0);
+  EXPECT_FALSE(has_warning(s, "unused"));
+}
+
+TEST(ParserTextures, ImageMapConstantScaleAndReference) {
+  test::TempDir dir;
+  dir.write("tex/wood.png", "not really a png; the renderer reads it");
+  SceneDesc s = parse_world(
+      "Texture \"wood\" \"spectrum\" \"imagemap\" \"string filename\" \"tex/wood.png\" \"float scale\" 2\n"
+      "  \"bool invert\" true \"string encoding\" \"linear\" \"string wrap\" \"clamp\" \"float uscale\" 3\n"
+      "  \"float vscale\" 4 \"float udelta\" 0.5 \"float vdelta\" 0.25\n"
+      "Texture \"k\" \"spectrum\" \"constant\" \"rgb value\" [0.1 0.2 0.3]\n"
+      "Texture \"half\" \"spectrum\" \"scale\" \"texture tex\" \"wood\" \"float scale\" 0.5\n"
+      "Texture \"f\" \"float\" \"constant\" \"float value\" 0.7\n"
+      "Texture \"odd\" \"spectrum\" \"checkerboard\"\n"
+      "Material \"diffuse\" \"texture reflectance\" \"half\"\n",
+      dir.path());
+  ASSERT_EQ(s.textures.size(), 5u);
+  const TextureDesc& w = s.textures[0];
+  EXPECT_EQ(w.type, TextureDesc::Type::ImageMap);
+  EXPECT_EQ(w.filename, dir.path() + "/tex/wood.png");
+  EXPECT_FLOAT_EQ(w.scale, 2);
+  EXPECT_TRUE(w.invert);
+  EXPECT_EQ(w.encoding, "linear");
+  EXPECT_EQ(w.wrap, "clamp");
+  EXPECT_FLOAT_EQ(w.uscale, 3);
+  EXPECT_FLOAT_EQ(w.vscale, 4);
+  EXPECT_FLOAT_EQ(w.udelta, 0.5f);
+  EXPECT_FLOAT_EQ(w.vdelta, 0.25f);
+  EXPECT_EQ(s.textures[1].type, TextureDesc::Type::Constant);
+  expect_rgb(s.textures[1].value, RGB(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(s.textures[2].type, TextureDesc::Type::Scale);
+  EXPECT_EQ(s.textures[2].base, 0);
+  EXPECT_FLOAT_EQ(s.textures[2].scale, 0.5f);
+  EXPECT_TRUE(s.textures[3].is_float);
+  expect_rgb(s.textures[3].value, RGB(0.7f));
+  expect_rgb(s.textures[4].value, RGB(1));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:8:1: warning: unsupported texture class \"checkerboard\""));
+  EXPECT_EQ(s.materials[0].reflectance.texture, 2);
+}
+
+TEST(ParserLights, PointSpotDistantInfinite) {
+  test::TempDir dir;
+  dir.write("sky.exr", "x");
+  SceneDesc s = parse_world(
+      "Translate 0 1 0\n"
+      "LightSource \"point\" \"rgb I\" [1 2 3] \"float scale\" 4 \"point3 from\" [1 2 3]\n"
+      "LightSource \"spot\" \"point3 from\" [0 0 0] \"point3 to\" [0 -1 0] \"float coneangle\" 20 \"float conedelta\" 2\n"
+      "LightSource \"distant\" \"blackbody L\" 6500 \"point3 to\" [0 0 -1]\n"
+      "LightSource \"infinite\" \"string filename\" \"sky.exr\" \"float power\" 3\n"
+      "LightSource \"goniometric\"\n",
+      dir.path());
+  ASSERT_EQ(s.lights.size(), 4u);
+  const LightDesc& p = s.lights[0];
+  EXPECT_EQ(p.type, LightDesc::Type::Point);
+  expect_rgb(p.spectrum, RGB(1, 2, 3));
+  EXPECT_FLOAT_EQ(p.scale, 4);
+  EXPECT_EQ(p.from, Vec3(1, 2, 3));
+  EXPECT_EQ(p.light_to_world.point(Vec3(0, 0, 0)), Vec3(0, 1, 0));
+  EXPECT_EQ(s.lights[1].type, LightDesc::Type::Spot);
+  EXPECT_EQ(s.lights[1].to, Vec3(0, -1, 0));
+  EXPECT_FLOAT_EQ(s.lights[1].cone_angle, 20);
+  EXPECT_FLOAT_EQ(s.lights[1].cone_delta, 2);
+  EXPECT_EQ(s.lights[2].type, LightDesc::Type::Distant);
+  EXPECT_NEAR(s.lights[2].spectrum.luminance(), 1.0f, 1e-4);
+  EXPECT_EQ(s.lights[3].type, LightDesc::Type::Infinite);
+  EXPECT_EQ(s.lights[3].filename, dir.path() + "/sky.exr");
+  EXPECT_TRUE(has_warning(s, "test.pbrt:6:52: warning: \"power\" ignored"));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:7:1: warning: LightSource \"goniometric\" is not supported"));
+}
+
+TEST(ParserLights, AreaLightOnShapes) {
+  SceneDesc s = parse_world("AreaLightSource \"diffuse\" \"rgb L\" [4 5 6] \"float scale\" 2 \"bool twosided\" true\n"
+                            "Shape \"sphere\"\nAreaLightSource \"projector\"\nShape \"sphere\"\n");
+  ASSERT_TRUE(s.shapes[0].area_light.has_value());
+  expect_rgb(s.shapes[0].area_light->L, RGB(4, 5, 6));
+  EXPECT_FLOAT_EQ(s.shapes[0].area_light->scale, 2);
+  EXPECT_TRUE(s.shapes[0].area_light->two_sided);
+  EXPECT_FALSE(s.shapes[1].area_light.has_value());
+  EXPECT_TRUE(has_warning(s, "test.pbrt:4:1: warning: AreaLightSource \"projector\""));
+}
+
+TEST(ParserMedia, PresetsExplicitCoefficientsAndInterfaces) {
+  SceneDesc s = parse_world(
+      "MakeNamedMedium \"skin\" \"string type\" \"homogeneous\" \"string preset\" \"skin1\" \"float scale\" 0.1\n"
+      "MakeNamedMedium \"milk\" \"string type\" \"homogeneous\" \"string name\" \"Wholemilk\"\n"
+      "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [0.1 0.2 0.3]\n"
+      "  \"rgb sigma_s\" [1 2 3] \"float g\" 0.7\n"
+      "MakeNamedMedium \"cloud\" \"string type\" \"nanovdb\" \"string filename\" \"c.nvdb\"\n"
+      "MediumInterface \"skin\" \"fog\"\nShape \"sphere\"\n"
+      "MediumInterface \"cloud\"\nShape \"sphere\"\n"
+      "MediumInterface \"milk\"\nShape \"sphere\"\n");
+  ASSERT_EQ(s.media.size(), 3u);
+  const MediumDesc& skin = s.media[0];
+  EXPECT_EQ(skin.preset, "Skin1");
+  // Jensen et al. 2001, Table 2, Skin1: sigma_s' = (0.74, 0.88, 1.01), sigma_a = (0.032, 0.17, 0.48) mm^-1.
+  expect_rgb(skin.sigma_s, RGB(0.74f, 0.88f, 1.01f));
+  expect_rgb(skin.sigma_a, RGB(0.032f, 0.17f, 0.48f));
+  EXPECT_FLOAT_EQ(skin.g, 0);
+  EXPECT_FLOAT_EQ(skin.scale, 0.1f);
+  EXPECT_EQ(s.media[1].preset, "Wholemilk");
+  expect_rgb(s.media[1].sigma_s, RGB(2.55f, 3.21f, 3.77f));
+  expect_rgb(s.media[2].sigma_a, RGB(0.1f, 0.2f, 0.3f));
+  expect_rgb(s.media[2].sigma_s, RGB(1, 2, 3));
+  EXPECT_FLOAT_EQ(s.media[2].g, 0.7f);
+  EXPECT_TRUE(has_warning(s, "test.pbrt:6:1: warning: medium type \"nanovdb\" is not supported"));
+  EXPECT_EQ(s.shapes[0].inside_medium, 0);
+  EXPECT_EQ(s.shapes[0].outside_medium, 2);
+  EXPECT_TRUE(s.shapes[0].has_medium_interface);
+  EXPECT_EQ(s.shapes[1].inside_medium, -1);  // unsupported medium: vacuum
+  EXPECT_FALSE(s.shapes[1].has_medium_interface);
+  EXPECT_EQ(s.shapes[2].inside_medium, 1);  // one name: inside and outside
+  EXPECT_EQ(s.shapes[2].outside_medium, 1);
+  EXPECT_FALSE(s.shapes[2].has_medium_interface);
+}
+
+TEST(MediumPresets, AllTwelveOfJensenTable2AreFound) {
+  for (const char* n : {"Apple", "Chicken1", "Chicken2", "Cream", "Ketchup", "Marble", "Potato", "Skimmilk", "Skin1",
+                        "Skin2", "Spectralon", "Wholemilk", "skin 2", "WHOLE_MILK", "skim-milk"})
+    EXPECT_TRUE(find_medium_preset(n).has_value()) << n;
+  EXPECT_FALSE(find_medium_preset("Jelly").has_value());
+  // Spot values of Table 2: Ketchup sigma_a, Marble sigma_s'.
+  expect_rgb(find_medium_preset("Ketchup")->sigma_a, RGB(0.061f, 0.97f, 1.45f));
+  expect_rgb(find_medium_preset("Marble")->sigma_s_prime, RGB(2.19f, 2.62f, 3.00f));
+}
+
+TEST(Spectra, BandAveragesOfPiecewiseLinearData) {
+  // Linear ramp v = lambda / 100 over 400-700: band means are the band midpoints / 100.
+  expect_rgb(band_average_rgb({400, 700}, {4, 7}), RGB(6.5f, 5.5f, 4.5f), 1e-4f);
+  // A constant spectrum stays constant; zero outside the tabulated range (pbrt).
+  expect_rgb(band_average_rgb({300, 800}, {0.25, 0.25}), RGB(0.25f), 1e-6f);
+  expect_rgb(band_average_rgb({500, 600}, {1, 1}), RGB(0, 1, 0), 1e-3f);
+}
+
+TEST(Spectra, SampledSpectrumParameterWarnsAndAverages) {
+  SceneDesc s = parse_world("LightSource \"point\" \"spectrum I\" [300 2 800 2]\n");
+  expect_rgb(s.lights[0].spectrum, RGB(2), 1e-5f);
+  EXPECT_TRUE(has_warning(s, "test.pbrt:2:21: warning: sampled spectrum 'I' reduced to RGB"));
+}
+
+TEST(Spectra, BlackbodyColourOrderAndLuminance) {
+  RGB warm = blackbody_rgb(2700), d65ish = blackbody_rgb(6504), cool = blackbody_rgb(12000);
+  for (RGB c : {warm, d65ish, cool}) EXPECT_NEAR(c.luminance(), 1.0f, 2e-3f);  // normalized to Y = 1
+  EXPECT_GT(warm.r(), warm.g());
+  EXPECT_GT(warm.g(), warm.b());
+  EXPECT_LT(cool.r(), cool.b());
+  // A 6504 K blackbody is close to (not exactly) the D65 white: within 10% per channel.
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(d65ish[i], 1.0f, 0.1f) << i;
+}
+
+TEST(Spectra, NamedMetalsAreBandAveragesOfPbrtTables) {
+  // Copper's reflectance edge: eta drops from ~1.16 (blue) to ~0.24 (red).
+  RGB cu = *named_spectrum_rgb("metal-Cu-eta");
+  EXPECT_NEAR(cu[0], 0.2427f, 1e-4);
+  EXPECT_NEAR(cu[2], 1.1624f, 1e-4);
+  for (const char* n : {"metal-Ag-eta", "metal-Ag-k", "metal-Al-eta", "metal-Al-k", "metal-Au-eta", "metal-Au-k",
+                        "metal-Cu-k", "metal-CuZn-eta", "metal-CuZn-k"})
+    EXPECT_TRUE(named_spectrum_rgb(n).has_value()) << n;
+  EXPECT_FALSE(named_spectrum_rgb("metal-Fe-eta").has_value());
+}
+
+}  // namespace
+}  // namespace dermis

@@ -1,0 +1,279 @@
+// Directive-by-directive checks of the SceneDesc the parser produces.
+#include "dermis/scene/parser.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "dermis/scene/scene_test_util.h"
+
+namespace dermis {
+namespace {
+
+using test::expect_matrix_near;
+using test::has_warning;
+using test::parse_world;
+using test::rows;
+
+TEST(ParserTransforms, TranslateThenScaleComposeOnTheRight) {
+  SceneDesc s = parse_world("Translate 1 2 3\nScale 2 4 8\nShape \"sphere\"");
+  ASSERT_EQ(s.shapes.size(), 1u);
+  expect_matrix_near(s.shapes[0].object_to_world.matrix(),
+                     rows({2, 0, 0, 1, 0, 4, 0, 2, 0, 0, 8, 3, 0, 0, 0, 1}));
+  expect_matrix_near(s.shapes[0].object_to_world.inverse_matrix(),
+                     rows({0.5, 0, 0, -0.5, 0, 0.25, 0, -0.5, 0, 0, 0.125, -0.375, 0, 0, 0, 1}));
+}
+
+TEST(ParserTransforms, RotateAboutZ) {
+  SceneDesc s = parse_world("Rotate 90 0 0 1\nShape \"sphere\"");
+  // Right-handed rotation by 90 degrees about +z: x -> y, y -> -x.
+  expect_matrix_near(s.shapes[0].object_to_world.matrix(), rows({0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}),
+                     1e-12);
+}
+
+TEST(ParserTransforms, RotateAboutArbitraryAxisIsRodrigues) {
+  // 120 degrees about (1,1,1) permutes the axes: x -> y -> z -> x.
+  SceneDesc s = parse_world("Rotate 120 1 1 1\nShape \"sphere\"");
+  expect_matrix_near(s.shapes[0].object_to_world.matrix(), rows({0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1}),
+                     1e-12);
+}
+
+TEST(ParserTransforms, TransformIsTransposedOnInput) {
+  SceneDesc s = parse_world("Transform [1 0 0 0  0 1 0 0  0 0 1 0  5 6 7 1]\nShape \"sphere\"");
+  expect_matrix_near(s.shapes[0].object_to_world.matrix(), rows({1, 0, 0, 5, 0, 1, 0, 6, 0, 0, 1, 7, 0, 0, 0, 1}));
+}
+
+TEST(ParserTransforms, TransformReplacesAndConcatTransformMultiplies) {
+  SceneDesc s = parse_world(
+      "Translate 100 0 0\nTransform [2 0 0 0  0 2 0 0  0 0 2 0  0 0 0 1]\n"
+      "ConcatTransform [1 0 0 0  0 1 0 0  0 0 1 0  1 2 3 1]\nShape \"sphere\"");
+  // Scale(2) * Translate(1,2,3).
+  expect_matrix_near(s.shapes[0].object_to_world.matrix(), rows({2, 0, 0, 2, 0, 2, 0, 4, 0, 0, 2, 6, 0, 0, 0, 1}));
+}
+
+TEST(ParserTransforms, IdentityResets) {
+  SceneDesc s = parse_world("Translate 1 2 3\nIdentity\nShape \"sphere\"");
+  EXPECT_TRUE(s.shapes[0].object_to_world.is_identity());
+}
+
+TEST(ParserTransforms, LookAtCameraToWorld) {
+  // Eye at the origin looking down +x with +z up: camera x (right) = world +y,
+  // camera y (up) = world +z, camera z (forward) = world +x.
+  SceneDesc s = test::parse_text("LookAt 0 0 0  1 0 0  0 0 1\nCamera \"perspective\"\nWorldBegin\n");
+  expect_matrix_near(s.camera.camera_to_world.matrix(), rows({0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1}),
+                     1e-12);
+}
+
+TEST(ParserTransforms, LookAtWithOffsetEye) {
+  SceneDesc s = test::parse_text("LookAt 1 2 3  1 2 8  0 1 0\nCamera \"perspective\"\nWorldBegin\n");
+  expect_matrix_near(s.camera.camera_to_world.matrix(), rows({1, 0, 0, 1, 0, 1, 0, 2, 0, 0, 1, 3, 0, 0, 0, 1}),
+                     1e-12);
+}
+
+TEST(ParserTransforms, CameraToWorldIsInverseOfCtm) {
+  // pbrt: the CTM at Camera maps world to camera. Scale -1 1 1 flips x (the usual pbrt idiom).
+  SceneDesc s = test::parse_text("Scale -1 1 1\nTranslate 0 0 5\nCamera \"perspective\"\nWorldBegin\n");
+  expect_matrix_near(s.camera.camera_to_world.matrix(), rows({-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, -5, 0, 0, 0, 1}));
+}
+
+TEST(ParserTransforms, CoordinateSystemsIncludingCamera) {
+  SceneDesc s = test::parse_text(
+      "Translate 0 0 4\nCamera \"perspective\"\nWorldBegin\n"
+      "Translate 1 0 0\nCoordinateSystem \"mine\"\nIdentity\n"
+      "CoordSysTransform \"mine\"\nShape \"sphere\"\n"
+      "CoordSysTransform \"camera\"\nShape \"sphere\"\n"
+      "CoordSysTransform \"world\"\nShape \"sphere\"\n");
+  ASSERT_EQ(s.shapes.size(), 3u);
+  expect_matrix_near(s.shapes[0].object_to_world.matrix(), rows({1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}));
+  expect_matrix_near(s.shapes[1].object_to_world.matrix(), rows({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, -4, 0, 0, 0, 1}));
+  EXPECT_TRUE(s.shapes[2].object_to_world.is_identity());
+}
+
+TEST(ParserTransforms, WorldBeginResetsCtm) {
+  SceneDesc s = test::parse_text("Translate 1 2 3\nWorldBegin\nShape \"sphere\"\nWorldEnd\n");
+  EXPECT_TRUE(s.shapes[0].object_to_world.is_identity());
+  EXPECT_TRUE(s.diagnostics.warnings.empty());
+}
+
+TEST(ParserTransforms, MotionDirectivesWarn) {
+  SceneDesc s = parse_world("ActiveTransform StartTime\nTranslate 1 0 0\nActiveTransform All\nTransformTimes 0 1\n");
+  EXPECT_TRUE(has_warning(s, "test.pbrt:2:1: warning: ActiveTransform ignored"));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:5:1: warning: TransformTimes ignored"));
+}
+
+TEST(ParserBlocks, AttributeBlocksRestoreEverything) {
+  SceneDesc s = parse_world(
+      "MakeNamedMedium \"m\" \"string type\" \"homogeneous\"\n"
+      "AttributeBegin\n Translate 1 0 0\n Material \"conductor\"\n AreaLightSource \"diffuse\"\n"
+      " ReverseOrientation\n MediumInterface \"m\" \"\"\n Shape \"sphere\"\nAttributeEnd\n"
+      "Shape \"sphere\"\n");
+  ASSERT_EQ(s.shapes.size(), 2u);
+  const ShapeDesc &in = s.shapes[0], &out = s.shapes[1];
+  EXPECT_EQ(in.material, 0);
+  EXPECT_TRUE(in.area_light.has_value());
+  EXPECT_TRUE(in.reverse_orientation);
+  EXPECT_EQ(in.inside_medium, 0);
+  EXPECT_EQ(in.outside_medium, -1);
+  EXPECT_TRUE(in.has_medium_interface);
+  EXPECT_EQ(out.material, -1);
+  EXPECT_FALSE(out.area_light.has_value());
+  EXPECT_FALSE(out.reverse_orientation);
+  EXPECT_FALSE(out.has_medium_interface);
+  EXPECT_TRUE(out.object_to_world.is_identity());
+}
+
+TEST(ParserBlocks, TransformBlocksRestoreOnlyTheCtmAndWarn) {
+  SceneDesc s = parse_world("TransformBegin\nTranslate 1 0 0\nMaterial \"conductor\"\nTransformEnd\nShape \"sphere\"\n");
+  EXPECT_TRUE(s.shapes[0].object_to_world.is_identity());
+  EXPECT_EQ(s.shapes[0].material, 0);
+  EXPECT_TRUE(has_warning(s, "test.pbrt:2:1: warning: TransformBegin is deprecated"));
+}
+
+TEST(ParserBlocks, ReverseOrientationXorHandedness) {
+  SceneDesc s = parse_world(
+      "Shape \"sphere\"\n"
+      "AttributeBegin ReverseOrientation Shape \"sphere\" AttributeEnd\n"
+      "AttributeBegin Scale -1 1 1 Shape \"sphere\" AttributeEnd\n"
+      "AttributeBegin Scale -1 1 1 ReverseOrientation Shape \"sphere\" AttributeEnd\n");
+  ASSERT_EQ(s.shapes.size(), 4u);
+  EXPECT_FALSE(s.shapes[0].reverse_orientation);
+  EXPECT_TRUE(s.shapes[1].reverse_orientation);
+  EXPECT_TRUE(s.shapes[2].reverse_orientation);
+  EXPECT_FALSE(s.shapes[3].reverse_orientation);
+}
+
+TEST(ParserBlocks, UnclosedAttributeBeginWarns) {
+  SceneDesc s = parse_world("AttributeBegin\n");
+  EXPECT_TRUE(has_warning(s, "test.pbrt:2:1: warning: AttributeBegin has no matching AttributeEnd"));
+}
+
+TEST(ParserOptions, CameraParameters) {
+  SceneDesc s = test::parse_text(
+      "Camera \"perspective\" \"float fov\" 45 \"float lensradius\" 0.1 \"float focaldistance\" 3\n"
+      "  \"float screenwindow\" [-1 1 -0.5 0.5]\nWorldBegin\n");
+  EXPECT_FLOAT_EQ(s.camera.fov, 45);
+  EXPECT_FLOAT_EQ(s.camera.lens_radius, 0.1f);
+  EXPECT_FLOAT_EQ(s.camera.focal_distance, 3);
+  ASSERT_TRUE(s.camera.screen_window.has_value());
+  EXPECT_FLOAT_EQ((*s.camera.screen_window)[1], 1);
+  EXPECT_FLOAT_EQ((*s.camera.screen_window)[2], -0.5f);
+  EXPECT_EQ(s.camera.loc.line, 1);
+  EXPECT_EQ(s.camera.medium, -1);
+}
+
+TEST(ParserOptions, CameraDefaultsAndMedium) {
+  SceneDesc s = test::parse_text(
+      "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\nMediumInterface \"\" \"fog\"\n"
+      "Camera \"perspective\"\nWorldBegin\n");
+  EXPECT_FLOAT_EQ(s.camera.fov, 90);
+  EXPECT_FLOAT_EQ(s.camera.lens_radius, 0);
+  EXPECT_FALSE(s.camera.screen_window.has_value());
+  EXPECT_EQ(s.camera.medium, 0);  // the outside medium at Camera
+}
+
+TEST(ParserOptions, FilmFilterSamplerIntegrator) {
+  SceneDesc s = test::parse_text(
+      "Film \"rgb\" \"integer xresolution\" 320 \"integer yresolution\" 200 \"string filename\" \"out.exr\"\n"
+      "PixelFilter \"box\" \"float xradius\" 0.75\n"
+      "Sampler \"zsobol\" \"integer pixelsamples\" 64 \"integer seed\" 7\n"
+      "Integrator \"path\" \"integer maxdepth\" 12\nWorldBegin\n");
+  EXPECT_EQ(s.film.xres, 320);
+  EXPECT_EQ(s.film.yres, 200);
+  EXPECT_EQ(s.film.filename, "out.exr");
+  EXPECT_EQ(s.film.filter.type, FilterDesc::Type::Box);
+  EXPECT_FLOAT_EQ(s.film.filter.radius.x, 0.75f);
+  EXPECT_FLOAT_EQ(s.film.filter.radius.y, 0.5f);
+  EXPECT_EQ(s.settings.spp, 64);
+  EXPECT_EQ(s.settings.seed, 7);
+  EXPECT_EQ(s.settings.integrator, "path");
+  EXPECT_EQ(s.settings.max_depth, 12);
+  EXPECT_TRUE(s.diagnostics.warnings.empty());
+}
+
+TEST(ParserOptions, GaussianFilterAndFallbacks) {
+  SceneDesc s = test::parse_text(
+      "Film \"gbuffer\"\nPixelFilter \"mitchell\" \"float sigma\" 0.7\nIntegrator \"bdpt\"\nWorldBegin\n");
+  EXPECT_EQ(s.film.filter.type, FilterDesc::Type::Gaussian);
+  EXPECT_FLOAT_EQ(s.film.filter.radius.x, 1.5f);
+  EXPECT_FLOAT_EQ(s.film.filter.sigma, 0.7f);
+  EXPECT_EQ(s.settings.integrator, "volpath");
+  EXPECT_TRUE(has_warning(s, "test.pbrt:1:1: warning: Film \"gbuffer\""));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:2:1: warning: PixelFilter \"mitchell\""));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:3:1: warning: Integrator \"bdpt\""));
+}
+
+TEST(ParserWarnings, UnknownDirectiveAndUnusedParameterNameFileLineCol) {
+  SceneDesc s = parse_world("  Frobnicate \"x\" [1 2] \"float y\" 3\nShape \"sphere\" \"float radius\" 2 \"float bogus\" 1\n");
+  EXPECT_TRUE(has_warning(s, "test.pbrt:2:3: warning: unknown directive 'Frobnicate'"));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:3:33: warning: unused parameter \"float bogus\""));
+  ASSERT_EQ(s.shapes.size(), 1u);  // parsing went on after the unknown directive
+  EXPECT_FLOAT_EQ(s.shapes[0].radius, 2);
+}
+
+TEST(ParserWarnings, IgnoredDirectives) {
+  SceneDesc s = test::parse_text(
+      "ColorSpace \"aces2065-1\"\nOption \"bool wavefront\" true\nAccelerator \"bvh\"\nWorldBegin\n"
+      "Attribute \"shape\" \"float radius\" 2\n");
+  EXPECT_TRUE(has_warning(s, "test.pbrt:1:1: warning: ColorSpace"));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:2:1: warning: Option \"wavefront\" ignored"));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:3:1: warning: Accelerator ignored"));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:5:1: warning: Attribute \"shape\" ignored (parameters: radius)"));
+}
+
+TEST(ParserInclude, RelativeToTheIncludingFile) {
+  test::TempDir dir;
+  dir.write("sub/inner.pbrt", "Shape \"sphere\" \"float radius\" 7\n");
+  dir.write("sub/outer.pbrt", "Translate 0 1 0\nInclude \"inner.pbrt\"\n");
+  std::string main = dir.write("main.pbrt", "WorldBegin\nInclude \"sub/outer.pbrt\"\nImport \"sub/inner.pbrt\"\n");
+  SceneDesc s = parse_scene_file(main);
+  ASSERT_EQ(s.shapes.size(), 2u);
+  EXPECT_FLOAT_EQ(s.shapes[0].radius, 7);
+  // Include shares the graphics state: the Translate of outer.pbrt still applies.
+  expect_matrix_near(s.shapes[1].object_to_world.matrix(), rows({1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 0, 0, 0, 0, 1}));
+  EXPECT_EQ(s.shapes[0].loc.line, 1);
+  EXPECT_NE(s.shapes[0].loc.file.find("inner.pbrt"), std::string::npos);
+  EXPECT_EQ(s.base_directory, dir.path());
+}
+
+TEST(ParserInclude, StringBaseDirectory) {
+  test::TempDir dir;
+  dir.write("a.pbrt", "Shape \"sphere\"\n");
+  SceneDesc s = parse_scene_string("WorldBegin Include \"a.pbrt\"", "s", dir.path());
+  EXPECT_EQ(s.shapes.size(), 1u);
+}
+
+TEST(ParserObjects, InstancesComposeWithTheShapeCtm) {
+  SceneDesc s = parse_world(
+      "ObjectInstance \"early\"\n"  // pbrt-v4 resolves names after parsing
+      "Translate 0 0 9\n"
+      "ObjectBegin \"early\"\n Translate 1 0 0\n Shape \"sphere\"\nObjectEnd\n"
+      "Shape \"sphere\"\n"
+      "Translate 0 5 0\nObjectInstance \"early\"\n");
+  ASSERT_EQ(s.objects.size(), 1u);
+  ASSERT_EQ(s.objects[0].shapes.size(), 1u);
+  EXPECT_EQ(s.objects[0].name, "early");
+  // The shape keeps its full CTM at definition time (pbrt-v4's convention).
+  expect_matrix_near(s.objects[0].shapes[0].object_to_world.matrix(),
+                     rows({1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 9, 0, 0, 0, 1}));
+  // ObjectBegin/End is an attribute block: the Translate inside does not leak.
+  ASSERT_EQ(s.shapes.size(), 1u);
+  expect_matrix_near(s.shapes[0].object_to_world.matrix(), rows({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 9, 0, 0, 0, 1}));
+  ASSERT_EQ(s.instances.size(), 2u);
+  EXPECT_EQ(s.instances[0].object, 0);
+  EXPECT_TRUE(s.instances[0].object_to_world.is_identity());
+  EXPECT_EQ(s.instances[1].object, 0);
+  expect_matrix_near(s.instances[1].object_to_world.matrix(), rows({1, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1, 9, 0, 0, 0, 1}));
+}
+
+TEST(ParserObjects, AreaLightsAndMediaInsideObjectsWarn) {
+  SceneDesc s = parse_world(
+      "MakeNamedMedium \"m\" \"string type\" \"homogeneous\"\n"
+      "AreaLightSource \"diffuse\"\nObjectBegin \"o\"\nMediumInterface \"m\"\nShape \"sphere\"\nObjectEnd\n");
+  EXPECT_FALSE(s.objects[0].shapes[0].area_light.has_value());
+  EXPECT_EQ(s.objects[0].shapes[0].inside_medium, -1);
+  EXPECT_TRUE(has_warning(s, "test.pbrt:5:1: warning: MediumInterface inside ObjectBegin"));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:6:1: warning: area lights are not supported on instanced shapes"));
+}
+
+}  // namespace
+}  // namespace dermis
