@@ -130,13 +130,15 @@ Shape make_shape(const ShapeDesc& d, const Transform& xf, int default_material) 
   s.inside_medium = d.inside_medium;
   s.outside_medium = d.outside_medium;
   s.has_medium_interface = d.has_medium_interface;
-  s.flip_normals = d.reverse_orientation != xf.swaps_handedness();
+  // The parser's reverse_orientation already includes the handedness of the shape's
+  // transform (pbrt's ReverseOrientation xor SwapsHandedness).
+  s.flip_normals = d.reverse_orientation;
+  const bool reversed_by_user = d.reverse_orientation != xf.swaps_handedness();
   float scale;
   if (d.type == ShapeDesc::Type::Sphere && similarity_scale(xf, scale)) {
     s.type = Shape::Type::Sphere;
     s.center = xf.point(Vec3(0, 0, 0));
     s.radius = d.radius * scale;
-    s.flip_normals = d.reverse_orientation;  // a sphere's outward normal survives reflections
     return s;
   }
   s.type = Shape::Type::Mesh;
@@ -152,7 +154,7 @@ Shape make_shape(const ShapeDesc& d, const Transform& xf, int default_material) 
   for (Vec3& p : s.positions) p = xf.point(p);
   for (Vec3& n : s.normals) {
     n = normalize(xf.normal(n));
-    if (d.reverse_orientation) n = -n;  // pbrt-v4 flips vertex normals of reversed meshes
+    if (reversed_by_user) n = -n;  // pbrt-v4 flips the vertex normals of ReverseOrientation meshes
   }
   return s;
 }
