@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "dermis/materials/subsurface_params.h"
 #include "dermis/render/image.h"
 
 namespace dermis {
@@ -54,8 +55,8 @@ Material make_material(const MaterialDesc& d, Diagnostics& diag) {
       m.type = Material::Type::Diffuse;
       break;
     case MaterialDesc::Type::Subsurface:
-      diag.warn(d.loc, "subsurface is rendered as diffuse with its reflectance (subsurface methods not yet built)");
-      m.type = Material::Type::Diffuse;
+      // Completed by build_render_scene(), which needs the scene's media.
+      m.type = Material::Type::Dielectric;
       break;
   }
   return m;
@@ -180,9 +181,37 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnosti
     sc->media.push_back(HomogeneousMedium::from_coefficients(m.sigma_a, m.sigma_s, m.scale, m.g));
   }
 
+  // Subsurface materials. The `volumetric` method is the brute-force reference: the
+  // material becomes a smooth dielectric filled with the homogeneous medium it
+  // describes, rendered by the volumetric path tracer itself.
+  std::vector<int> subsurface_medium(sc->materials.size(), -1);
+  for (std::size_t i = 0; i < desc.materials.size(); ++i) {
+    const MaterialDesc& md = desc.materials[i];
+    if (md.type != MaterialDesc::Type::Subsurface) continue;
+    SubsurfaceParams sp = read_subsurface_params(md, diag);
+    if (sp.method != SubsurfaceParams::Method::Volumetric)
+      throw SceneError(md.loc, fmt::format("subsurface method \"{}\" is not available in this build; use \"volumetric\"",
+                                           to_string(sp.method)));
+    if (!sp.sigma_a)
+      throw SceneError(md.loc, "subsurface: \"reflectance\" + \"mfp\" needs the albedo inversion of the random-walk "
+                               "method, not available in this build; give \"sigma_a\" + \"sigma_s\" or \"name\"");
+    sc->materials[i].type = Material::Type::Dielectric;
+    sc->materials[i].eta = sp.eta;
+    subsurface_medium[i] = int(sc->media.size());
+    sc->media.push_back(HomogeneousMedium::from_coefficients(*sp.sigma_a, *sp.sigma_s, 1, sp.g));
+  }
+  auto fill_subsurface = [&](Shape& s, const ShapeDesc& d) {
+    if (s.material < int(subsurface_medium.size()) && subsurface_medium[s.material] >= 0) {
+      s.inside_medium = subsurface_medium[s.material];
+      s.outside_medium = d.outside_medium;
+      s.has_medium_interface = true;
+    }
+  };
+
   std::vector<int> top_level;
   for (const ShapeDesc& d : desc.shapes) {
     Shape s = make_shape(d, d.object_to_world, default_material);
+    fill_subsurface(s, d);
     int id = int(sc->shapes.size());
     if (d.area_light) {
       RGB L = d.area_light->L * d.area_light->scale;
@@ -228,6 +257,7 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnosti
     for (const ShapeDesc& d : o.shapes) {
       if (d.area_light) diag.warn(d.loc, "area lights inside object instances are not supported (as in pbrt-v4); ignored");
       Shape s = make_shape(d, d.object_to_world, default_material);
+      fill_subsurface(s, d);
       if (sc->materials[s.material].is_interface()) sc->has_interfaces = true;
       ids.push_back(int(sc->shapes.size()));
       sc->shapes.push_back(std::move(s));
