@@ -149,8 +149,10 @@ bool EmbreeScene::occluded(const Ray& ray) const {
 void EmbreeScene::fill_hit(const RTCRayHit& rh, const Ray& ray, SurfaceHit& hit) const {
   const Instance* inst = nullptr;
   int shape_id;
+  hit.instance = -1;
   if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
-    inst = &instances_[top_geom_instance_[rh.hit.instID[0]]];
+    hit.instance = top_geom_instance_[rh.hit.instID[0]];
+    inst = &instances_[hit.instance];
     shape_id = object_geom_shape_[inst->object][rh.hit.geomID];
   } else {
     shape_id = top_geom_shape_[rh.hit.geomID];

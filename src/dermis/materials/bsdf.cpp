@@ -6,7 +6,24 @@
 
 namespace dermis {
 
+float subsurface_exit_normalization(float eta) {
+  const int n = 2048;
+  double sum = 0;
+  for (int i = 0; i <= n; ++i) {
+    double mu = double(i) / n;
+    double w = (i == 0 || i == n) ? 1 : (i % 2 ? 4 : 2);
+    sum += w * fresnel_dielectric(float(mu), eta) * mu;
+  }
+  double fm1 = sum / (3.0 * n);
+  return float(1 - 2 * fm1);
+}
+
 RGB bsdf_eval(const BSDF& b, Vec3 wo, Vec3 wi) {
+  if (b.type == BSDF::Type::SubsurfaceExit) {
+    float ci = dot(wi, b.n);
+    if (ci <= 0) return RGB(0);
+    return RGB((1 - fresnel_dielectric(ci, b.eta)) / (b.sw_norm * kPi) * ci);
+  }
   if (b.type != BSDF::Type::Diffuse) return RGB(0);
   float co = dot(wo, b.n), ci = dot(wi, b.n);
   if (co * ci <= 0) return RGB(0);  // Lambert reflects on the side of wo only
@@ -14,6 +31,7 @@ RGB bsdf_eval(const BSDF& b, Vec3 wo, Vec3 wi) {
 }
 
 float bsdf_pdf(const BSDF& b, Vec3 wo, Vec3 wi) {
+  if (b.type == BSDF::Type::SubsurfaceExit) return cosine_hemisphere_pdf(dot(wi, b.n));
   if (b.type != BSDF::Type::Diffuse) return 0;
   float co = dot(wo, b.n), ci = dot(wi, b.n);
   if (co * ci <= 0) return 0;
@@ -22,6 +40,15 @@ float bsdf_pdf(const BSDF& b, Vec3 wo, Vec3 wi) {
 
 std::optional<BSDFSample> bsdf_sample(const BSDF& b, Vec3 wo, float u_lobe, Vec2 u) {
   BSDFSample s;
+  if (b.type == BSDF::Type::SubsurfaceExit) {
+    // Cosine-weighted about the outward normal; weight (1 - Fr) / c.
+    Vec3 local = sample_cosine_hemisphere(u);
+    if (local.z <= 0) return std::nullopt;
+    s.wi = Frame(b.n).to_world(local);
+    s.pdf = cosine_hemisphere_pdf(local.z);
+    s.weight = RGB((1 - fresnel_dielectric(local.z, b.eta)) / b.sw_norm);
+    return s;
+  }
   float co = dot(wo, b.n);
   if (co == 0) return std::nullopt;
   switch (b.type) {
@@ -61,6 +88,8 @@ std::optional<BSDFSample> bsdf_sample(const BSDF& b, Vec3 wo, float u_lobe, Vec2
       s.weight = fresnel_conductor(std::abs(co), b.cond_eta, b.cond_k);
       return s;
     }
+    case BSDF::Type::SubsurfaceExit:
+      break;
   }
   return std::nullopt;
 }

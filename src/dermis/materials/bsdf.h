@@ -12,15 +12,23 @@
 namespace dermis {
 
 struct BSDF {
-  enum class Type { Diffuse, Dielectric, Conductor };
+  enum class Type { Diffuse, Dielectric, Conductor, SubsurfaceExit };
   Type type = Type::Diffuse;
   Vec3 n;           // unit normal of the surface (either side)
   RGB albedo;       // diffuse reflectance
   float eta = 1.5f; // dielectric: index inside over outside (the side n points away from)
   RGB cond_eta, cond_k;
+  float sw_norm = 1;  // SubsurfaceExit: c = 1 - 2 FM1(eta), see subsurface_exit_normalization()
 
-  bool is_specular() const { return type != Type::Diffuse; }
+  bool is_specular() const { return type == Type::Dielectric || type == Type::Conductor; }
 };
+
+// The normalised-Fresnel exit lobe of separable BSSRDFs (Jensen et al. 2001; METHODS.md
+// sec. 0): Sw(wi) = (1 - Fr(cos theta_i, eta)) / (c pi) on the outside hemisphere of n,
+// c = 1 - 2 FM1 with FM1 = integral_0^1 Fr(mu, eta) mu dmu (the first Fresnel moment), so
+// that Sw integrates to one against cos theta. Computed by quadrature (Simpson, 2048
+// intervals), not by a polynomial fit.
+float subsurface_exit_normalization(float eta);
 
 struct BSDFSample {
   Vec3 wi;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "dermis/core/frame.h"
 #include "dermis/core/rng.h"
 #include "dermis/core/warp.h"
 #include "dermis/materials/bsdf.h"
@@ -101,6 +102,58 @@ TEST(Bsdf, LambertPdfMatchesSampledDirections) {
   }
   // Light arriving from the other side is not reflected.
   EXPECT_EQ(bsdf_eval(b, wo, -wo)[0], 0.0f);
+}
+
+}  // namespace
+}  // namespace dermis
+
+namespace dermis {
+namespace {
+
+TEST(SubsurfaceExitLobe, IntegratesToOneAgainstCosine) {
+  for (float eta : {1.0f, 1.2f, 1.33f, 1.5f, 2.0f}) {
+    BSDF b;
+    b.type = BSDF::Type::SubsurfaceExit;
+    b.n = normalize(Vec3(0.2f, 0.1f, 1));
+    b.eta = eta;
+    b.sw_norm = subsurface_exit_normalization(eta);
+    // Midpoint rule in (theta, phi) over the hemisphere of n, independent of the
+    // Simpson rule inside subsurface_exit_normalization.
+    Frame f(b.n);
+    const int nt = 1024, np = 64;
+    double sum = 0;
+    for (int i = 0; i < nt; ++i)
+      for (int j = 0; j < np; ++j) {
+        double th = (i + 0.5) / nt * kPiD / 2, ph = (j + 0.5) / np * 2 * kPiD;
+        Vec3 wi = f.to_world(Vec3(float(std::sin(th) * std::cos(ph)), float(std::sin(th) * std::sin(ph)),
+                                  float(std::cos(th))));
+        sum += bsdf_eval(b, Vec3(0, 0, 1), wi)[0] * std::sin(th) * (kPiD / 2 / nt) * (2 * kPiD / np);
+      }
+    EXPECT_NEAR(sum, 1.0, 2e-4) << "eta " << eta;
+    if (eta == 1.0f) {
+      EXPECT_NEAR(b.sw_norm, 1.0f, 1e-6);
+    }
+  }
+}
+
+TEST(SubsurfaceExitLobe, SampleWeightsAreFOverPdf) {
+  BSDF b;
+  b.type = BSDF::Type::SubsurfaceExit;
+  b.n = {0, 0, 1};
+  b.eta = 1.4f;
+  b.sw_norm = subsurface_exit_normalization(1.4f);
+  Rng rng(8, 9);
+  double mean = 0;
+  const int n = 100000;
+  for (int i = 0; i < n; ++i) {
+    auto s = bsdf_sample(b, Vec3(0, 0, 1), rng.uniform(), {rng.uniform(), rng.uniform()});
+    ASSERT_TRUE(s);
+    EXPECT_NEAR(s->weight[0], bsdf_eval(b, {0, 0, 1}, s->wi)[0] / s->pdf, 1e-4);
+    mean += s->weight[0];
+  }
+  // E[weight] = integral of Sw cos = 1; the weight lies in [0, 1/c], so its standard
+  // deviation is below 1/c and 4 standard errors are below 4/(c sqrt(n)).
+  EXPECT_NEAR(mean / n, 1.0, 4.0 / (b.sw_norm * std::sqrt(double(n))));
 }
 
 }  // namespace

@@ -1,0 +1,46 @@
+#include "dermis/render/object_tracing.h"
+
+#include <limits>
+
+namespace dermis {
+
+namespace {
+
+// Moves past a hit along the ray's direction (not along the normal: the next query
+// must continue on the same line).
+inline float skip_distance(Vec3 p) { return 1e-4f * std::max(1.0f, max_component(abs(p))); }
+
+}  // namespace
+
+void collect_object_hits(const RenderScene& sc, const SurfaceHit& object, Vec3 o, Vec3 d, float length, int max_hits,
+                         std::vector<SurfaceHit>& hits, PathCounters& counters) {
+  float t0 = 0;
+  for (int guard = 0; guard < 4 * max_hits + 16 && t0 < length; ++guard) {
+    Ray r{o + d * t0, d, length - t0};
+    SurfaceHit h;
+    ++counters.rays;
+    if (!sc.embree->intersect(r, h)) return;
+    float t = t0 + h.t;
+    if (h.same_object(object)) {
+      h.t = t;
+      hits.push_back(h);
+      if (int(hits.size()) >= max_hits) return;
+    }
+    t0 = t + skip_distance(h.p);
+  }
+}
+
+bool first_object_hit(const RenderScene& sc, const SurfaceHit& object, Ray ray, SurfaceHit& hit,
+                      PathCounters& counters) {
+  for (int guard = 0; guard < 64; ++guard) {
+    ++counters.rays;
+    if (!sc.embree->intersect(ray, hit)) return false;
+    if (hit.same_object(object)) return true;
+    float skip = hit.t + skip_distance(hit.p);
+    ray.o = ray.o + ray.d * skip;
+    if (ray.tmax != std::numeric_limits<float>::infinity()) ray.tmax -= skip;
+  }
+  return false;
+}
+
+}  // namespace dermis
