@@ -5,6 +5,7 @@
 #include <tbb/global_control.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +30,11 @@ struct ProfileCommandOptions {
   std::string python = "/usr/bin/python3";
 };
 
+// " 12.34%" right-aligned in `width` characters, or "n/a" for NaN (an undefined measure).
+std::string percent(double v, int width = 18) {
+  return std::isnan(v) ? fmt::format(" {:>{}}", "n/a", width) : fmt::format(" {:>{}.2f}%", 100 * v, width - 1);
+}
+
 void print_error_table(const std::vector<sss::AlbedoStudy>& studies, std::ostream& out) {
   if (studies.empty()) return;
   const auto& labels = studies[0].model_labels;
@@ -45,15 +51,15 @@ void print_error_table(const std::vector<sss::AlbedoStudy>& studies, std::ostrea
       out << fmt::format("{:>6.3g} {:>14.10f} {:>7.3g} {:>7.4g}", s.surface_albedo, s.single_scattering_albedo, s.r_a,
                          s.r_b);
       for (size_t j = 0; j < labels.size(); ++j) {
-        out << fmt::format(" {:>17.2f}%", 100 * s.errors[j][k]);
+        out << percent(s.errors[j][k]);
         sum[j] += s.errors[j][k];
       }
-      out << fmt::format(" {:>11.2f}%\n", 100 * s.noise[k]);
+      out << percent(s.noise[k], 12) << '\n';
       noise_sum += s.noise[k];
     }
     out << fmt::format("{:>38}", "mean over albedos");
-    for (double v : sum) out << fmt::format(" {:>17.2f}%", 100 * v / studies.size());
-    out << fmt::format(" {:>11.2f}%\n", 100 * noise_sum / studies.size());
+    for (double v : sum) out << percent(v / studies.size());
+    out << percent(noise_sum / studies.size(), 12) << '\n';
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "dermis/sss/halfspace/halfspace.h"
@@ -41,6 +42,17 @@ double study_r_max(double alpha) {
   const double sigma_tr = std::sqrt(3 * (1 - alpha));  // Jensen et al. 2001 with sigma'_t = 1
   return std::clamp(16 / std::max(sigma_tr, 1e-300), 16.0, 1e5);
 }
+
+namespace {
+// A range measure is undefined when the reference has an empty bin inside the range
+// (too few paths): NaN, reported as "n/a", rather than a number from a silently narrowed range.
+double error_or_nan(const BinnedProfile& ref, const BinnedProfile& model, ErrorMeasure m, double r_a, double r_b) {
+  for (size_t i = 0; i < ref.value.size(); ++i)
+    if (m != ErrorMeasure::Energy && ref.r_hi[i] > r_a && ref.r_lo[i] < r_b && !(ref.value[i] > 0))
+      return std::numeric_limits<double>::quiet_NaN();
+  return relative_error(ref, model, m, r_a, r_b);
+}
+}  // namespace
 
 AlbedoStudy study_albedo(double a, const ProfileStudyOptions& o, const std::shared_ptr<const ProfileTable>& table) {
   AlbedoStudy s;
@@ -81,13 +93,15 @@ AlbedoStudy study_albedo(double a, const ProfileStudyOptions& o, const std::shar
     for (size_t i = 0; i < p.r_lo.size(); ++i) p.value.push_back(annulus_mean(m.eval, p.r_lo[i], p.r_hi[i]));
     p.standard_error.assign(p.value.size(), 0.0);
     std::array<double, kErrorMeasures> e{};
-    for (int k = 0; k < kErrorMeasures; ++k) e[k] = relative_error(s.reference, p, kStudyMeasures[k], s.r_a, s.r_b);
+    for (int k = 0; k < kErrorMeasures; ++k) e[k] = error_or_nan(s.reference, p, kStudyMeasures[k], s.r_a, s.r_b);
     s.model_keys.push_back(m.key);
     s.model_labels.push_back(m.label);
     s.models.push_back(std::move(p));
     s.errors.push_back(e);
   }
-  for (int k = 0; k < kErrorMeasures; ++k) s.noise[k] = noise_floor(s.reference, kStudyMeasures[k], s.r_a, s.r_b);
+  for (int k = 0; k < kErrorMeasures; ++k)
+    s.noise[k] = std::isnan(s.errors.front()[k]) ? s.errors.front()[k]
+                                                 : noise_floor(s.reference, kStudyMeasures[k], s.r_a, s.r_b);
   return s;
 }
 

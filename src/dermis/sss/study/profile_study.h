@@ -51,7 +51,8 @@ struct AlbedoStudy {
   BinnedProfile reference;              // per entering power
   std::vector<std::string> model_keys, model_labels;
   std::vector<BinnedProfile> models;
-  std::vector<std::array<double, kErrorMeasures>> errors;  // [model][measure]
+  // [model][measure]; NaN for a range measure when the reference has an empty bin in the range.
+  std::vector<std::array<double, kErrorMeasures>> errors;
   std::array<double, kErrorMeasures> noise{};               // the reference's noise floor per measure
   uint64_t paths = 0;
   double seconds = 0;  // simulation wall-clock time

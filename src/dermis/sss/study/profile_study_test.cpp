@@ -81,6 +81,22 @@ TEST(ProfileStudy, Deterministic) {
   EXPECT_EQ(a.errors, b.errors);
 }
 
+// Too few paths leave empty reference bins inside [r_a, r_b]: the range measures are
+// undefined (NaN, printed "n/a"), the energy measure is still defined.
+TEST(ProfileStudy, EmptyReferenceBinsMakeRangeMeasuresUndefined) {
+  ProfileStudyOptions o = small_options();
+  o.paths = 1000;
+  const AlbedoStudy s = study_albedo(0.5, o, study_profile_table(1.0));
+  bool empty_in_range = false;
+  for (size_t i = 0; i < s.reference.value.size(); ++i)
+    empty_in_range |= s.reference.r_hi[i] > s.r_a && s.reference.r_lo[i] < s.r_b && s.reference.value[i] == 0;
+  ASSERT_TRUE(empty_in_range) << "1000 paths filled every bin; the test needs an empty one";
+  for (const auto& e : s.errors) {
+    EXPECT_TRUE(std::isnan(e[0]) && std::isnan(e[1]));
+    EXPECT_TRUE(std::isfinite(e[2]));
+  }
+}
+
 TEST(ProfileStudy, RejectsBadOptions) {
   auto bad = [](auto change) {
     ProfileStudyOptions o;
