@@ -9,5 +9,6 @@ namespace dermis::app {
 void register_render(CLI::App& app, int& exit_code);
 void register_compare(CLI::App& app, int& exit_code);
 void register_halfspace(CLI::App& app, int& exit_code);
+void register_profile(CLI::App& app, int& exit_code);
 
 }  // namespace dermis::app
