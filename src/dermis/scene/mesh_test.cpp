@@ -167,9 +167,10 @@ TEST(ShapePly, BinaryTriangleStripsKeepOneWinding) {
   }
 }
 
-TEST(ShapePly, IgeaFromSharedAssets) {
-  const std::string path = std::string(DERMIS_SOURCE_DIR) + "/../shared/assets/meshes/igea.ply";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
+TEST(ShapePly, IgeaBinaryWithTriangleStrips) {
+  // scenes/meshes/igea.ply: binary PLY with triangle strips (scenes/meshes/SOURCES.md).
+  const std::string path = std::string(DERMIS_SOURCE_DIR) + "/scenes/meshes/igea.ply";
+  ASSERT_TRUE(std::filesystem::exists(path)) << path;
   SceneDesc s = parse_scene_string("WorldBegin\nShape \"plymesh\" \"string filename\" \"" + path + "\"\n");
   const TriangleMeshDesc& m = s.shapes[0].mesh;
   const size_t nv = m.positions.size(), nt = m.indices.size() / 3;
