@@ -119,6 +119,7 @@ SubsurfaceParams read_subsurface_params(const MaterialDesc& m, Diagnostics& diag
     }
   }
   if (scale <= 0) throw SceneError(m.loc, "subsurface: \"scale\" must be positive");
+  s.scale = scale;
   if (s.eta < 1.0f || s.eta > 3.0f)
     throw SceneError(m.loc, fmt::format("subsurface: \"eta\" {} is outside [1, 3]", s.eta));
   if (s.g <= -1 || s.g >= 1) throw SceneError(m.loc, "subsurface: \"g\" must be in (-1, 1)");

@@ -24,6 +24,7 @@ struct SubsurfaceParams {
   std::optional<RGB> reflectance, mfp;
   float eta = 1.33f;
   float g = 0;
+  float scale = 1;  // as written (already applied to the coefficients and lengths above)
   Method method = Method::Volumetric;
   Profile profile = Profile::Burley;
   Boundary boundary = Boundary::Diffuse;
