@@ -11,12 +11,13 @@
 namespace dermis {
 
 struct Material {
-  enum class Type { Diffuse, Dielectric, Conductor, Interface };
+  enum class Type { Diffuse, Dielectric, Conductor, Interface, Subsurface };
   Type type = Type::Diffuse;
   RGB reflectance{0.5f, 0.5f, 0.5f};
   int reflectance_texture = -1;
   float eta = 1.5f;
   RGB cond_eta, cond_k;
+  int subsurface = -1;  // Subsurface: index into RenderScene::subsurface
 
   // Interfaces only mark a change of medium; rays pass straight through them.
   bool is_interface() const { return type == Type::Interface; }
@@ -28,6 +29,7 @@ inline BSDF bsdf_at(const Material& m, const std::vector<Texture>& textures, con
   switch (m.type) {
     case Material::Type::Diffuse:
     case Material::Type::Interface:
+    case Material::Type::Subsurface:  // handled by the integrator before any BSDF
       b.type = BSDF::Type::Diffuse;
       b.albedo = m.reflectance_texture >= 0 ? evaluate_texture(textures, m.reflectance_texture, hit.uv) : m.reflectance;
       for (int c = 0; c < 3; ++c) b.albedo[c] = std::clamp(b.albedo[c], 0.0f, 1.0f);

@@ -5,6 +5,8 @@
 
 #include "dermis/core/frame.h"
 #include "dermis/core/warp.h"
+#include "dermis/materials/fresnel.h"
+#include "dermis/render/subsurface_method.h"
 
 namespace dermis {
 
@@ -98,6 +100,17 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
   Vec3 prev_p = ray.o;    // position of the last scattering event
   int depth = 0, crossings = 0;
   const int max_depth = sc.settings.max_depth;
+  // Russian roulette after the second bounce on max(throughput) x eta scale (pbrt-v4
+  // sec. 14.1.3); reweights beta when the path survives.
+  auto survives_roulette = [&] {
+    if (depth <= 1) return true;
+    float rr = beta.max() * eta_scale;
+    if (rr >= 1) return true;
+    float q = std::max(0.0f, 1 - rr);
+    if (rng.uniform() < q) return false;
+    beta /= 1 - q;
+    return true;
+  };
 
   while (true) {
     SurfaceHit hit;
@@ -141,15 +154,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
         specular = false;
         prev_p = p;
         ray = Ray{p, wi};
-        // Russian roulette (pbrt-v4 sec. 14.1.3).
-        if (depth > 1) {
-          float rr = beta.max() * eta_scale;
-          if (rr < 1) {
-            float qd = std::max(0.0f, 1 - rr);
-            if (rng.uniform() < qd) break;
-            beta /= 1 - qd;
-          }
-        }
+        if (!survives_roulette()) break;
         continue;
       }
       // Passed through to the surface (or to infinity).
@@ -198,9 +203,65 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
       continue;
     }
     if (depth++ >= max_depth) break;
+    Vec3 wo = -ray.d;
+
+    if (mat.type == Material::Type::Subsurface) {
+      // Separable BSSRDF or random walk (render/subsurface_method.h): the boundary is
+      // a smooth dielectric; reflection is sampled by Fresnel, transmitted light leaves
+      // the object where the method says.
+      const SubsurfaceMethod& sm = *sc.subsurface[mat.subsurface];
+      float cos_o = dot(wo, hit.ng);
+      if (cos_o <= 0) {
+        // Reached from inside (thin or open geometry): let the path pass.
+        ray.o = offset_ray_origin(hit.p, hit.ng, ray.d);
+        ray.tmax = kInf;
+        continue;
+      }
+      float F = fresnel_dielectric(cos_o, sm.params.eta);
+      if (rng.uniform() < F) {
+        Vec3 wi = reflect(wo, hit.ng);
+        specular = true;
+        prev_pdf = F;
+        prev_p = hit.p;
+        ray = Ray{offset_ray_origin(hit.p, hit.ng, wi), wi};
+        continue;
+      }
+      SubsurfaceExit ex;
+      if (!sample_subsurface_exit(sc, sm, hit, wo, rng, counters, ex)) {
+        if (ex.truncated) ++counters.truncated;
+        break;
+      }
+      beta *= ex.weight;
+      if (!beta.is_finite() || beta.is_black()) break;
+      if (!ex.diffuse_exit) {
+        specular = true;
+        prev_p = ex.hit.p;
+        ray = Ray{offset_ray_origin(ex.hit.p, ex.hit.ng, ex.direction), ex.direction};
+        continue;
+      }
+      // Leave through the normalised-Fresnel lobe Sw at the exit point.
+      BSDF sw;
+      sw.type = BSDF::Type::SubsurfaceExit;
+      sw.n = ex.hit.ng;
+      sw.eta = sm.params.eta;
+      sw.sw_norm = sm.sw_norm;
+      Vec3 p_out = offset_ray_origin(ex.hit.p, ex.hit.ng, ex.hit.ng);
+      L += beta * estimate_direct(sc, p_out, medium, rng, counters, [&](Vec3 wi) {
+             return std::pair{bsdf_eval(sw, ex.hit.ng, wi), bsdf_pdf(sw, ex.hit.ng, wi)};
+           });
+      auto bs = bsdf_sample(sw, ex.hit.ng, rng.uniform(), {rng.uniform(), rng.uniform()});
+      if (!bs) break;
+      beta *= bs->weight;
+      specular = false;
+      prev_pdf = bs->pdf;
+      prev_p = ex.hit.p;
+      ray = Ray{p_out, bs->wi};
+      if (!beta.is_finite() || beta.is_black()) break;
+      if (!survives_roulette()) break;
+      continue;
+    }
 
     BSDF bsdf = bsdf_at(mat, sc.textures, hit);
-    Vec3 wo = -ray.d;
     if (!bsdf.is_specular()) {
       // Shadow rays leave on the side of the light; the medium there is the one the
       // path is in, since Lambertian reflection stays on the side of wo.
@@ -221,14 +282,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
     if (bs->transmission) medium = medium_after_crossing(s, bs->wi, hit.ng, medium);
     ray = Ray{offset_ray_origin(hit.p, hit.ng, bs->wi), bs->wi};
     if (!beta.is_finite() || beta.is_black()) break;
-    if (depth > 1) {
-      float rr = beta.max() * eta_scale;
-      if (rr < 1) {
-        float qd = std::max(0.0f, 1 - rr);
-        if (rng.uniform() < qd) break;
-        beta /= 1 - qd;
-      }
-    }
+    if (!survives_roulette()) break;
   }
   return L;
 }

@@ -189,9 +189,16 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnosti
     const MaterialDesc& md = desc.materials[i];
     if (md.type != MaterialDesc::Type::Subsurface) continue;
     SubsurfaceParams sp = read_subsurface_params(md, diag);
-    if (sp.method != SubsurfaceParams::Method::Volumetric)
-      throw SceneError(md.loc, fmt::format("subsurface method \"{}\" is not available in this build; use \"volumetric\"",
-                                           to_string(sp.method)));
+    if (sp.method != SubsurfaceParams::Method::Volumetric) {
+      sc->materials[i].type = Material::Type::Subsurface;
+      sc->materials[i].subsurface = int(sc->subsurface.size());
+      try {
+        sc->subsurface.push_back(make_subsurface_method(sp));
+      } catch (const std::invalid_argument& e) {
+        throw SceneError(md.loc, fmt::format("subsurface: {}", e.what()));
+      }
+      continue;
+    }
     if (!sp.sigma_a)
       throw SceneError(md.loc, "subsurface: \"reflectance\" + \"mfp\" needs the albedo inversion of the random-walk "
                                "method, not available in this build; give \"sigma_a\" + \"sigma_s\" or \"name\"");

@@ -14,6 +14,7 @@
 #include "dermis/materials/medium.h"
 #include "dermis/materials/texture.h"
 #include "dermis/render/camera.h"
+#include "dermis/render/subsurface_method.h"
 #include "dermis/scene/scene_desc.h"
 
 namespace dermis {
@@ -24,6 +25,7 @@ struct RenderScene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<HomogeneousMedium> media;
+  std::vector<std::unique_ptr<SubsurfaceMethod>> subsurface;  // per Subsurface material
   std::vector<Light> lights;
   Distribution1D light_distribution;  // light selection in proportion to power
   std::vector<int> infinite_lights;

@@ -181,6 +181,7 @@ double ProfileTable::sample_radius(const Lookup& q, double xi) const {
     xi = (xi - (1 - q.t)) / q.t;
     node = q.node + 1;
   }
+  xi *= node == q.node ? q.kept_lo : q.kept_hi;
   xi = std::clamp(xi, 0.0, 0x1.fffffffffffffp-1);
   const double* cdf = &cdf_[std::size_t(node) * (n_ + 1)];
   int k = int(std::upper_bound(cdf, cdf + n_ + 1, xi) - cdf) - 1;
@@ -193,11 +194,11 @@ double ProfileTable::sample_radius(const Lookup& q, double xi) const {
 
 double ProfileTable::pdf_radius(const Lookup& q, double r) const {
   const double x = r / q.scale;
-  if (x < 0 || x > x_max_) return 0;
+  if (x < 0 || x > x_max_ || (q.x_cut > 0 && x > q.x_cut)) return 0;
   const int k = cell_of(x);
   const double* a = &cdf_[std::size_t(q.node) * (n_ + 1)];
   const double* b = a + (n_ + 1);
-  const double mass = (1 - q.t) * (a[k + 1] - a[k]) + q.t * (b[k + 1] - b[k]);
+  const double mass = (1 - q.t) * (a[k + 1] - a[k]) / q.kept_lo + q.t * (b[k + 1] - b[k]) / q.kept_hi;
   return mass / ((x_[k + 1] - x_[k]) * q.scale);
 }
 
@@ -212,13 +213,25 @@ double ProfileTable::r_max(const Lookup& q, double energy_fraction) const {
   return hi * q.scale;
 }
 
-TabulatedProfile::TabulatedProfile(std::shared_ptr<const ProfileTable> table, double albedo, double mean_free_path)
+void ProfileTable::truncate(Lookup& q, double energy_fraction) const {
+  q.x_cut = 0;
+  q.kept_lo = q.kept_hi = 1;
+  if (energy_fraction >= 1) return;
+  const double x_cut = r_max(q, energy_fraction) / q.scale;
+  q.x_cut = x_cut;
+  q.kept_lo = node_cdf(q.node, x_cut);
+  q.kept_hi = node_cdf(q.node + 1, x_cut);
+}
+
+TabulatedProfile::TabulatedProfile(std::shared_ptr<const ProfileTable> table, double albedo, double mean_free_path,
+                                   double kept)
     : table_(std::move(table)), l_(mean_free_path) {
   if (!table_) throw std::invalid_argument("tabulated profile: no table");
   if (!(mean_free_path > 0) || !std::isfinite(mean_free_path))
     throw std::invalid_argument("tabulated profile: the mean free path must be positive (got " +
                                 std::to_string(mean_free_path) + ")");
   lookup_ = table_->lookup(albedo);
+  table_->truncate(lookup_, kept);
 }
 
 }  // namespace dermis::sss

@@ -49,14 +49,21 @@ class ProfileTable {
     int first = 0;      // cubic Lagrange nodes first .. first + count - 1 and their weights
     int count = 0;
     double weight[4] = {0, 0, 0, 0};
+    // Truncation (truncate()): sampling stops at x_cut, each node's density renormalised
+    // by the fraction it keeps there. x_cut = 0: the table's whole range.
+    double x_cut = 0, kept_lo = 1, kept_hi = 1;
   };
   Lookup lookup(double albedo) const;
+  // Truncates sampling at the radius keeping `energy_fraction` of the sampled
+  // distribution (like the analytic profiles' r_max), so that probe spheres are not
+  // sized by the table's far tail.
+  void truncate(Lookup& q, double energy_fraction) const;
 
   // All at l = 1.
   double eval(const Lookup& q, double r) const;
   double sample_radius(const Lookup& q, double xi) const;
   double pdf_radius(const Lookup& q, double r) const;
-  double r_max(const Lookup& q) const { return x_max_ * q.scale; }
+  double r_max(const Lookup& q) const { return (q.x_cut > 0 ? q.x_cut : x_max_) * q.scale; }
   // Radius inside which the sampled distribution keeps the given fraction.
   double r_max(const Lookup& q, double energy_fraction) const;
 
@@ -85,7 +92,9 @@ class ProfileTable {
 class TabulatedProfile {
  public:
   TabulatedProfile() = default;
-  TabulatedProfile(std::shared_ptr<const ProfileTable> table, double albedo, double mean_free_path);
+  // Sampling keeps `kept` of the energy (0.999, as the Christensen-Burley profile).
+  TabulatedProfile(std::shared_ptr<const ProfileTable> table, double albedo, double mean_free_path,
+                   double kept = 0.999);
 
   double albedo() const { return lookup_.energy; }  // the table's energy at this A (the integral of eval)
   double eval(double r) const { return table_->eval(lookup_, r / l_) / (l_ * l_); }  // METHODS 1.3 scaling

@@ -1,0 +1,194 @@
+#include "dermis/render/subsurface_method.h"
+
+#include <cmath>
+#include <vector>
+
+#include "dermis/materials/bsdf.h"
+#include "dermis/materials/fresnel.h"
+#include "dermis/render/integrator.h"
+#include "dermis/render/object_tracing.h"
+#include "dermis/render/render_scene.h"
+#include "dermis/sss/profiles/tabulated.h"
+#include "dermis/sss/study/albedo_inversion.h"
+
+namespace dermis {
+
+namespace {
+
+using Method = SubsurfaceParams::Method;
+using Profile = SubsurfaceParams::Profile;
+
+constexpr int kMaxProbeHits = 16;
+
+// Surface albedo A and mean free path l per channel from what the user gave. With
+// coefficients: l = 1/sigma_t' and A = 1 - H(1) sqrt(1 - alpha') (Chandrasekhar 1950,
+// METHODS.md sec. 6), alpha' the similarity-reduced single-scattering albedo: the
+// searchlight, index-matched configuration the Christensen-Burley fit was made for.
+void albedo_and_mfp(const SubsurfaceParams& p, RGB& A, RGB& l) {
+  if (p.reflectance) {
+    A = *p.reflectance;
+    l = *p.mfp;
+    return;
+  }
+  for (int c = 0; c < 3; ++c) {
+    double ss = (*p.sigma_s)[c] * (1 - p.g), st = (*p.sigma_a)[c] + ss;
+    l[c] = float(1 / st);
+    A[c] = float(sss::surface_albedo_index_matched(ss / st));
+  }
+}
+
+sss::ProfileRGB make_profile(const SubsurfaceParams& p, RGB A, RGB l) {
+  switch (p.profile) {
+    case Profile::Burley:
+      return sss::make_burley_rgb(A, l, sss::BurleyParameterisation::VolumeMeanFreePath);
+    case Profile::BurleyDiffuseMfp:
+      return sss::make_burley_rgb(A, l, sss::BurleyParameterisation::DiffuseMeanFreePath);
+    case Profile::Dipole:
+      if (p.sigma_a) return sss::make_dipole_rgb_from_coefficients(*p.sigma_a, *p.sigma_s, p.g, p.eta);
+      return sss::make_dipole_rgb(A, l, p.eta);
+    case Profile::Gaussian:
+    case Profile::Cubic: {
+      // Matched to the Christensen-Burley profile of the same (A, l) by the mean squared
+      // radius: Burley <r^2> = 14 d^2 (d = l/s); Gaussian <r^2> = 2v; cubic <r^2> = R^2/7.
+      RGB v, R;
+      for (int c = 0; c < 3; ++c) {
+        double d = l[c] / sss::burley_scale(A[c], sss::BurleyParameterisation::VolumeMeanFreePath);
+        v[c] = float(7 * d * d);
+        R[c] = float(std::sqrt(98.0) * d);
+      }
+      return p.profile == Profile::Gaussian ? sss::make_gaussian_rgb(A, v) : sss::make_cubic_rgb(A, R);
+    }
+    case Profile::Skin6:
+      // d'Eon & Luebke's variances are in mm; `scale` multiplies coefficients, i.e.
+      // divides lengths, so scene units per mm = 1 / scale. Weights times the albedo
+      // when reflectance is given.
+      return sss::make_skin_rgb(1.0 / p.scale, p.reflectance ? *p.reflectance : RGB(1.0f));
+    case Profile::Tabulated: {
+      // The Cycles page's table: the (A, r/l) reparameterised dipole, at this eta.
+      auto table = std::make_shared<const sss::ProfileTable>(sss::dipole_family(p.eta));
+      return sss::make_tabulated_rgb(table, A, l);
+    }
+  }
+  return sss::make_burley_rgb(A, l);
+}
+
+}  // namespace
+
+std::unique_ptr<SubsurfaceMethod> make_subsurface_method(const SubsurfaceParams& params) {
+  auto m = std::make_unique<SubsurfaceMethod>();
+  m->params = params;
+  m->sw_norm = subsurface_exit_normalization(params.eta);
+  switch (params.method) {
+    case Method::Volumetric:
+      break;
+    case Method::Disk:
+    case Method::DiskSingleAxis:
+    case Method::SphereLines:
+    case Method::SphereLinesRetry: {
+      RGB A, l;
+      albedo_and_mfp(params, A, l);
+      m->profile = std::make_unique<sss::ProfileRGB>(make_profile(params, A, l));
+      for (int c = 0; c < 3; ++c) m->albedo[c] = float(m->profile->channel[c].albedo());
+      // Channels are chosen in proportion to their albedo (never zero, so that every
+      // channel's hits can be found).
+      RGB weights;
+      for (int c = 0; c < 3; ++c) weights[c] = std::max(m->albedo[c], 1e-3f);
+      if (params.method == Method::Disk || params.method == Method::DiskSingleAxis) {
+        m->disk = std::make_unique<sss::DiskProbeSampler>(
+            *m->profile, weights,
+            params.method == Method::Disk ? sss::ProbeAxisProbabilities{} : sss::ProbeAxisProbabilities::single_axis());
+      } else {
+        m->line_tables = std::make_unique<sss::SphereLineTablesRGB>(*m->profile);
+        m->lines = std::make_unique<sss::SphereLineSampler>(*m->line_tables, weights);
+      }
+      break;
+    }
+    case Method::RandomWalk:
+      throw std::invalid_argument("the randomwalk method is not available in this build");
+  }
+  return m;
+}
+
+namespace {
+
+inline Vec3d to_d(Vec3 v) { return Vec3d(v); }
+
+RGB profile_values(const sss::ProfileRGB& p, double r) {
+  return {float(p.channel[0].eval(r)), float(p.channel[1].eval(r)), float(p.channel[2].eval(r))};
+}
+
+// One probe: candidates on the segment, one chosen uniformly, weight k R / pdf.
+template <class Pdf>
+bool pick_probe_hit(const RenderScene& sc, const SubsurfaceMethod& m, const SurfaceHit& entry,
+                    const sss::ProbeSegment& seg, Rng& rng, PathCounters& counters, Pdf&& pdf_area,
+                    SubsurfaceExit& out) {
+  thread_local std::vector<SurfaceHit> hits;
+  hits.clear();
+  collect_object_hits(sc, entry, Vec3(seg.origin), Vec3(seg.direction), float(seg.length), kMaxProbeHits, hits,
+                      counters);
+  if (hits.empty()) return false;
+  int k = int(hits.size());
+  const SurfaceHit& h = hits[std::min(int(rng.uniform() * k), k - 1)];
+  double pdf = pdf_area(h);
+  if (!(pdf > 0)) return false;
+  double r = length(to_d(h.p) - to_d(entry.p));
+  out.hit = h;
+  out.weight = profile_values(*m.profile, r) * float(k / pdf);
+  out.diffuse_exit = true;
+  return true;
+}
+
+}  // namespace
+
+bool sample_subsurface_exit(const RenderScene& sc, const SubsurfaceMethod& m, const SurfaceHit& entry, Vec3 wo,
+                            Rng& rng, PathCounters& counters, SubsurfaceExit& out) {
+  switch (m.params.method) {
+    case Method::Volumetric:
+      return false;  // rendered as a medium, never reaches here
+    case Method::Disk:
+    case Method::DiskSingleAxis: {
+      sss::ProbeFrame frame = sss::ProbeFrame::around(to_d(entry.p), to_d(entry.ng));
+      sss::DiskProbeSample s = m.disk->sample(frame, rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
+      return pick_probe_hit(sc, m, entry, s.segment, rng, counters,
+                            [&](const SurfaceHit& h) { return m.disk->pdf_area(frame, to_d(h.p), to_d(h.ng)); }, out);
+    }
+    case Method::SphereLines: {
+      Vec3d p = to_d(entry.p);
+      sss::SphereLineSample s = m.lines->sample(p, rng.uniform(), rng.uniform(), {rng.uniform(), rng.uniform()},
+                                                {rng.uniform(), rng.uniform()});
+      return pick_probe_hit(sc, m, entry, s.segment, rng, counters,
+                            [&](const SurfaceHit& h) { return m.lines->pdf_area(p, to_d(h.p)); }, out);
+    }
+    case Method::SphereLinesRetry: {
+      // The Cycles page's scheme: retry up to 8 lines until one hits, else stay at P.
+      Vec3d p = to_d(entry.p);
+      thread_local std::vector<SurfaceHit> hits;
+      auto count_hits = [&](const sss::ProbeSegment& seg) {
+        hits.clear();
+        collect_object_hits(sc, entry, Vec3(seg.origin), Vec3(seg.direction), float(seg.length), kMaxProbeHits, hits,
+                            counters);
+        return int(hits.size());
+      };
+      sss::SphereLineRetry r = m.lines->sample_retry(p, rng, count_hits);
+      if (r.hits == 0) {
+        out.hit = entry;
+        for (int c = 0; c < 3; ++c) out.weight[c] = float(m.lines->fallback_weight(c));
+      } else {
+        const SurfaceHit& h = hits[r.chosen];
+        double d = length(to_d(h.p) - p);
+        double pdf = m.lines->pdf_area(p, to_d(h.p));
+        out.hit = h;
+        for (int c = 0; c < 3; ++c)
+          out.weight[c] = float(sss::SphereLineSampler::retry_weight(m.profile->channel[c].eval(d), r.hits, pdf));
+      }
+      out.diffuse_exit = true;
+      return true;
+    }
+    case Method::RandomWalk:
+      return false;
+  }
+  (void)wo;
+  return false;
+}
+
+}  // namespace dermis

@@ -1,0 +1,89 @@
+// The flat-slab invariant (METHODS.md sec. 0 and 6): a thick flat slab under uniform
+// light returns, for every profile method, the specular reflection F plus (1 - F) times
+// the profile's energy that the method can reach: within 4 standard errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dermis/materials/fresnel.h"
+#include "dermis/render/render_scene.h"
+#include "dermis/render/subsurface_method.h"
+#include "dermis/scene/parser.h"
+#include "dermis/sss/profiles/quadrature.h"
+#include "support/pixel_statistics.h"
+
+namespace dermis {
+namespace {
+
+// A box whose top face is z = 0, w wide and w/4 thick, seen straight down through a
+// narrow camera: with w = 20 probe radii no probe reaches its sides or bottom.
+std::string slab_scene(const std::string& material, double w) {
+  auto f = [w](double x) { return std::to_string(x * w); };
+  std::string top = f(0.5), bottom = f(-0.25), lo = f(-0.5);
+  return R"(LookAt 0 0 50  0 0 0  0 1 0
+Camera "perspective" "float fov" 2
+Film "rgb" "integer xresolution" 3 "integer yresolution" 3
+Integrator "volpath" "integer maxdepth" 50
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+)" + material + R"(
+Shape "trianglemesh" "point3 P" [)" + lo + " " + lo + " " + bottom + "  " + top + " " + lo + " " + bottom + "  " +
+         top + " " + top + " " + bottom + "  " + lo + " " + top + " " + bottom + "  " + lo + " " + lo + " 0  " + top +
+         " " + lo + " 0  " + top + " " + top + " 0  " + lo + " " + top + R"( 0]
+  "integer indices" [0 2 1  0 3 2   4 5 6  4 6 7   0 1 5  0 5 4   1 2 6  1 6 5   2 3 7  2 7 6   3 0 4  3 4 7]
+)";
+}
+
+// Energy of channel c of the method's profile within `radius` (Gauss-Kronrod).
+double energy_within(const sss::RadialProfile& p, double radius) {
+  return sss::integrate([&](double r) { return p.eval(r) * 2 * kPiD * r; }, 0, radius);
+}
+
+struct SlabCase {
+  const char* method;
+  const char* profile;
+};
+
+class FlatSlab : public ::testing::TestWithParam<SlabCase> {};
+
+TEST_P(FlatSlab, ReturnsFresnelPlusTransmittedAlbedo) {
+  const SlabCase c = GetParam();
+  std::string material = std::string("Material \"subsurface\" \"rgb reflectance\" [0.8 0.5 0.25] \"rgb mfp\" [1.0 0.6 0.3] ") +
+                         "\"float eta\" 1.33 \"string method\" \"" + c.method + "\" \"string profile\" \"" + c.profile + "\"";
+  Diagnostics diag;
+  auto probe = build_render_scene(parse_scene_string(slab_scene(material, 1)), diag);
+  ASSERT_EQ(probe->subsurface.size(), 1u);
+  double radius = probe->subsurface[0]->disk ? probe->subsurface[0]->disk->max_radius()
+                                              : probe->subsurface[0]->lines->max_radius();
+  auto sc = build_render_scene(parse_scene_string(slab_scene(material, std::max(100.0, 20 * radius))), diag);
+  const SubsurfaceMethod& m = *sc->subsurface[0];
+  const float F = fresnel_dielectric(1.0f, 1.33f);
+  RGB expected;
+  for (int ch = 0; ch < 3; ++ch) {
+    double e = std::string(c.method) == "sphere-lines-retry" ? m.lines->fallback_weight(ch)
+                                                              : energy_within(m.profile->channel[ch], radius);
+    expected[ch] = float(F + (1 - F) * e);
+  }
+  auto st = testing::pixel_statistics(*sc, 4000, 17);
+  for (std::size_t p = 0; p < st.mean.size(); ++p)
+    for (int ch = 0; ch < 3; ++ch)
+      EXPECT_NEAR(st.mean[p][ch], expected[ch], 4 * st.stderr_[p][ch])
+          << c.method << "/" << c.profile << " pixel " << p << " channel " << ch;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Methods, FlatSlab,
+    ::testing::Values(SlabCase{"disk", "burley"}, SlabCase{"disk", "dipole"}, SlabCase{"disk", "gaussian"},
+                      SlabCase{"disk", "skin6"}, SlabCase{"disk", "cubic"}, SlabCase{"disk", "tabulated"},
+                      SlabCase{"disk", "burley-dmfp"}, SlabCase{"disk-single-axis", "burley"},
+                      SlabCase{"sphere-lines", "burley"}, SlabCase{"sphere-lines", "dipole"},
+                      SlabCase{"sphere-lines", "skin6"}, SlabCase{"sphere-lines-retry", "burley"}),
+    [](const ::testing::TestParamInfo<SlabCase>& i) {
+      std::string n = std::string(i.param.method) + "_" + i.param.profile;
+      for (char& ch : n)
+        if (ch == '-') ch = '_';
+      return n;
+    });
+
+}  // namespace
+}  // namespace dermis
