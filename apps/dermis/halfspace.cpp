@@ -22,7 +22,7 @@ struct HalfspaceOptions {
   std::optional<double> albedo, sigma_a, sigma_s;
   double sigma_t = 1.0, g = 0.0, eta = 1.0, r_max = 16.0, r_min = 0.0;
   std::string incidence = "normal", output, walk_sampling = "classical";
-  double p_guided = 0.75;
+  double p_guided = 0.5;
   long long paths = 1000000, seed = 1, max_collisions = 10'000'000;
   int threads = 0, bins = 64;
   bool log_bins = false, per_entering = false;

@@ -27,7 +27,8 @@ struct AlbedoTableConfig {
   int size = 32;
   uint64_t paths_per_node = 100000;
   uint64_t seed = 1;  // the same seed at every node: correlated noise, a smoother table
-  WalkSampling sampling = WalkSampling::Mis;
+  // The flat half-space is where Dwivedi guiding is at its best (docs/random-walk.md).
+  WalkSampling sampling = WalkSampling::Dwivedi;
   bool use_cache = true;
   std::string cache_dir;           // empty: $XDG_CACHE_HOME/dermis, else $HOME/.cache/dermis
   double cache_min_seconds = 1.0;  // write the cache only when building took longer

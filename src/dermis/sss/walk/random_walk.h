@@ -29,9 +29,10 @@ struct WalkMedium {
 struct WalkSettings {
   WalkSampling sampling = WalkSampling::Mis;
   // Guided choice probability for Mis (docs/random-walk.md: measured on the half-space
-  // and a sphere; high values win on flat geometry, 0.75 keeps classical sampling for
-  // curved surfaces, as the seed recommends).
-  float p_guided = 0.75f;
+  // and on spheres). Higher values win on flat, thick media; on objects only a few mean
+  // free paths across guiding toward the entry plane loses to classical sampling, least
+  // so at 0.5, the compromise chosen.
+  float p_guided = 0.5f;
   int max_steps = 1024;  // scattering events before the walk is stopped (truncated)
   // Russian roulette when the largest channel of the throughput drops below this.
   float roulette_threshold = 0.1f;
