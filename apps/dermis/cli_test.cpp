@@ -118,6 +118,14 @@ TEST_F(Cli, BadOptionsExitWithStatus2) {
   EXPECT_EQ(run_dermis("render " + scene + " -o " + path("missing_dir/o.exr")).status, 2);
   EXPECT_EQ(run_dermis("frobnicate").status, 2);
   EXPECT_FALSE(fs::exists(path("o.exr")));
+  EXPECT_EQ(run_dermis("halfspace --albedo 0.5 --paths 10 --walksampling guided").status, 2);
+  EXPECT_EQ(run_dermis("halfspace --albedo 0.5 --paths 10 --walksampling mis --p-guided 1.5").status, 2);
+}
+
+TEST_F(Cli, HalfspaceWalkSampling) {
+  CommandResult r = run_dermis("halfspace --albedo 0.9 --paths 2000 --bins 2 --walksampling mis -o " + path("r.csv"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("mis sampling"), std::string::npos) << r.output;
 }
 
 TEST_F(Cli, TimeLimitKeepsTheSamplesTaken) {

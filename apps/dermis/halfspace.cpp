@@ -21,7 +21,8 @@ namespace {
 struct HalfspaceOptions {
   std::optional<double> albedo, sigma_a, sigma_s;
   double sigma_t = 1.0, g = 0.0, eta = 1.0, r_max = 16.0, r_min = 0.0;
-  std::string incidence = "normal", output;
+  std::string incidence = "normal", output, walk_sampling = "classical";
+  double p_guided = 0.5;
   long long paths = 1000000, seed = 1, max_collisions = 10'000'000;
   int threads = 0, bins = 64;
   bool log_bins = false, per_entering = false;
@@ -51,6 +52,8 @@ int run_halfspace(const HalfspaceOptions& o) {
   c.seed = uint64_t(o.seed);
   c.max_collisions = uint64_t(o.max_collisions);
   sss::parse_incidence(o.incidence, c.incidence, c.incidence_angle);
+  c.sampling = sss::parse_walk_sampling(o.walk_sampling);
+  c.p_guided = o.p_guided;
   c.bins = o.log_bins ? sss::RadialBins::logarithmic(o.r_min > 0 ? o.r_min : o.r_max * 1e-3, o.r_max, o.bins)
                       : sss::RadialBins::linear(o.r_max, o.bins);
   sss::validate(c);
@@ -66,8 +69,9 @@ int run_halfspace(const HalfspaceOptions& o) {
                              r.albedo_per_entering(), r.albedo_per_entering_stderr(), r.specular);
   std::cerr << fmt::format("absorbed {:.6f} +- {:.6f}; beyond r_max {:.6f}; truncated paths {} (weight {:.3g})\n",
                            r.absorbed, r.absorbed_stderr, r.beyond_rmax, r.truncated, r.truncated_weight);
-  std::cerr << fmt::format("{} paths, {:.1f} collisions/path, {:.3f} s, {:.3g} paths/s\n", r.paths,
-                           r.mean_collisions, r.seconds, double(r.paths) / r.seconds);
+  std::cerr << fmt::format("{} paths ({} sampling), {:.1f} collisions/path, {:.3f} s, {:.3g} paths/s\n", r.paths,
+                           sss::walk_sampling_name(c.sampling), r.mean_collisions, r.seconds,
+                           double(r.paths) / r.seconds);
 
   std::ofstream file;
   if (!o.output.empty()) {
@@ -102,6 +106,9 @@ void register_halfspace(CLI::App& app, int& exit_code) {
   cmd->add_option("--rmin", opts->r_min, "First edge of log-spaced bins (default rmax/1000)");
   cmd->add_option("--bins", opts->bins, "Number of radial bins");
   cmd->add_flag("--log-bins", opts->log_bins, "Log-spaced bins");
+  cmd->add_option("--walksampling", opts->walk_sampling,
+                  "classical | dwivedi (zero-variance guiding) | mis (one-sample MIS of both)");
+  cmd->add_option("--p-guided", opts->p_guided, "Probability of the guided strategy with --walksampling mis, in [0, 1]");
   cmd->add_option("--max-collisions", opts->max_collisions, "Truncate (and report) paths after this many collisions");
   cmd->add_flag("--per-entering", opts->per_entering, "Normalise R(r) per unit power that entered (divide by 1 - specular)");
   cmd->add_option("-o,--output", opts->output, "CSV file for R(r) (default: stdout)");

@@ -172,6 +172,8 @@ void validate(const HalfspaceConfig& c) {
   if (c.incidence == Incidence::Angle && !(c.incidence_angle >= 0 && c.incidence_angle < kPiD / 2))
     fail("incidence angle must be in [0, 90) degrees");
   if (c.paths < 1) fail("need at least one path");
+  if (!(c.p_guided >= 0 && c.p_guided <= 1))
+    fail("guided sampling probability p_guided must be in [0, 1], got " + std::to_string(c.p_guided));
   if (c.max_collisions < 1) fail("max_collisions must be at least 1");
   if (!(c.roulette_threshold > 0 && c.roulette_threshold <= 1))
     fail("roulette_threshold must be in (0, 1], got " + std::to_string(c.roulette_threshold));
@@ -185,6 +187,10 @@ HalfspaceResult simulate_halfspace(const HalfspaceConfig& c) {
   switch (c.sampling) {
     case WalkSampling::Classical:
       t = run_all(c, ClassicalSampling(medium));
+      break;
+    case WalkSampling::Dwivedi:
+    case WalkSampling::Mis:
+      t = run_all(c, GuidedSampling(medium, guided_choice_probability(c.sampling, c.p_guided)));
       break;
   }
 

@@ -30,6 +30,9 @@ struct HalfspaceConfig {
   uint64_t seed = 1;
   RadialBins bins;
   WalkSampling sampling = WalkSampling::Classical;
+  // Probability of the Dwivedi-guided strategy in WalkSampling::Mis, in [0, 1]
+  // (docs/random-walk.md: the measured default).
+  double p_guided = 0.5;
   // Paths still inside after this many collisions are stopped and reported as
   // truncated (their weight in truncated_weight), never silently lost. Only the
   // non-absorbing case alpha = 1 needs it: the return time of the walk has infinite mean.

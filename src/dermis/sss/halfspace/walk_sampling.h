@@ -11,9 +11,9 @@
 // times the single-scattering albedo for a scattering event (implicit capture), so
 // that the walk multiplies its path weight by it. The walk is templated on P: no
 // virtual call per step. Dwivedi's zero-variance guiding (Krivanek & d'Eon 2014;
-// METHODS.md section 4) and its one-sample MIS with classical sampling are further
-// policies of this shape; they sample direction and distance jointly, which is why
-// scatter() returns both.
+// METHODS.md section 4) and its one-sample MIS with classical sampling are the policy
+// GuidedSampling: it samples direction and distance jointly (which is why scatter()
+// returns both) with the step math shared with the renderer's walk (walk/walk_step.h).
 #pragma once
 
 #include <cmath>
@@ -22,6 +22,7 @@
 #include "dermis/core/rng.h"
 #include "dermis/core/vec.h"
 #include "dermis/sss/halfspace/hg_phase.h"
+#include "dermis/sss/walk/walk_step.h"
 
 namespace dermis::sss {
 
@@ -46,9 +47,8 @@ inline double distance_to_boundary(const Vec3d& d, double depth) {
   return d.z > 0 ? depth / d.z : std::numeric_limits<double>::infinity();
 }
 
-enum class WalkSampling {
-  Classical,  // analog distances and phase-function directions (ClassicalSampling)
-};
+// WalkSampling (walk/walk_step.h) selects the policy: Classical -> ClassicalSampling,
+// Dwivedi and Mis -> GuidedSampling with guided choice probability 1 or p_guided.
 
 // Classical sampling: distance s = -ln(xi) / sigma_t (Beer-Lambert), direction from the
 // HG phase function about the propagation direction (METHODS.md section 4). The
@@ -75,6 +75,35 @@ class ClassicalSampling {
 
  private:
   HalfspaceMedium medium_;
+};
+
+// Dwivedi-guided sampling (p_guided = 1) or its one-sample MIS with classical sampling
+// (0 < p_guided < 1), principal axis the boundary normal +z: MixtureWalkStep<1> samples
+// and weighs, this policy supplies the distance to the plane z = 0.
+class GuidedSampling {
+ public:
+  GuidedSampling(const HalfspaceMedium& medium, double p_guided)
+      : step_({medium.sigma_t}, {medium.albedo}, medium.g, p_guided) {}
+
+  Flight fly(const Vec3d& direction, double depth, Rng& rng) const {
+    return finish(step_.propose_flight(direction, axis_, kOneChannel, rng), depth);
+  }
+
+  Flight scatter(const Vec3d& direction_in, double depth, Rng& rng) const {
+    return finish(step_.propose_scatter(direction_in, axis_, kOneChannel, rng), depth);
+  }
+
+ private:
+  static constexpr std::array<double, 1> kOneChannel{1.0};
+
+  Flight finish(const FlightProposal& p, double depth) const {
+    const double boundary = distance_to_boundary(p.direction, depth);
+    if (p.distance >= boundary) return {p.direction, boundary, step_.passage_weights(p, boundary, kOneChannel)[0], true};
+    return {p.direction, p.distance, step_.collision_weights(p, kOneChannel)[0], false};
+  }
+
+  MixtureWalkStep<1> step_;
+  Framed axis_{Vec3d{0, 0, 1}};  // outward normal of the boundary z = 0
 };
 
 }  // namespace dermis::sss

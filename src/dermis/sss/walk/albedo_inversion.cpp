@@ -1,0 +1,195 @@
+#include "dermis/sss/walk/albedo_inversion.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "dermis/sss/halfspace/halfspace.h"
+
+namespace dermis::sss {
+
+namespace {
+
+constexpr int kCacheVersion = 1;
+
+std::string default_cache_dir() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/dermis";
+  if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.cache/dermis";
+  return {};
+}
+
+// Weighted pool-adjacent-violators: the non-increasing sequence closest to y in the
+// weighted least-squares sense (Barlow et al. 1972, Statistical Inference under Order
+// Restrictions). Removes the Monte Carlo noise that could make A(t) non-monotone.
+std::vector<double> non_increasing_fit(const std::vector<double>& y, const std::vector<double>& w) {
+  struct Block { double sum_wy, sum_w; size_t count; };
+  std::vector<Block> blocks;
+  for (size_t i = 0; i < y.size(); ++i) {
+    blocks.push_back({w[i] * y[i], w[i], 1});
+    while (blocks.size() > 1) {
+      const Block& b = blocks.back();
+      const Block& a = blocks[blocks.size() - 2];
+      if (a.sum_wy / a.sum_w >= b.sum_wy / b.sum_w) break;  // in order
+      Block merged{a.sum_wy + b.sum_wy, a.sum_w + b.sum_w, a.count + b.count};
+      blocks.pop_back();
+      blocks.back() = merged;
+    }
+  }
+  std::vector<double> out;
+  for (const Block& b : blocks) out.insert(out.end(), b.count, b.sum_wy / b.sum_w);
+  return out;
+}
+
+}  // namespace
+
+AlbedoInversion::AlbedoInversion(const AlbedoTableConfig& config) : config_(config) {
+  auto fail = [](const std::string& m) { throw std::invalid_argument("albedo inversion: " + m); };
+  if (!(config.eta > 0 && std::isfinite(config.eta)))
+    fail("relative index of refraction eta must be positive and finite, got " + std::to_string(config.eta));
+  if (!(config.g > -1 && config.g < 1)) fail("HG anisotropy g must be in (-1, 1), got " + std::to_string(config.g));
+  if (config.size < 3) fail("table size must be at least 3, got " + std::to_string(config.size));
+  if (config.paths_per_node < 100) fail("need at least 100 paths per table node");
+
+  const int n = config.size;
+  t_.resize(n), alpha_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    t_[i] = double(i) / (n - 1);
+    alpha_[i] = 1 - t_[i] * t_[i];
+  }
+  if (config.use_cache) {
+    const std::string dir = config.cache_dir.empty() ? default_cache_dir() : config.cache_dir;
+    if (!dir.empty())
+      cache_path_ = fmt::format("{}/albedo-v{}-eta{:.9g}-g{:.9g}-n{}-p{}-s{}-{}.txt", dir, kCacheVersion, config.eta,
+                                config.g, n, config.paths_per_node, config.seed, walk_sampling_name(config.sampling));
+  }
+  if (!cache_path_.empty() && load()) {
+    from_cache_ = true;
+  } else {
+    const auto start = std::chrono::steady_clock::now();
+    build();
+    build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!cache_path_.empty() && build_seconds_ >= config.cache_min_seconds) save();
+  }
+
+  // Fritsch-Carlson monotone cubic Hermite slopes with the harmonic mean of the
+  // neighbouring secants (Fritsch & Butland 1984): monotone data give a monotone curve.
+  slope_.assign(n, 0.0);
+  std::vector<double> secant(n - 1);
+  for (int i = 0; i + 1 < n; ++i) secant[i] = (albedo_[i + 1] - albedo_[i]) / (t_[i + 1] - t_[i]);
+  slope_[0] = secant[0], slope_[n - 1] = secant[n - 2];
+  for (int i = 1; i + 1 < n; ++i) {
+    const double a = secant[i - 1], b = secant[i];
+    slope_[i] = a * b > 0 ? 2 * a * b / (a + b) : 0.0;
+  }
+}
+
+void AlbedoInversion::build() {
+  const int n = config_.size;
+  std::vector<double> raw(n), weight(n);
+  stderr_.assign(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    if (i == 0 || i == n - 1) {
+      // alpha = 1: nothing is absorbed, all entering light returns (A = 1);
+      // alpha = 0: nothing scatters back (A = 0). Exact, not simulated.
+      raw[i] = i == 0 ? 1.0 : 0.0;
+      weight[i] = 1e30;
+      continue;
+    }
+    HalfspaceConfig c;
+    c.albedo = alpha_[i];
+    c.g = config_.g;
+    c.eta = config_.eta;
+    c.incidence = Incidence::Diffuse;
+    c.paths = config_.paths_per_node;
+    c.seed = config_.seed;
+    c.sampling = config_.sampling;
+    c.bins = RadialBins::linear(1.0, 1);
+    const HalfspaceResult r = simulate_halfspace(c);
+    raw[i] = r.albedo_per_entering();
+    stderr_[i] = r.albedo_per_entering_stderr();
+    weight[i] = 1 / std::max(stderr_[i] * stderr_[i], 1e-30);
+  }
+  albedo_ = non_increasing_fit(raw, weight);
+}
+
+bool AlbedoInversion::load() {
+  std::ifstream in(cache_path_);
+  if (!in) return false;
+  std::string header;
+  std::getline(in, header);
+  if (header != fmt::format("dermis albedo table v{} {}", kCacheVersion, config_.size)) return false;
+  const int n = config_.size;
+  std::vector<double> albedo(n), err(n);
+  for (int i = 0; i < n; ++i) {
+    double t;
+    if (!(in >> t >> albedo[i] >> err[i]) || std::abs(t - t_[i]) > 1e-12 || !(albedo[i] >= 0 && albedo[i] <= 1))
+      return false;
+  }
+  albedo_ = albedo, stderr_ = err;
+  return true;
+}
+
+void AlbedoInversion::save() const {
+  std::error_code ec;
+  std::filesystem::create_directories(std::filesystem::path(cache_path_).parent_path(), ec);
+  // Write a temporary file and rename it: a reader never sees half a table.
+  const std::string tmp = cache_path_ + fmt::format(".tmp{}", uint64_t(std::chrono::steady_clock::now().time_since_epoch().count()));
+  {
+    std::ofstream out(tmp);
+    if (!out) return;  // the cache is optional
+    out << fmt::format("dermis albedo table v{} {}\n", kCacheVersion, config_.size);
+    for (size_t i = 0; i < t_.size(); ++i) out << fmt::format("{:.17g} {:.17g} {:.17g}\n", t_[i], albedo_[i], stderr_[i]);
+    if (!out) return;
+  }
+  std::filesystem::rename(tmp, cache_path_, ec);
+  if (ec) std::filesystem::remove(tmp, ec);
+}
+
+double AlbedoInversion::albedo_at_t(double t) const {
+  const int n = int(t_.size());
+  t = std::clamp(t, 0.0, 1.0);
+  const int k = std::min(n - 2, int(t * (n - 1)));
+  const double h = t_[k + 1] - t_[k], s = (t - t_[k]) / h;
+  // Cubic Hermite basis (Fritsch & Carlson 1980, eq. 2).
+  const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
+  const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
+  return h00 * albedo_[k] + h10 * h * slope_[k] + h01 * albedo_[k + 1] + h11 * h * slope_[k + 1];
+}
+
+double AlbedoInversion::surface_albedo(double alpha) const {
+  if (!(alpha >= 0 && alpha <= 1))
+    throw std::invalid_argument("albedo inversion: single-scattering albedo must be in [0, 1], got " +
+                                std::to_string(alpha));
+  return albedo_at_t(std::sqrt(1 - alpha));
+}
+
+double AlbedoInversion::single_scattering_albedo(double a) const {
+  if (!(a >= 0 && a <= 1))
+    throw std::invalid_argument("albedo inversion: surface albedo must be in [0, 1], got " + std::to_string(a));
+  // A(t) is non-increasing in t: bisection to double precision.
+  double lo = 0, hi = 1;
+  for (int i = 0; i < 200 && hi - lo > 1e-16; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (albedo_at_t(mid) > a ? lo : hi) = mid;
+  }
+  const double t = 0.5 * (lo + hi);
+  return 1 - t * t;
+}
+
+double van_de_hulst_single_scattering_albedo(double a) {
+  if (!(a >= 0 && a <= 1))
+    throw std::invalid_argument("van de Hulst fit: surface albedo must be in [0, 1], got " + std::to_string(a));
+  // van de Hulst fit (METHODS.md section 4).
+  const double s = 4.09712 + 4.20863 * a - std::sqrt(9.59217 + 41.6808 * a + 17.7126 * a * a);
+  return 1 - s * s;
+}
+
+}  // namespace dermis::sss

@@ -1,0 +1,176 @@
+#include "dermis/sss/walk/random_walk.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dermis/sss/halfspace/chandrasekhar.h"
+
+namespace dermis::sss {
+namespace {
+
+// The half-space z < 0 seen from inside: the plane z = 0, outward normal +z.
+struct HalfspaceTracer {
+  BoundaryHit operator()(Vec3 o, Vec3 d) const {
+    if (!(d.z > 0)) return {};
+    const float t = std::max(0.0f, -o.z / d.z);
+    Vec3 p = o + d * t;
+    p.z = 0;
+    return {true, t, p, {0, 0, 1}};
+  }
+};
+
+// A ball of radius r at the origin seen from inside: the far root of |o + t d| = r.
+struct SphereTracer {
+  double radius = 1;
+  BoundaryHit operator()(Vec3 of, Vec3 df) const {
+    const Vec3d o(of), d(df);
+    const double b = dot(o, d), c = dot(o, o) - radius * radius;
+    const double t = -b + std::sqrt(std::max(0.0, b * b - c));  // c <= 0 inside: the positive root
+    if (!(t > 0)) return {};
+    const Vec3d p = o + d * t;
+    return {true, float(t), Vec3(p), Vec3(normalize(p))};
+  }
+};
+
+struct ChannelStats {
+  double sum[3] = {0, 0, 0}, sum_sq[3] = {0, 0, 0};
+  int n = 0, truncated = 0, exits = 0;
+  double mean(int c) const { return sum[c] / n; }
+  double stderr_(int c) const { return std::sqrt(std::max(0.0, sum_sq[c] / n - mean(c) * mean(c)) / (n - 1)); }
+};
+
+template <class Tracer>
+ChannelStats run_walks(const WalkMedium& medium, const WalkSettings& settings, Vec3 p, Vec3 n, Vec3 dir, int paths,
+                       uint64_t seed, const Tracer& tracer) {
+  const MixtureWalkStep<3> step = make_walk_step(medium, settings);
+  ChannelStats s;
+  Rng rng(seed, uint64_t(settings.sampling));
+  WalkResult out;
+  for (int i = 0; i < paths; ++i) {
+    const bool left = random_walk(step, settings, p, n, dir, rng, tracer, out);
+    ++s.n;
+    s.truncated += out.truncated;
+    if (!left) continue;
+    ++s.exits;
+    for (int c = 0; c < 3; ++c) s.sum[c] += out.weight[c], s.sum_sq[c] += double(out.weight[c]) * out.weight[c];
+  }
+  return s;
+}
+
+WalkSettings settings_for(WalkSampling sampling) {
+  WalkSettings s;
+  s.sampling = sampling;
+  s.max_steps = 100000;
+  return s;
+}
+
+// Index-matched isotropic half-space, normal incidence: each channel's mean weight is
+// Chandrasekhar's 1 - H(1) sqrt(1 - alpha_c), with a different sigma_t and alpha per
+// channel (one-sample spectral MIS), for classical, Dwivedi and MIS sampling.
+TEST(RandomWalk, HalfspaceAlbedoMatchesChandrasekharPerChannel) {
+  const RGB alpha(0.5f, 0.9f, 0.99f), sigma_t(1.0f, 2.0f, 0.5f);
+  const WalkMedium medium{alpha * sigma_t, sigma_t, 0.0f};
+  double reference[3];
+  for (int c = 0; c < 3; ++c) reference[c] = halfspace_albedo_collimated(HFunction(alpha[c]), 1.0);
+  for (WalkSampling sampling : {WalkSampling::Classical, WalkSampling::Dwivedi, WalkSampling::Mis}) {
+    const ChannelStats s = run_walks(medium, settings_for(sampling), {0, 0, 0}, {0, 0, 1}, {0, 0, -1}, 60000, 21,
+                                     HalfspaceTracer{});
+    EXPECT_EQ(s.truncated, 0);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_LT(s.stderr_(c), 6e-3);  // the test resolves a 2.4% error at 4 sigma
+      EXPECT_NEAR(s.mean(c), reference[c], 4 * s.stderr_(c))
+          << walk_sampling_name(sampling) << " channel " << c << " stderr " << s.stderr_(c);
+    }
+  }
+}
+
+// A grey medium is the monochromatic case: all channels carry the same weight.
+TEST(RandomWalk, GreyMediumHasEqualChannels) {
+  const WalkMedium medium{RGB(0.9f), RGB(1.0f), 0.0f};
+  const ChannelStats s =
+      run_walks(medium, settings_for(WalkSampling::Mis), {0, 0, 0}, {0, 0, 1}, {0, 0, -1}, 2000, 4, HalfspaceTracer{});
+  EXPECT_EQ(s.sum[0], s.sum[1]);
+  EXPECT_EQ(s.sum[0], s.sum[2]);
+}
+
+// A ball without absorption returns all light: E[weight] = 1 in every channel, while
+// the guiding axis (the entry normal) is wrong for most of the curved boundary.
+TEST(RandomWalk, ConservativeSphereReturnsEverything) {
+  const RGB sigma_t(1.0f, 3.0f, 0.3f);
+  const WalkMedium medium{sigma_t, sigma_t, 0.5f};
+  const SphereTracer sphere{2.0};
+  const Vec3 p(0, 0, 2), n(0, 0, 1), dir = normalize(Vec3(0.3f, 0, -1));
+  for (WalkSampling sampling : {WalkSampling::Classical, WalkSampling::Dwivedi, WalkSampling::Mis}) {
+    const ChannelStats s = run_walks(medium, settings_for(sampling), p, n, dir, 20000, 8, sphere);
+    EXPECT_EQ(s.truncated, 0);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(s.mean(c), 1.0, 4 * s.stderr_(c) + 1e-6) << walk_sampling_name(sampling) << " channel " << c;
+  }
+}
+
+// A pure absorber: only the uncollided light crosses, exp(-sigma_t 2r) along a diameter.
+TEST(RandomWalk, AbsorbingSphereTransmitsBeerLambert) {
+  const RGB sigma_t(0.5f, 1.0f, 0.2f);
+  const WalkMedium medium{RGB(0.0f), sigma_t, 0.0f};
+  const SphereTracer sphere{1.0};
+  for (WalkSampling sampling : {WalkSampling::Classical, WalkSampling::Dwivedi, WalkSampling::Mis}) {
+    const ChannelStats s = run_walks(medium, settings_for(sampling), {0, 0, 1}, {0, 0, 1}, {0, 0, -1}, 20000, 9, sphere);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(s.mean(c), std::exp(-2.0 * sigma_t[c]), 4 * s.stderr_(c)) << walk_sampling_name(sampling) << c;
+  }
+}
+
+// With absorption and anisotropy on the sphere there is no closed form: the guided
+// and MIS walks agree with the classical (analog) walk within 4 combined sigma.
+TEST(RandomWalk, AbsorbingSphereAgreesWithClassical) {
+  const RGB sigma_t(1.0f, 2.0f, 4.0f), alpha(0.95f, 0.8f, 0.99f);
+  const WalkMedium medium{alpha * sigma_t, sigma_t, 0.7f};
+  const SphereTracer sphere{1.5};
+  const Vec3 p(0, 0, 1.5), n(0, 0, 1), dir = normalize(Vec3(0.5f, 0.2f, -1));
+  const ChannelStats classical = run_walks(medium, settings_for(WalkSampling::Classical), p, n, dir, 30000, 10, sphere);
+  for (WalkSampling sampling : {WalkSampling::Dwivedi, WalkSampling::Mis}) {
+    const ChannelStats s = run_walks(medium, settings_for(sampling), p, n, dir, 30000, 11, sphere);
+    for (int c = 0; c < 3; ++c) {
+      const double sigma = std::hypot(classical.stderr_(c), s.stderr_(c));
+      EXPECT_NEAR(s.mean(c), classical.mean(c), 4 * sigma) << walk_sampling_name(sampling) << " channel " << c;
+    }
+  }
+}
+
+// The step cap: every walk that needs more scattering events is reported as truncated.
+TEST(RandomWalk, StepCapTruncates) {
+  const WalkMedium medium{RGB(1.0f), RGB(1.0f), 0.0f};
+  WalkSettings settings = settings_for(WalkSampling::Classical);
+  settings.max_steps = 3;
+  const MixtureWalkStep<3> step = make_walk_step(medium, settings);
+  Rng rng(1, 2);
+  WalkResult out;
+  int truncated = 0, exits = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const bool left = random_walk(step, settings, {0, 0, 0}, {0, 0, 1}, {0, 0, -1}, rng, HalfspaceTracer{}, out);
+    EXPECT_LE(out.steps, 3);
+    if (left) {
+      ++exits;
+      EXPECT_NEAR(out.exit_p.z, 0.0f, 1e-6f);
+      EXPECT_GT(out.exit_dir_in_medium.z, 0.0f);
+      EXPECT_EQ(out.exit_n, Vec3(0, 0, 1));
+    }
+    truncated += out.truncated;
+    EXPECT_EQ(out.truncated, !left);  // no absorption, no roulette at weight 1: out or truncated
+  }
+  EXPECT_GT(truncated, 500);
+  EXPECT_GT(exits, 500);
+}
+
+TEST(RandomWalk, RejectsBadMedia) {
+  EXPECT_THROW(make_walk_step({RGB(1.0f), RGB(0.5f), 0.0f}, {}), std::invalid_argument);   // sigma_s > sigma_t
+  EXPECT_THROW(make_walk_step({RGB(0.0f), RGB(0.0f), 0.0f}, {}), std::invalid_argument);   // sigma_t = 0
+  EXPECT_THROW(make_walk_step({RGB(0.5f), RGB(1.0f), 1.0f}, {}), std::invalid_argument);   // g = 1
+  WalkSettings bad;
+  bad.p_guided = 2;
+  EXPECT_THROW(make_walk_step({RGB(0.5f), RGB(1.0f), 0.0f}, bad), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace dermis::sss

@@ -1,0 +1,245 @@
+// One step of the volumetric random walk: sample a flight (direction and free path)
+// from a one-sample MIS mixture of classical and Dwivedi-guided sampling over all
+// colour channels, and the per-channel weight that keeps the walk unbiased
+// (Krivanek & d'Eon 2014; METHODS.md sections 4 and 5). The half-space simulator
+// (N = 1, halfspace/walk_sampling.h) and the renderer's walk (N = 3, random_walk.h)
+// are two drivers of this one implementation.
+//
+// Derivation. A flight starts at a point x (the entry point, or a collision where the
+// path scatters) and ends at a collision at distance s, or passes the boundary at
+// distance d. In channel k the physical measure of a flight from a scattering event is
+//   f_k(w, s) = alpha_k p(w_in . w) sigma_t,k exp(-sigma_t,k s)           (collision)
+//   F_k(w, d) = alpha_k p(w_in . w) exp(-sigma_t,k d)                     (passage)
+// per steradian (and per unit length for a collision), p the HG phase function and
+// alpha_k the single-scattering albedo of the scattering event (implicit capture).
+// After entry (or a Fresnel reflection) the direction is given: drop alpha_k p(.).
+// One-sample MIS picks a channel c with probability q_c (the current throughput,
+// normalised), then the guided strategy with probability P_g, else the classical one
+// (P_c = 1 - P_g), and samples the flight from it. The sampled flight has the mixture
+// density (balance heuristic; Veach 1997, section 9.2.4: the weight of a one-sample
+// balance-heuristic estimate is f / sum of all strategy densities weighted by their
+// choice probabilities)
+//   q(w, s) = sum_c q_c [P_c p(w_in . w) sigma_t,c exp(-sigma_t,c s)
+//                        + P_g d_c(w) sigma'_c exp(-sigma'_c s)],
+//   d_c(w) = beta p_c(u)/2pi + (1 - beta) p(w_in . w)   (guided direction density, per sr;
+//   beta = 1 for isotropic scattering: the seed's Dwivedi pdf p_c(u), see
+//   dwivedi_direction_fraction),
+//   sigma'_c = sigma_t,c (1 - kappa_c u),   u = w . n (n: the principal axis, outward),
+// and a sampled distance beyond the boundary (s > d) is the passage event, with
+// probability  Q(w, d) = sum_c q_c [P_c p exp(-sigma_t,c d) + P_g d_c(w) exp(-sigma'_c d)]
+// (each strategy's own probability of flying past: exponential tails). The walk
+// multiplies channel k's throughput by f_k/q or F_k/Q: every (w, s) with f_k > 0 has
+// q > 0 (the classical term, or, for P_c = 0, the guided density, positive everywhere),
+// so E[weight x score] is the physical expectation: unbiased for any q_c, P_g, kappa.
+// Simplifications used: p_c(u) sigma'_c = sigma_t,c kappa_c / L_c (dwivedi.h), so
+// the guided collision density is finite even where p_c(u) is not; every term is
+// a_i exp(b_i) and the weights are evaluated as ratios after subtracting max b_i, so
+// no exponential overflows or underflows to 0/0.
+// For isotropic scattering, P_g = 1 and one channel, the weight of a scattering step
+// is exp(-kappa sigma_t u s): the product telescopes to I(x_0)/I(x_end), the
+// zero-variance property.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "dermis/core/frame.h"
+#include "dermis/core/rng.h"
+#include "dermis/core/vec.h"
+#include "dermis/sss/halfspace/hg_phase.h"
+#include "dermis/sss/walk/dwivedi.h"
+
+namespace dermis::sss {
+
+enum class WalkSampling {
+  Classical,  // analog free paths and phase-function directions
+  Dwivedi,    // Dwivedi's guided pdfs only (P_guided = 1)
+  Mis,        // one-sample MIS of both with choice probability P_guided
+};
+
+// "classical", "dwivedi" or "mis"; throws std::invalid_argument otherwise.
+WalkSampling parse_walk_sampling(const std::string& text);
+const char* walk_sampling_name(WalkSampling sampling);
+// The guided choice probability of a strategy: 0, 1 or p_guided (validated in [0, 1]).
+double guided_choice_probability(WalkSampling sampling, double p_guided);
+
+// A sampled flight: unit direction, its cosine u to the principal axis, the phase
+// function value (per steradian) if it follows a scattering event, and the free path.
+struct FlightProposal {
+  Vec3d direction;
+  double cos_axis = 0;
+  double phase = 0;
+  double distance = 0;  // may be +infinity (a guided flight straight out with sigma' = 0)
+  bool scattered = false;
+};
+
+template <int N>
+class MixtureWalkStep {
+ public:
+  using Channels = std::array<double, N>;
+
+  // sigma_t > 0 and albedo in [0, 1] per channel, g in (-1, 1), p_guided in [0, 1]
+  // (the probability of the guided strategy); throws std::invalid_argument otherwise.
+  MixtureWalkStep(const Channels& sigma_t, const Channels& albedo, double g, double p_guided)
+      : sigma_t_(sigma_t), albedo_(albedo), g_(g), p_guided_(p_guided), p_classical_(1 - p_guided) {
+    auto fail = [](const std::string& m) { throw std::invalid_argument("random walk: " + m); };
+    if (!(g > -1 && g < 1)) fail("HG anisotropy g must be in (-1, 1), got " + std::to_string(g));
+    if (!(p_guided >= 0 && p_guided <= 1))
+      fail("guided sampling probability must be in [0, 1], got " + std::to_string(p_guided));
+    for (int c = 0; c < N; ++c) {
+      if (!(sigma_t[c] > 0 && std::isfinite(sigma_t[c])))
+        fail("extinction sigma_t must be positive and finite in every channel, got " + std::to_string(sigma_t[c]));
+      if (!(albedo[c] >= 0 && albedo[c] <= 1))
+        fail("single-scattering albedo sigma_s/sigma_t must be in [0, 1], got " + std::to_string(albedo[c]));
+      if (p_guided > 0) guide_[c] = DwivediGuide(albedo[c], g);
+    }
+    dwivedi_direction_fraction_ = dwivedi_direction_fraction(g);
+  }
+
+  // Fraction beta of guided directions drawn from Dwivedi's pdf; the rest follow the HG
+  // phase function (only their free path is guided). Dwivedi's pdf ignores the phase
+  // function: its weight ratio p_HG/p_dwivedi reaches (1 + |g|)/(1 - |g|)^2 in the forward
+  // peak and compounds over the steps of a path into a heavy tail (measured in
+  // docs/random-walk.md: g = 0.7 with beta = 1 is far worse than classical). beta = 1 at
+  // g = 0 (the seed's scheme), falling linearly to 0 at |g| = kDwivediDirectionMaxG.
+  static double dwivedi_direction_fraction(double g) {
+    return std::max(0.0, 1 - std::abs(g) / kDwivediDirectionMaxG);
+  }
+
+  double p_guided() const { return p_guided_; }
+  const DwivediGuide& guide(int c) const { return guide_[c]; }
+
+  // A flight along a given direction (after entry or a reflection): only its length is sampled.
+  FlightProposal propose_flight(const Vec3d& direction, const Framed& axis, const Channels& q, Rng& rng) const {
+    const int c = choose_channel(q, rng);
+    FlightProposal f;
+    f.direction = direction;
+    f.cos_axis = dot(direction, axis.n);
+    f.distance = free_path(c, choose_guided(rng), f.cos_axis, rng);
+    return f;
+  }
+
+  // A scattering event at the end of a flight along direction_in: new direction and flight.
+  FlightProposal propose_scatter(const Vec3d& direction_in, const Framed& axis, const Channels& q, Rng& rng) const {
+    const int c = choose_channel(q, rng);
+    const bool guided = choose_guided(rng);
+    FlightProposal f;
+    f.scattered = true;
+    const double phi = 2 * kPiD * rng.uniform_double();
+    if (guided && (dwivedi_direction_fraction_ >= 1 || rng.uniform_double() < dwivedi_direction_fraction_)) {
+      // Krivanek & d'Eon 2014: cosine from p(u) about the principal axis, azimuth uniform.
+      f.cos_axis = guide_[c].sample_cos(rng.uniform_double());
+      f.direction = axis.to_world(local_direction(f.cos_axis, phi));
+      f.phase = hg_phase(dot(direction_in, f.direction), g_);
+    } else {
+      // Henyey & Greenstein 1941: the phase function about the propagation direction.
+      const double cos_theta = sample_hg_cos(rng.uniform_double(), g_);
+      f.direction = direction_about(direction_in, cos_theta, phi);
+      f.cos_axis = dot(f.direction, axis.n);
+      f.phase = hg_phase(cos_theta, g_);
+    }
+    f.distance = free_path(c, guided, f.cos_axis, rng);
+    return f;
+  }
+
+  // Per-channel weight f_k / q of a flight that ends in a collision after f.distance.
+  Channels collision_weights(const FlightProposal& f, const Channels& q) const {
+    return weights(f, f.distance, true, q);
+  }
+  // Per-channel weight F_k / Q of a flight that passes the boundary at distance d <= f.distance.
+  Channels passage_weights(const FlightProposal& f, double d, const Channels& q) const {
+    return weights(f, d, false, q);
+  }
+
+ private:
+  static Vec3d local_direction(double cos_theta, double phi) {
+    const double sin_theta = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
+    return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+  }
+
+  int choose_channel(const Channels& q, Rng& rng) const {
+    if constexpr (N == 1) {
+      return 0;
+    } else {
+      double xi = rng.uniform_double();
+      for (int c = 0; c < N - 1; ++c) {
+        if (xi < q[c]) return c;
+        xi -= q[c];
+      }
+      for (int c = N - 1; c > 0; --c)  // round-off: the last channel with q > 0
+        if (q[c] > 0) return c;
+      return 0;
+    }
+  }
+
+  bool choose_guided(Rng& rng) const {
+    if (p_guided_ <= 0) return false;
+    if (p_guided_ >= 1) return true;
+    return rng.uniform_double() < p_guided_;
+  }
+
+  // Exponential free path -ln(1 - xi)/sigma (Beer-Lambert), sigma = sigma_t classically
+  // or sigma_t (1 - kappa u) guided (Krivanek & d'Eon 2014).
+  double free_path(int c, bool guided, double u, Rng& rng) const {
+    const double sigma = guided ? sigma_t_[c] * guide_[c].extinction_scale(u) : sigma_t_[c];
+    const double optical = -std::log1p(-rng.uniform_double());
+    return sigma > 0 ? optical / sigma : std::numeric_limits<double>::infinity();
+  }
+
+  // The derivation at the top of this file: numerator and mixture as sums of a exp(b).
+  Channels weights(const FlightProposal& f, double length, bool collision, const Channels& q) const {
+    const double phase = f.scattered ? f.phase : 1.0;
+    double a_classical[N], b_classical[N], a_guided[N], b_guided[N];
+    double b_max = -std::numeric_limits<double>::infinity();
+    for (int c = 0; c < N; ++c) {
+      b_classical[c] = -sigma_t_[c] * length;
+      a_classical[c] = q[c] * p_classical_ * phase * (collision ? sigma_t_[c] : 1.0);
+      if (a_classical[c] > 0) b_max = std::max(b_max, b_classical[c]);
+      a_guided[c] = 0, b_guided[c] = 0;
+      if (p_guided_ > 0 && q[c] > 0) {
+        const DwivediGuide& guide = guide_[c];
+        const double scale = guide.extinction_scale(f.cos_axis);
+        // Guided direction density (per sr) times the free-path density (collision) or
+        // tail (passage): beta Dwivedi + (1 - beta) HG for a scattering event, none for a flight.
+        double density = collision ? sigma_t_[c] * scale : 1.0;
+        if (f.scattered) {
+          const double beta = dwivedi_direction_fraction_;
+          const double dwivedi = beta > 0 ? beta * (collision ? guide.kappa_over_L() * sigma_t_[c]
+                                                              : guide.pdf_cos(f.cos_axis)) / (2 * kPiD)
+                                          : 0.0;
+          density = dwivedi + (1 - beta) * phase * density;
+        }
+        a_guided[c] = q[c] * p_guided_ * density;
+        b_guided[c] = -sigma_t_[c] * scale * length;
+        if (a_guided[c] > 0) b_max = std::max(b_max, b_guided[c]);
+      }
+    }
+    double mixture = 0;
+    Channels w;
+    for (int c = 0; c < N; ++c) {
+      const double e = std::exp(b_classical[c] - b_max);
+      mixture += a_classical[c] * e;
+      if (a_guided[c] > 0) mixture += a_guided[c] * std::exp(b_guided[c] - b_max);
+      w[c] = (f.scattered ? albedo_[c] * phase : 1.0) * (collision ? sigma_t_[c] : 1.0) * e;
+    }
+    if (!(mixture > 0) || !std::isfinite(b_max)) {
+      w.fill(0.0);
+      return w;
+    }
+    for (int c = 0; c < N; ++c) w[c] /= mixture;
+    return w;
+  }
+
+  static constexpr double kDwivediDirectionMaxG = 0.25;
+
+  Channels sigma_t_, albedo_;
+  std::array<DwivediGuide, N> guide_{};
+  double g_, p_guided_, p_classical_;
+  double dwivedi_direction_fraction_ = 1;
+};
+
+}  // namespace dermis::sss
