@@ -217,7 +217,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
         ray.tmax = kInf;
         continue;
       }
-      float F = fresnel_dielectric(cos_o, sm.params.eta);
+      float F = fresnel_dielectric(cos_o, sm.entry_eta);
       if (rng.uniform() < F) {
         Vec3 wi = reflect(wo, hit.ng);
         specular = true;

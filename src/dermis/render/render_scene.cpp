@@ -199,13 +199,16 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnosti
       }
       continue;
     }
-    if (!sp.sigma_a)
-      throw SceneError(md.loc, "subsurface: \"reflectance\" + \"mfp\" needs the albedo inversion of the random-walk "
-                               "method, not available in this build; give \"sigma_a\" + \"sigma_s\" or \"name\"");
+    RGB sigma_a, sigma_s;
+    // The volumetric reference has a dielectric boundary: its (reflectance, mfp)
+    // inversion uses the dielectric table.
+    SubsurfaceParams as_dielectric = sp;
+    as_dielectric.boundary = SubsurfaceParams::Boundary::Dielectric;
+    resolve_coefficients(as_dielectric, sigma_a, sigma_s);
     sc->materials[i].type = Material::Type::Dielectric;
     sc->materials[i].eta = sp.eta;
     subsurface_medium[i] = int(sc->media.size());
-    sc->media.push_back(HomogeneousMedium::from_coefficients(*sp.sigma_a, *sp.sigma_s, 1, sp.g));
+    sc->media.push_back(HomogeneousMedium::from_coefficients(sigma_a, sigma_s, 1, sp.g));
   }
   auto fill_subsurface = [&](Shape& s, const ShapeDesc& d) {
     if (s.material < int(subsurface_medium.size()) && subsurface_medium[s.material] >= 0) {

@@ -10,6 +10,10 @@
 #include "dermis/render/render_scene.h"
 #include "dermis/sss/profiles/tabulated.h"
 #include "dermis/sss/study/albedo_inversion.h"
+#include "dermis/sss/walk/albedo_inversion.h"
+
+#include <map>
+#include <mutex>
 
 namespace dermis {
 
@@ -36,6 +40,46 @@ void albedo_and_mfp(const SubsurfaceParams& p, RGB& A, RGB& l) {
     A[c] = float(sss::surface_albedo_index_matched(ss / st));
   }
 }
+
+// The exact albedo inversion of the random walk (sss/walk/albedo_inversion.h), one
+// table per (eta, g), built once per process and cached on disk by the table itself.
+const sss::AlbedoInversion& albedo_inversion(double eta, double g) {
+  static std::mutex mutex;
+  static std::map<std::pair<double, double>, std::unique_ptr<sss::AlbedoInversion>> tables;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& t = tables[{eta, g}];
+  if (!t) {
+    sss::AlbedoTableConfig config;
+    config.eta = eta;
+    config.g = g;
+    t = std::make_unique<sss::AlbedoInversion>(config);
+  }
+  return *t;
+}
+
+}  // namespace
+
+void resolve_coefficients(const SubsurfaceParams& p, RGB& sigma_a, RGB& sigma_s) {
+  if (p.sigma_a) {
+    sigma_a = *p.sigma_a;
+    sigma_s = *p.sigma_s;
+    return;
+  }
+  // From (A, mfp): sigma_t = 1 / mfp and alpha from the half-space table of the
+  // boundary the walk sees at its exit: the material's eta for the dielectric boundary,
+  // index-matched (eta = 1) for the diffuse and matched boundaries, whose walks leave at
+  // the first boundary crossing.
+  double table_eta = p.boundary == SubsurfaceParams::Boundary::Dielectric ? p.eta : 1.0;
+  const sss::AlbedoInversion& inv = albedo_inversion(table_eta, p.g);
+  for (int c = 0; c < 3; ++c) {
+    double st = 1.0 / (*p.mfp)[c];
+    double alpha = inv.single_scattering_albedo((*p.reflectance)[c]);
+    sigma_s[c] = float(alpha * st);
+    sigma_a[c] = float((1 - alpha) * st);
+  }
+}
+
+namespace {
 
 sss::ProfileRGB make_profile(const SubsurfaceParams& p, RGB A, RGB l) {
   switch (p.profile) {
@@ -78,6 +122,7 @@ std::unique_ptr<SubsurfaceMethod> make_subsurface_method(const SubsurfaceParams&
   auto m = std::make_unique<SubsurfaceMethod>();
   m->params = params;
   m->sw_norm = subsurface_exit_normalization(params.eta);
+  m->entry_eta = params.eta;
   switch (params.method) {
     case Method::Volumetric:
       break;
@@ -103,8 +148,21 @@ std::unique_ptr<SubsurfaceMethod> make_subsurface_method(const SubsurfaceParams&
       }
       break;
     }
-    case Method::RandomWalk:
-      throw std::invalid_argument("the randomwalk method is not available in this build");
+    case Method::RandomWalk: {
+      RGB sigma_a, sigma_s;
+      resolve_coefficients(params, sigma_a, sigma_s);
+      m->walk_medium.sigma_s = sigma_s;
+      m->walk_medium.sigma_t = sigma_a + sigma_s;
+      m->walk_medium.g = params.g;
+      switch (params.walk_sampling) {
+        case SubsurfaceParams::WalkSampling::Classical: m->walk_settings.sampling = sss::WalkSampling::Classical; break;
+        case SubsurfaceParams::WalkSampling::Dwivedi: m->walk_settings.sampling = sss::WalkSampling::Dwivedi; break;
+        case SubsurfaceParams::WalkSampling::Mis: m->walk_settings.sampling = sss::WalkSampling::Mis; break;
+      }
+      m->walk_step = std::make_unique<sss::MixtureWalkStep<3>>(sss::make_walk_step(m->walk_medium, m->walk_settings));
+      if (params.boundary == SubsurfaceParams::Boundary::Matched) m->entry_eta = 1;
+      break;
+    }
   }
   return m;
 }
@@ -136,6 +194,78 @@ bool pick_probe_hit(const RenderScene& sc, const SubsurfaceMethod& m, const Surf
   out.weight = profile_values(*m.profile, r) * float(k / pdf);
   out.diffuse_exit = true;
   return true;
+}
+
+}  // namespace
+
+namespace {
+
+// Křivánek & d'Eon 2014 (sss/walk/): a volumetric random walk under the surface. The
+// boundary decides how light leaves: `diffuse` through the exit lobe Sw at the first
+// boundary crossing, `matched` straight through it, `dielectric` by Fresnel: internal
+// reflection continues the walk, refraction leaves specularly. Entry and exit 1/eta^2
+// radiance factors cancel and are omitted.
+bool sample_walk_exit(const RenderScene& sc, const SubsurfaceMethod& m, const SurfaceHit& entry, Vec3 wo, Rng& rng,
+                      PathCounters& counters, SubsurfaceExit& out) {
+  using Boundary = SubsurfaceParams::Boundary;
+  const Boundary boundary = m.params.boundary;
+  Vec3 dir;
+  if (boundary == Boundary::Matched) {
+    dir = -wo;
+  } else {
+    auto t = refract(wo, entry.ng, m.params.eta);
+    if (!t) return false;
+    dir = *t;
+  }
+  Vec3 start = entry.p, start_n = entry.ng;
+  auto tracer = [&](Vec3 o, Vec3 d) {
+    sss::BoundaryHit b;
+    Ray r{o, d};
+    if (o == start) r.o = offset_ray_origin(start, start_n, d);  // leave the surface we stand on
+    SurfaceHit h;
+    if (!first_object_hit(sc, entry, r, h, counters)) return b;
+    b.hit = true;
+    b.p = h.p;
+    b.n = h.ng;
+    b.t = length(h.p - o);
+    return b;
+  };
+  RGB weight(1);
+  for (int reflections = 0; reflections < 256; ++reflections) {
+    sss::WalkResult res;
+    if (!sss::random_walk(*m.walk_step, m.walk_settings, start, entry.ng, dir, rng, tracer, res)) {
+      out.truncated = res.truncated;
+      return false;
+    }
+    weight *= res.weight;
+    out.hit = entry;
+    out.hit.p = res.exit_p;
+    out.hit.ng = out.hit.ns = res.exit_n;
+    out.weight = weight;
+    if (boundary == Boundary::Diffuse) {
+      out.diffuse_exit = true;
+      return true;
+    }
+    Vec3 d = res.exit_dir_in_medium;
+    out.diffuse_exit = false;
+    if (boundary == Boundary::Matched) {
+      out.direction = d;
+      return true;
+    }
+    float F = fresnel_dielectric(dot(-d, res.exit_n), m.params.eta);
+    if (rng.uniform() >= F) {
+      auto t = refract(-d, res.exit_n, m.params.eta);
+      if (!t) return false;  // F = 1 under total internal reflection: not reached
+      out.direction = *t;
+      return true;
+    }
+    // Internal reflection: the walk goes on from the boundary.
+    dir = d - res.exit_n * (2 * dot(d, res.exit_n));
+    start = res.exit_p;
+    start_n = res.exit_n;
+  }
+  ++counters.truncated;
+  return false;
 }
 
 }  // namespace
@@ -185,9 +315,8 @@ bool sample_subsurface_exit(const RenderScene& sc, const SubsurfaceMethod& m, co
       return true;
     }
     case Method::RandomWalk:
-      return false;
+      return sample_walk_exit(sc, m, entry, wo, rng, counters, out);
   }
-  (void)wo;
   return false;
 }
 

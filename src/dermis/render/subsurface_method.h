@@ -12,6 +12,7 @@
 #include "dermis/sss/probe/disk_probe.h"
 #include "dermis/sss/probe/sphere_lines.h"
 #include "dermis/sss/profiles/profile.h"
+#include "dermis/sss/walk/random_walk.h"
 
 namespace dermis {
 
@@ -21,12 +22,17 @@ struct PathCounters;
 struct SubsurfaceMethod {
   SubsurfaceParams params;
   float sw_norm = 1;                       // c of the exit lobe Sw (bsdf.h)
+  float entry_eta = 1.33f;                 // index seen at entry (1 for a matched walk)
   RGB albedo;                              // surface albedo per channel (profiles)
   // Profile methods (disk, sphere lines).
   std::unique_ptr<sss::ProfileRGB> profile;
   std::unique_ptr<sss::DiskProbeSampler> disk;
   std::unique_ptr<sss::SphereLineTablesRGB> line_tables;
   std::unique_ptr<sss::SphereLineSampler> lines;
+  // Random walk: coefficients per scene unit and the prepared step (sss/walk/).
+  sss::WalkMedium walk_medium;
+  sss::WalkSettings walk_settings;
+  std::unique_ptr<sss::MixtureWalkStep<3>> walk_step;
 
   bool is_volumetric() const { return params.method == SubsurfaceParams::Method::Volumetric; }
 };
@@ -34,6 +40,10 @@ struct SubsurfaceMethod {
 // Builds the method of a material; `sigma_a`/`sigma_s` are resolved already when the
 // user gave reflectance + mfp (the random walk's exact albedo inversion).
 std::unique_ptr<SubsurfaceMethod> make_subsurface_method(const SubsurfaceParams& params);
+
+// Scattering coefficients per scene unit: as given, or from (reflectance, mfp) through
+// the random walk's exact albedo inversion (a half-space table for the boundary's eta and g).
+void resolve_coefficients(const SubsurfaceParams& params, RGB& sigma_a, RGB& sigma_s);
 
 // Where light entering at `entry` (travelling against wo) leaves the object.
 struct SubsurfaceExit {
