@@ -25,7 +25,7 @@ struct SubsurfaceParams {
   float eta = 1.33f;
   float g = 0;
   float scale = 1;  // as written (already applied to the coefficients and lengths above)
-  Method method = Method::Volumetric;
+  Method method = Method::RandomWalk;
   Profile profile = Profile::Burley;
   Boundary boundary = Boundary::Diffuse;
   WalkSampling walk_sampling = WalkSampling::Mis;

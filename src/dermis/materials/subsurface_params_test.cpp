@@ -99,3 +99,42 @@ TEST(SubsurfaceVolumetric, IsExactlyAMediumInsideADielectric) {
 
 }  // namespace
 }  // namespace dermis
+
+#include <fstream>
+#include <sstream>
+
+namespace dermis {
+namespace {
+
+// Every example in docs/materials.md parses and builds (the docs cannot drift from the code).
+TEST(SubsurfaceDocs, EveryExampleInMaterialsMdBuilds) {
+  std::ifstream in(std::string(DERMIS_SOURCE_DIR) + "/docs/materials.md");
+  ASSERT_TRUE(in) << "docs/materials.md";
+  std::string line, block;
+  std::vector<std::string> examples;
+  bool in_examples = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("## Examples", 0) == 0) in_examples = true;
+    if (!in_examples) continue;
+    if (line.rfind("Material ", 0) == 0) {
+      if (!block.empty()) examples.push_back(block);
+      block = line + "\n";
+    } else if (!block.empty() && line.rfind("    ", 0) == 0) {
+      block += line + "\n";
+    } else if (!block.empty()) {
+      examples.push_back(block);
+      block.clear();
+    }
+  }
+  if (!block.empty()) examples.push_back(block);
+  ASSERT_GE(examples.size(), 5u);
+  for (const std::string& m : examples) {
+    SCOPED_TRACE(m);
+    Diagnostics diag;
+    auto sc = build_render_scene(parse_scene_string(std::string(kHeader) + m + "Shape \"sphere\"\n"), diag);
+    EXPECT_TRUE(diag.warnings.empty()) << diag.warnings.front();
+  }
+}
+
+}  // namespace
+}  // namespace dermis
