@@ -87,3 +87,65 @@ TEST(SubsurfaceRandomWalk, MatchedBoundaryEqualsAMediumInsideAnInterface) {
 
 }  // namespace
 }  // namespace dermis
+
+#include "dermis/core/frame.h"
+#include "dermis/core/rng.h"
+#include "dermis/core/warp.h"
+#include "dermis/materials/fresnel.h"
+#include "dermis/render/integrator.h"
+
+namespace dermis {
+namespace {
+
+// Radiance leaving the top of a thick slab, averaged over cosine-distributed
+// directions at its centre: with uniform light of radiance 1 this is the slab's
+// hemispherical albedo, F_avg + (1 - F_avg) A, where A is the albedo per entering light
+// under diffuse incidence (the table's definition) and F_avg = 2 integral F(mu) mu dmu.
+void expect_slab_albedo(const std::string& boundary, double A, double eta, double tolerance_sigmas,
+                        double* measured_A = nullptr) {
+  std::string scene = std::string(R"(LookAt 0 0 10  0 0 0  0 1 0
+Camera "perspective"
+Film "rgb" "integer xresolution" 2 "integer yresolution" 2
+Integrator "volpath" "integer maxdepth" 100000
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+Material "subsurface" "rgb reflectance" [)") + std::to_string(A) + " " + std::to_string(A) + " " +
+                      std::to_string(A) + R"(] "rgb mfp" [1 1 1] "float eta" )" + std::to_string(eta) +
+                      R"( "string method" "randomwalk" "string boundary" ")" + boundary + R"("
+Shape "trianglemesh" "point3 P" [-500 -500 -100  500 -500 -100  500 500 -100  -500 500 -100
+                                  -500 -500 0  500 -500 0  500 500 0  -500 500 0]
+  "integer indices" [0 2 1  0 3 2   4 5 6  4 6 7   0 1 5  0 5 4   1 2 6  1 6 5   2 3 7  2 7 6   3 0 4  3 4 7]
+)";
+  Diagnostics diag;
+  auto sc = build_render_scene(parse_scene_string(scene), diag);
+  double F_avg = 0;
+  const int nq = 20000;
+  for (int i = 0; i < nq; ++i) {
+    double mu = (i + 0.5) / nq;
+    F_avg += 2 * fresnel_dielectric(float(mu), float(eta)) * mu / nq;
+  }
+  const int n = 40000;
+  double sum = 0, sum2 = 0;
+  PathCounters counters;
+  for (int i = 0; i < n; ++i) {
+    Rng rng(77, uint64_t(i));
+    Vec3 w = sample_cosine_hemisphere({rng.uniform(), rng.uniform()});
+    Ray ray{w * 1.0f, -w};  // arriving at the centre of the top face from direction w
+    double L = trace_path(*sc, ray, -1, rng, counters).average();
+    sum += L;
+    sum2 += L * L;
+  }
+  double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+  double expected = F_avg + (1 - F_avg) * A;
+  if (measured_A) *measured_A = (mean - F_avg) / (1 - F_avg);
+  EXPECT_NEAR(mean, expected, tolerance_sigmas * se) << boundary << " A " << A << " eta " << eta;
+}
+
+TEST(SubsurfaceRandomWalk, ExactAlbedoTableMakesASlabReturnTheRequestedReflectance) {
+  // The dielectric boundary is the table's own configuration: within 4 sigma.
+  expect_slab_albedo("dielectric", 0.6, 1.4, 4);
+  expect_slab_albedo("matched", 0.35, 1.0, 4);
+}
+
+}  // namespace
+}  // namespace dermis
