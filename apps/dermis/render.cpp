@@ -106,7 +106,11 @@ int run_render(const RenderArgs& a) {
   if (r.nonfinite > 0)
     fmt::print(stderr, "dermis: warning: {} samples were NaN or infinite; they were dropped (counted as zero)\n",
                r.nonfinite);
-  if (r.truncated > 0) fmt::print(stderr, "dermis: warning: {} paths were cut by the interface-crossing guard\n", r.truncated);
+  if (r.truncated > 0)
+    fmt::print(stderr,
+               "dermis: warning: {} paths were truncated (random-walk step cap or interface-crossing guard); their "
+               "energy is missing from the image\n",
+               r.truncated);
   if (r.interrupted) {
     fmt::print(stderr, "dermis: interrupted: the image holds the samples finished so far ({}..{} per pixel of {})\n",
                r.min_spp, r.max_spp, opt.spp);
