@@ -18,7 +18,8 @@ namespace dermis {
 struct PathCounters {
   uint64_t rays = 0;       // closest-hit and shadow rays traced
   uint64_t truncated = 0;  // paths stopped by the interface-crossing guard
-  // When set, every closest-hit ray traced is appended here (benchmarks replay them).
+  // When set, every ray traced (closest-hit, shadow, probe and walk rays) is appended
+  // here; benchmarks replay them.
   std::vector<Ray>* recorded_rays = nullptr;
 };
 

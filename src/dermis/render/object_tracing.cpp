@@ -19,6 +19,7 @@ void collect_object_hits(const RenderScene& sc, const SurfaceHit& object, Vec3 o
     Ray r{o + d * t0, d, length - t0};
     SurfaceHit h;
     ++counters.rays;
+    if (counters.recorded_rays) counters.recorded_rays->push_back(r);
     if (!sc.embree->intersect(r, h)) return;
     float t = t0 + h.t;
     if (h.same_object(object)) {
@@ -34,6 +35,7 @@ bool first_object_hit(const RenderScene& sc, const SurfaceHit& object, Ray ray, 
                       PathCounters& counters) {
   for (int guard = 0; guard < 64; ++guard) {
     ++counters.rays;
+    if (counters.recorded_rays) counters.recorded_rays->push_back(ray);
     if (!sc.embree->intersect(ray, hit)) return false;
     if (hit.same_object(object)) return true;
     float skip = hit.t + skip_distance(hit.p);
