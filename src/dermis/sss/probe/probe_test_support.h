@@ -55,6 +55,13 @@ inline int intersect_sphere(const ProbeSegment& seg, Vec3d centre, double radius
   return n;
 }
 
+// Adaptive Gauss-Kronrod with the recursion capped at 2^16 pieces, so that a wrong
+// sampler (an integrand that never meets the tolerance) fails instead of hanging.
+template <class F>
+double integrate_capped(const F& f, double a, double b, double tol) {
+  return detail::adaptive_gk(f, a, b, tol, 16);
+}
+
 // Adaptive Gauss-Kronrod over [a, b] split at the given breakpoints (those inside).
 template <class F>
 double integrate_pieces(const F& f, double a, double b, std::vector<double> breaks, double tol) {
@@ -64,7 +71,7 @@ double integrate_pieces(const F& f, double a, double b, std::vector<double> brea
   double sum = 0;
   for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
     const double lo = std::max(a, breaks[i]), hi = std::min(b, breaks[i + 1]);
-    if (hi > lo) sum += integrate(f, lo, hi, tol);
+    if (hi > lo) sum += integrate_capped(f, lo, hi, tol);
   }
   return sum;
 }
@@ -78,7 +85,7 @@ double integrate_plane_polar(const TestPlane& plane, const F& f, double s0, doub
     return integrate_pieces([&](double s) { return f(plane.point(s, psi)) * s; }, s0, s1, s_breaks,
                             tol / (psi1 - psi0));
   };
-  return integrate(inner, psi0, psi1, tol);
+  return integrate_capped(inner, psi0, psi1, tol);
 }
 
 // Mean of a sample and the standard error of that mean.
