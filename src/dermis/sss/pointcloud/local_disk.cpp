@@ -38,17 +38,18 @@ double LocalDiskTable::integrate_directly(double alpha) const {
   // Langlands & Mertens (seed 001): the local term's 1D integral 2 pi int_0^alpha w R r dr.
   auto f = [&](double r) { return local_weight(r, alpha) * profile_.eval(r) * r; };
   // Dyadic pieces [alpha 2^-(k+1), alpha 2^-k]: a profile singular or steep at r = 0 is
-  // smooth on each piece; each piece to 1e-10 of its own size.
-  double total = 0;
+  // smooth on each piece. Each piece to 1e-10 of its own size, but never below 1e-16 of
+  // the whole (a first pass of 16-point rules), so that an underflowing tail cannot
+  // drive the adaptive rule to its depth limit.
+  constexpr int kPieces = 60;
+  double rough[kPieces];
+  double rough_total = 0;
   double b = alpha;
-  for (int k = 0; k < 60; ++k) {
-    const double a = 0.5 * b;
-    const double rough = std::abs(gauss_legendre_16(f, a, b));
-    const double piece = integrate(f, a, b, 1e-10 * rough + 1e-300);
-    total += piece;
-    b = a;
-    if (k > 8 && piece < 1e-13 * total) break;
-  }
+  for (int k = 0; k < kPieces; ++k, b *= 0.5) rough_total += rough[k] = std::abs(gauss_legendre_16(f, 0.5 * b, b));
+  double total = 0;
+  b = alpha;
+  for (int k = 0; k < kPieces; ++k, b *= 0.5)
+    total += integrate(f, 0.5 * b, b, 1e-10 * std::max(rough[k], 1e-6 * rough_total) + 1e-300);
   total += gauss_legendre_16(f, 0.0, b);
   return 2 * kPiD * total;
 }
