@@ -147,7 +147,8 @@ std::vector<SurfacePoint> distribute_points(const std::vector<Vec3>& positions, 
     // Yuksel 2015, eq. 2 with the r_min clamp: w(d) = (1 - max(d, 2 r_min) / (2 r_max))^8.
     auto weight = [&](double d2) {
       const double d = std::max(std::sqrt(d2), 2 * r_min);
-      return std::pow(1 - d / reach, 8.0);
+      const double t2 = sqr(1 - d / reach), t4 = t2 * t2;
+      return t4 * t4;
     };
     std::vector<Vec3> pos(m);
     for (std::size_t i = 0; i < m; ++i) pos[i] = cand[i].position;
