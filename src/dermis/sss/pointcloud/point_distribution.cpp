@@ -100,6 +100,35 @@ class EliminationHeap {
   std::vector<uint32_t> heap_, pos_;
 };
 
+// Sorts points along a Morton curve of their bounding box, so that neighbours are close
+// in memory during elimination (a stable sort: the order stays deterministic).
+void spatial_order(std::vector<SurfacePoint>& points) {
+  Vec3 lo = points[0].position, hi = lo;
+  for (const auto& p : points) {
+    lo = min(lo, p.position);
+    hi = max(hi, p.position);
+  }
+  const float scale = 1048575.0f / std::max(max_component(hi - lo), 1e-30f);
+  auto spread = [](uint64_t v) {  // 20 bits -> every third bit
+    uint64_t x = v & 0xfffff;
+    x = (x | x << 32) & 0x1f00000000ffffull;
+    x = (x | x << 16) & 0x1f0000ff0000ffull;
+    x = (x | x << 8) & 0x100f00f00f00f00full;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+    x = (x | x << 2) & 0x1249249249249249ull;
+    return x;
+  };
+  std::vector<std::pair<uint64_t, uint32_t>> keys(points.size());
+  for (uint32_t i = 0; i < points.size(); ++i) {
+    const Vec3 q = (points[i].position - lo) * scale;
+    keys[i] = {spread(uint64_t(q.x)) | spread(uint64_t(q.y)) << 1 | spread(uint64_t(q.z)) << 2, i};
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<SurfacePoint> sorted(points.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) sorted[i] = points[keys[i].second];
+  points = std::move(sorted);
+}
+
 }  // namespace
 
 double mesh_area(const std::vector<Vec3>& positions, const std::vector<uint32_t>& indices) {
@@ -138,6 +167,7 @@ std::vector<SurfacePoint> distribute_points(const std::vector<Vec3>& positions, 
   const std::size_t m = count * std::size_t(options.candidates_per_point);
   double area = 0;
   std::vector<SurfacePoint> cand = sample_candidates(positions, indices, m, seed, &area);
+  spatial_order(cand);
   if (m > count) {
     // Yuksel 2015, eq. 5 (2D sampling domain): r_max = sqrt(A / (2 sqrt(3) N)).
     const double r_max = std::sqrt(area / (2 * std::sqrt(3.0) * double(count)));
