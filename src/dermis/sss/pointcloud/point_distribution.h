@@ -1,0 +1,42 @@
+// Points over a triangle mesh for point-cloud diffusion (METHODS 3, pre-pass):
+// area-uniform candidates thinned to blue noise by weighted sample elimination
+// (Yuksel 2015, "Sample Elimination for Generating Poisson Disk Sample Sets").
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "dermis/core/vec.h"
+
+namespace dermis::sss::pointcloud {
+
+struct SurfacePoint {
+  Vec3 position;
+  Vec3 normal;     // the unit geometric normal of the triangle it lies on
+  float area = 0;  // A_p: the mesh area divided by the point count (equal shares)
+  uint32_t triangle = 0;
+};
+
+// Total area of the triangles (indices: three per triangle into positions).
+double mesh_area(const std::vector<Vec3>& positions, const std::vector<uint32_t>& indices);
+
+// The number of points for a density given as points per mean free path squared:
+// ceil(area * points_per_mfp2 / mfp^2), at least 1.
+std::size_t point_count_for_density(double area, double mean_free_path, double points_per_mfp2);
+
+struct DistributionOptions {
+  int candidates_per_point = 5;  // candidates = this x count (Yuksel uses 5)
+};
+
+// `count` points over the mesh, blue-noise distributed; deterministic for a seed.
+// Degenerate (zero-area) triangles receive no points. Throws std::invalid_argument on an
+// empty or zero-area mesh, indices out of range or not a multiple of three, count 0.
+std::vector<SurfacePoint> distribute_points(const std::vector<Vec3>& positions, const std::vector<uint32_t>& indices,
+                                            std::size_t count, uint64_t seed, DistributionOptions options = {});
+
+// Area-uniform points with no thinning (white noise): the baseline of the blue-noise test.
+std::vector<SurfacePoint> uniform_random_points(const std::vector<Vec3>& positions,
+                                                const std::vector<uint32_t>& indices, std::size_t count,
+                                                uint64_t seed);
+
+}  // namespace dermis::sss::pointcloud
