@@ -135,6 +135,28 @@ TEST_F(Cli, TimeLimitKeepsTheSamplesTaken) {
   EXPECT_TRUE(fs::exists(path("t.exr")));
 }
 
+TEST_F(Cli, PointCloudSaveLoadAndBadFile) {
+  std::string scene = write("pc.pbrt", R"(LookAt 0 0 -4  0 0 0  0 1 0
+Camera "perspective" "float fov" 40
+Film "rgb" "integer xresolution" 12 "integer yresolution" 8
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+Material "subsurface" "rgb reflectance" [0.7 0.5 0.3] "rgb mfp" [0.2 0.2 0.2] "string method" "pointcloud"
+Shape "sphere"
+)");
+  CommandResult s = run_dermis("render " + scene + " --spp 2 --points 500 --save-pointcloud " + path("c.bin") + " -o " +
+                               path("a.exr"));
+  ASSERT_EQ(s.status, 0) << s.output;
+  EXPECT_NE(s.output.find("point clouds: 500 points"), std::string::npos) << s.output;
+  EXPECT_TRUE(fs::exists(path("c.bin")));
+  EXPECT_EQ(run_dermis("render " + scene + " -q --spp 2 --load-pointcloud " + path("c.bin") + " -o " + path("b.exr")).status, 0);
+  std::ofstream(path("bad.bin")) << "not a point cloud";
+  CommandResult bad = run_dermis("render " + scene + " --load-pointcloud " + path("bad.bin") + " -o " + path("x.exr"));
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.output.find("bad.bin"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(path("x.exr")));
+}
+
 TEST_F(Cli, CompareReportsDifferences) {
   std::string scene = write("s.pbrt", kSmallScene);
   ASSERT_EQ(run_dermis("render " + scene + " -q --seed 1 -o " + path("a.exr")).status, 0);

@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "dermis/render/image.h"
+#include "dermis/render/point_cloud_prepass.h"
 #include "dermis/render/progress.h"
 #include "dermis/render/render_scene.h"
 #include "dermis/render/renderer.h"
@@ -30,6 +31,8 @@ struct RenderArgs {
   std::string output, res;
   double time_limit = 0;
   bool quiet = false, no_png = false;
+  int64_t points = 0;
+  std::string save_pointcloud, load_pointcloud;
 };
 
 int run_render(const RenderArgs& a) {
@@ -49,7 +52,12 @@ int run_render(const RenderArgs& a) {
     if (a.spp > 0) desc.settings.spp = a.spp;
     for (const auto& w : desc.diagnostics.warnings) fmt::print(stderr, "{}\n", w);
     Diagnostics build_diag;
-    scene = build_render_scene(desc, build_diag);
+    PointCloudOptions pco;
+    pco.points = std::size_t(a.points);
+    pco.save_path = a.save_pointcloud;
+    pco.load_path = a.load_pointcloud;
+    pco.seed = a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
+    scene = build_render_scene(desc, build_diag, pco);
     for (const auto& w : build_diag.warnings) fmt::print(stderr, "{}\n", w);
   } catch (const std::exception& e) {
     fmt::print(stderr, "dermis render: {}\n", e.what());
@@ -103,6 +111,13 @@ int run_render(const RenderArgs& a) {
   double mrays = r.seconds > 0 ? double(r.rays) / r.seconds * 1e-6 : 0;
   fmt::print(stderr, "dermis: wrote {}{} in {:.1f} s ({:.2f} Mrays/s, {} samples)\n", out,
              ext == ".exr" && !a.no_png ? " and its .png" : "", r.seconds, mrays, r.samples);
+  if (const PointCloudReport& pc = scene->point_cloud_report; pc.clouds > 0 && !a.quiet)
+    fmt::print(stderr,
+               "dermis: point clouds: {} points in {} object(s), {:.1f} MiB in memory{}, pre-pass {:.1f} s, octree "
+               "build {:.2f} s, render {:.1f} s\n",
+               pc.points, pc.clouds, double(pc.memory_bytes) / (1 << 20),
+               pc.file_bytes ? fmt::format(", {:.1f} MiB on disk", double(pc.file_bytes) / (1 << 20)) : "",
+               pc.prepass_seconds, pc.build_seconds, r.seconds);
   if (r.nonfinite > 0)
     fmt::print(stderr, "dermis: warning: {} samples were NaN or infinite; they were dropped (counted as zero)\n",
                r.nonfinite);
@@ -136,6 +151,11 @@ void register_render(CLI::App& app, int& exit_code) {
   cmd->add_option("--time-limit", args->time_limit, "stop after this many seconds, keeping the samples taken")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("-q,--quiet", args->quiet, "no progress bar or summary");
+  cmd->add_option("--points", args->points, "points per `pointcloud` subsurface object (default: from its pointdensity)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--save-pointcloud", args->save_pointcloud, "save the point cloud(s) of the pre-pass to this file");
+  cmd->add_option("--load-pointcloud", args->load_pointcloud, "load the point cloud(s) instead of computing them")
+      ->excludes("--save-pointcloud");
   cmd->add_flag("--no-png", args->no_png, "with an .exr output, do not also write a .png preview");
   cmd->callback([args, &exit_code] { exit_code = run_render(*args); });
 }

@@ -23,6 +23,7 @@ constexpr Named<SubsurfaceParams::Method> kMethods[] = {
     {"sphere-lines", SubsurfaceParams::Method::SphereLines},
     {"sphere-lines-retry", SubsurfaceParams::Method::SphereLinesRetry},
     {"randomwalk", SubsurfaceParams::Method::RandomWalk},
+    {"pointcloud", SubsurfaceParams::Method::PointCloud},
 };
 constexpr Named<SubsurfaceParams::Profile> kProfiles[] = {
     {"gaussian", SubsurfaceParams::Profile::Gaussian}, {"skin6", SubsurfaceParams::Profile::Skin6},
@@ -96,6 +97,7 @@ SubsurfaceParams read_subsurface_params(const MaterialDesc& m, Diagnostics& diag
   s.loc = m.loc;
   float scale = 1;
   const Param *sigma_a = nullptr, *sigma_s = nullptr, *reflectance = nullptr, *mfp = nullptr, *name = nullptr;
+  bool profile_given = false;
   for (const Param& p : m.params) {
     if (p.name == "sigma_a") sigma_a = &p;
     else if (p.name == "sigma_s") sigma_s = &p;
@@ -105,10 +107,23 @@ SubsurfaceParams read_subsurface_params(const MaterialDesc& m, Diagnostics& diag
     else if (p.name == "scale") scale = read_float(p);
     else if (p.name == "eta") s.eta = read_float(p);
     else if (p.name == "g") s.g = read_float(p);
-    else if (p.name == "profile") s.profile = lookup(kProfiles, p, "profile");
+    else if (p.name == "profile") {
+      s.profile = lookup(kProfiles, p, "profile");
+      profile_given = true;
+    }
     else if (p.name == "method") s.method = lookup(kMethods, p, "subsurface method");
     else if (p.name == "boundary") s.boundary = lookup(kBoundaries, p, "boundary");
     else if (p.name == "walksampling") s.walk_sampling = lookup(kWalkSamplings, p, "walk sampling");
+    else if (p.name == "epsilon") s.epsilon = read_float(p);
+    else if (p.name == "pointdensity") s.point_density = read_float(p);
+    else if (p.name == "localdisk") {
+      if (p.bools.size() != 1) throw SceneError(p.loc, "\"localdisk\" must be one bool");
+      s.local_disk = p.bools[0];
+    } else if (p.name == "irradiancesamples") {
+      if (p.numbers.size() != 1 || p.numbers[0] < 1 || p.numbers[0] != std::floor(p.numbers[0]))
+        throw SceneError(p.loc, "\"irradiancesamples\" must be one positive integer");
+      s.irradiance_samples = int(p.numbers[0]);
+    }
     else if (p.name == "roughness" || p.name == "uroughness" || p.name == "vroughness") {
       if (!p.numbers.empty() && p.numbers[0] > 0)
         diag.warn(p.loc, "subsurface: rough boundaries are not supported; rendered smooth");
@@ -123,6 +138,10 @@ SubsurfaceParams read_subsurface_params(const MaterialDesc& m, Diagnostics& diag
   if (s.eta < 1.0f || s.eta > 3.0f)
     throw SceneError(m.loc, fmt::format("subsurface: \"eta\" {} is outside [1, 3]", s.eta));
   if (s.g <= -1 || s.g >= 1) throw SceneError(m.loc, "subsurface: \"g\" must be in (-1, 1)");
+  if (!(s.epsilon > 0)) throw SceneError(m.loc, "subsurface: \"epsilon\" must be positive");
+  if (!(s.point_density > 0)) throw SceneError(m.loc, "subsurface: \"pointdensity\" must be positive");
+  // The point cloud's profile is the dipole by default, as in Jensen & Buehler 2002.
+  if (s.method == SubsurfaceParams::Method::PointCloud && !profile_given) s.profile = SubsurfaceParams::Profile::Dipole;
 
   int ways = (name != nullptr) + (sigma_a || sigma_s) + (reflectance || mfp);
   if (ways > 1)

@@ -13,7 +13,7 @@
 namespace dermis {
 
 struct SubsurfaceParams {
-  enum class Method { Volumetric, Disk, DiskSingleAxis, SphereLines, SphereLinesRetry, RandomWalk };
+  enum class Method { Volumetric, Disk, DiskSingleAxis, SphereLines, SphereLinesRetry, RandomWalk, PointCloud };
   enum class Profile { Gaussian, Skin6, Cubic, Dipole, Burley, BurleyDiffuseMfp, Tabulated };
   enum class Boundary { Diffuse, Dielectric, Matched };
   enum class WalkSampling { Classical, Dwivedi, Mis };
@@ -29,6 +29,12 @@ struct SubsurfaceParams {
   Profile profile = Profile::Burley;
   Boundary boundary = Boundary::Diffuse;
   WalkSampling walk_sampling = WalkSampling::Mis;
+  // Point cloud (Jensen & Buehler 2002; Langlands & Mertens): octree criterion, the
+  // local disk on/off, points per mean free path squared, irradiance samples per point.
+  float epsilon = 0.05f;
+  bool local_disk = true;
+  float point_density = 1.0f;
+  int irradiance_samples = 64;
   SourceLoc loc;
 };
 

@@ -57,6 +57,30 @@ RGB estimate_direct(const RenderScene& sc, Vec3 p, int medium, Rng& rng, PathCou
 
 }  // namespace
 
+RGB transmitted_irradiance(const RenderScene& sc, Vec3 p, Vec3 n, float eta, int medium, Rng& rng,
+                           PathCounters& counters) {
+  auto transmitted_cos = [&](Vec3 wi) {
+    float c = dot(wi, n);
+    return c > 0 ? (1 - fresnel_dielectric(c, eta)) * c : 0.0f;
+  };
+  Vec3 p_out = offset_ray_origin(p, n, n);
+  // Direct light by next-event estimation (MIS against the cosine sampling below).
+  RGB E = estimate_direct(sc, p_out, medium, rng, counters, [&](Vec3 wi) {
+    return std::pair{RGB(transmitted_cos(wi)), cosine_hemisphere_pdf(dot(wi, n))};
+  });
+  // Everything else along one cosine-distributed direction.
+  Vec3 local = sample_cosine_hemisphere({rng.uniform(), rng.uniform()});
+  if (local.z <= 0) return E;
+  Vec3 wi = Frame(n).to_world(local);
+  PathStart start;
+  start.from_camera = false;
+  start.prev_pdf = cosine_hemisphere_pdf(local.z);
+  start.prev_p = p;
+  start.depth = 1;
+  RGB Li = trace_path(sc, Ray{p_out, wi}, medium, rng, counters, start);
+  return E + Li * (transmitted_cos(wi) / start.prev_pdf);
+}
+
 RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float distance, int medium,
                          PathCounters& counters) {
   RGB tr(1);
@@ -92,13 +116,13 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
   return RGB(0);
 }
 
-RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounters& counters) {
+RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounters& counters, const PathStart& start) {
   RGB L(0), beta(1);
   float eta_scale = 1;
-  bool specular = true;   // the last scattering was specular (or the camera): no MIS on emission
-  float prev_pdf = 0;     // solid-angle pdf of the last scattering direction
-  Vec3 prev_p = ray.o;    // position of the last scattering event
-  int depth = 0, crossings = 0;
+  bool specular = start.from_camera;  // the last scattering was specular (or the camera): no MIS on emission
+  float prev_pdf = start.prev_pdf;    // solid-angle pdf of the last scattering direction
+  Vec3 prev_p = start.from_camera ? ray.o : start.prev_p;  // position of the last scattering event
+  int depth = start.depth, crossings = 0;
   const int max_depth = sc.settings.max_depth;
   // Russian roulette after the second bounce on max(throughput) x eta scale (pbrt-v4
   // sec. 14.1.3); reweights beta when the path survives.
@@ -225,6 +249,16 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
         prev_p = hit.p;
         ray = Ray{offset_ray_origin(hit.p, hit.ng, wi), wi};
         continue;
+      }
+      if (sm.params.method == SubsurfaceParams::Method::PointCloud) {
+        // Light leaving here is Sw-weighted M(x) from the cloud (Jensen & Buehler 2002;
+        // the local disk needs the irradiance at x itself: one estimate per sample).
+        const auto* cloud = sc.point_clouds.empty() ? nullptr : sc.point_clouds[hit.shape].get();
+        if (!cloud) break;  // during the pre-pass: the object's own cloud does not exist yet
+        RGB Ex = sm.params.local_disk ? transmitted_irradiance(sc, hit.p, hit.ng, sm.params.eta, medium, rng, counters)
+                                      : RGB(0);
+        L += beta * cloud->radiant_exitance(hit.p, Ex) / (sm.sw_norm * kPi);
+        break;
       }
       SubsurfaceExit ex;
       if (!sample_subsurface_exit(sc, sm, hit, wo, rng, counters, ex)) {

@@ -23,8 +23,26 @@ struct PathCounters {
   std::vector<Ray>* recorded_rays = nullptr;
 };
 
+// How a path begins: from the camera (emission seen at full weight), or as the
+// continuation of a scattering at `prev_p` sampled with solid-angle density `prev_pdf`
+// (emission found by the ray is MIS-weighted against next-event estimation there).
+struct PathStart {
+  bool from_camera = true;
+  float prev_pdf = 0;
+  Vec3 prev_p;
+  int depth = 0;  // scattering events already taken
+};
+
 // Radiance arriving along `ray` (from the camera), starting in `medium`.
-RGB trace_path(const RenderScene& scene, Ray ray, int medium, Rng& rng, PathCounters& counters);
+RGB trace_path(const RenderScene& scene, Ray ray, int medium, Rng& rng, PathCounters& counters,
+               const PathStart& start = {});
+
+// One-sample estimate of the irradiance transmitted into a smooth dielectric surface
+// (index eta) at p with outward normal n: E = integral of L (1 - Fr(cos, eta)) cos dw over
+// the outside hemisphere, by next-event estimation and cosine sampling combined with
+// the power heuristic. The point cloud's pre-pass and its local term use it.
+RGB transmitted_irradiance(const RenderScene& scene, Vec3 p, Vec3 n, float eta, int medium, Rng& rng,
+                           PathCounters& counters);
 
 // Transmittance from `origin` along unit `dir` over `distance` (infinity allowed),
 // starting in `medium`: zero if an opaque or refractive surface is in the way,

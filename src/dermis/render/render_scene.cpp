@@ -162,7 +162,8 @@ Shape make_shape(const ShapeDesc& d, const Transform& xf, int default_material) 
 
 }  // namespace
 
-std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnostics& diag) {
+std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnostics& diag,
+                                                const PointCloudOptions& point_cloud_options) {
   auto sc = std::make_unique<RenderScene>();
   sc->film = desc.film;
   sc->settings = desc.settings;
@@ -358,6 +359,7 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnosti
   if (group_sum[0] > 0 && group_sum[1] > 0)
     for (std::size_t i = 0; i < sc->lights.size(); ++i) power[i] = float(power[i] / group_sum[at_infinity(sc->lights[i])]);
   if (!power.empty()) sc->light_distribution = Distribution1D(power);
+  sc->point_cloud_report = build_point_clouds(*sc, point_cloud_options);
   return sc;
 }
 

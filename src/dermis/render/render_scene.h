@@ -14,6 +14,8 @@
 #include "dermis/materials/medium.h"
 #include "dermis/materials/texture.h"
 #include "dermis/render/camera.h"
+#include "dermis/render/point_cloud_prepass.h"
+#include "dermis/sss/pointcloud/point_cloud_diffusion.h"
 #include "dermis/render/subsurface_method.h"
 #include "dermis/scene/scene_desc.h"
 
@@ -26,6 +28,9 @@ struct RenderScene {
   std::vector<Texture> textures;
   std::vector<HomogeneousMedium> media;
   std::vector<std::unique_ptr<SubsurfaceMethod>> subsurface;  // per Subsurface material
+  // Per shape: the point cloud of a `pointcloud` subsurface object (else null).
+  std::vector<std::unique_ptr<sss::pointcloud::PointCloudDiffusion>> point_clouds;
+  PointCloudReport point_cloud_report;
   std::vector<Light> lights;
   Distribution1D light_distribution;  // light selection in proportion to power
   std::vector<int> infinite_lights;
@@ -44,7 +49,9 @@ struct RenderScene {
 
 // Throws SceneError for problems found while building (e.g. an unreadable texture),
 // and adds warnings to `diagnostics`.
-std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnostics& diagnostics);
+// Also runs the point-cloud pre-pass when a material asks for it.
+std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnostics& diagnostics,
+                                                const PointCloudOptions& point_clouds = {});
 
 // A triangulated unit sphere: (2n x n) quads in latitude/longitude, outward winding.
 void tessellate_sphere(float radius, int n, std::vector<Vec3>& positions, std::vector<uint32_t>& indices);

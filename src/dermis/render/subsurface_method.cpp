@@ -148,6 +148,15 @@ std::unique_ptr<SubsurfaceMethod> make_subsurface_method(const SubsurfaceParams&
       }
       break;
     }
+    case Method::PointCloud: {
+      // The cloud itself needs the scene's geometry and lights: render/point_cloud_prepass.
+      RGB A, l;
+      albedo_and_mfp(params, A, l);
+      m->profile = std::make_unique<sss::ProfileRGB>(make_profile(params, A, l));
+      for (int c = 0; c < 3; ++c) m->albedo[c] = float(m->profile->channel[c].albedo());
+      m->mean_free_path = l;
+      break;
+    }
     case Method::RandomWalk: {
       RGB sigma_a, sigma_s;
       resolve_coefficients(params, sigma_a, sigma_s);
@@ -316,6 +325,8 @@ bool sample_subsurface_exit(const RenderScene& sc, const SubsurfaceMethod& m, co
     }
     case Method::RandomWalk:
       return sample_walk_exit(sc, m, entry, wo, rng, counters, out);
+    case Method::PointCloud:
+      return false;  // not an exit sampler: the integrator asks the cloud for M(x)
   }
   return false;
 }

@@ -24,6 +24,7 @@ struct SubsurfaceMethod {
   float sw_norm = 1;                       // c of the exit lobe Sw (bsdf.h)
   float entry_eta = 1.33f;                 // index seen at entry (1 for a matched walk)
   RGB albedo;                              // surface albedo per channel (profiles)
+  RGB mean_free_path;                      // per channel (point density of the point cloud)
   // Profile methods (disk, sphere lines).
   std::unique_ptr<sss::ProfileRGB> profile;
   std::unique_ptr<sss::DiskProbeSampler> disk;
