@@ -242,11 +242,11 @@ bool sample_walk_exit(const RenderScene& sc, const SubsurfaceMethod& m, const Su
   RGB weight(1);
   for (int reflections = 0; reflections < 256; ++reflections) {
     sss::WalkResult res;
-    if (!sss::random_walk(*m.walk_step, m.walk_settings, start, entry.ng, dir, rng, tracer, res)) {
+    if (!sss::random_walk(*m.walk_step, m.walk_settings, start, entry.ng, dir, rng, tracer, res, weight)) {
       out.truncated = res.truncated;
       return false;
     }
-    weight *= res.weight;
+    weight = res.weight;  // includes what the earlier segments carried
     out.hit = entry;
     out.hit.p = res.exit_p;
     out.hit.ng = out.hit.ns = res.exit_n;

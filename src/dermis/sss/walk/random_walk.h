@@ -72,13 +72,17 @@ inline std::array<double, 3> channel_probabilities(const std::array<double, 3>& 
 // medium (out filled); false when it was absorbed by Russian roulette, truncated
 // (out.truncated) or lost (no boundary along an infinite flight). A caller that
 // reflects the walk back at the boundary calls random_walk again from the exit point.
+// `initial` is the throughput the walk starts with (a walk continued after an internal
+// reflection passes what it has carried so far, so that the roulette and the channel
+// choice see it); out.weight includes it.
 template <class Tracer>
 bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, Vec3 entry_p, Vec3 entry_n,
-                 Vec3 dir_in, Rng& rng, Tracer&& tracer, WalkResult& out) {
+                 Vec3 dir_in, Rng& rng, Tracer&& tracer, WalkResult& out, RGB initial = RGB(1.0f)) {
   out = WalkResult{};
   const Framed axis(normalize(Vec3d(entry_n)));
   const double roulette = settings.roulette_threshold;
-  std::array<double, 3> throughput{1.0, 1.0, 1.0};
+  std::array<double, 3> throughput{initial[0], initial[1], initial[2]};
+  if (!(throughput[0] + throughput[1] + throughput[2] > 0)) return false;
   Vec3d position(entry_p);
   std::array<double, 3> q = channel_probabilities(throughput);
   FlightProposal flight = step.propose_flight(normalize(Vec3d(dir_in)), axis, q, rng);
