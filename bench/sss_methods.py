@@ -40,6 +40,7 @@ SCENES = os.path.join(ROOT, "scenes", "bench")
 DOCS = os.path.join(ROOT, "docs")
 IMAGES = os.path.join(DOCS, "images")
 THREADS = 2
+WORK = "/tmp/dermis-sss-methods"  # scratch folder (--work)
 HUGE_SPP = 1000000
 EQUAL_TIME = dict(bust=6, fin=4, sphere=4)  # seconds per test render
 REF_TIME = dict(bust=120, fin=80, sphere=80)  # seconds per reference (two halves): 20x
@@ -185,7 +186,7 @@ _load_cpu = {}
 def load_cpu(scene):
     """CPU seconds to load and prepare a scene: a 1 x 1 pixel, 1 spp render of it."""
     if scene not in _load_cpu:
-        out = os.path.join(os.path.dirname(os.path.abspath(__file__)), ".load.exr")
+        out = os.path.join(WORK, "load.exr")
         c0 = children_cpu()
         subprocess.run([DERMIS, "render", scene, "--threads", str(THREADS), "--res", "1x1", "--spp", "1", "-q",
                         "--no-png", "-o", out], check=True, capture_output=True)
@@ -339,7 +340,7 @@ def strip(pngs, out, labels=None):
         for i, t in enumerate(labels):
             d.rectangle([i * w, 0, i * w + 6 * len(t) + 4, 12], fill=(0, 0, 0))
             d.text((i * w + 2, 0), t, fill=(255, 255, 255))
-    S.save(out, optimize=True)
+    S.quantize(256, dither=Image.Dither.NONE).save(out, optimize=True)  # palette PNG: a third of the size
 
 
 # ---------------------------------------------------------------------------- report
@@ -379,13 +380,14 @@ def means(v):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--scale", type=float, default=1.0, help="multiply every render time (default 1)")
-    ap.add_argument("--work", default="/tmp/dermis-sss-methods", help="scratch folder for EXR files")
+    ap.add_argument("--work", default=WORK, help="scratch folder for EXR files")
     ap.add_argument("--no-docs", action="store_true", help="do not write docs/results.md and its images")
     args = ap.parse_args()
     if not os.path.exists(DERMIS):
         sys.exit(f"{DERMIS} not found: build first (cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j2)")
     os.makedirs(SCENES, exist_ok=True)
     os.makedirs(args.work, exist_ok=True)
+    globals()["WORK"] = args.work  # load_cpu's scratch file
     S = args.scale
     T = {g: t * S for g, t in EQUAL_TIME.items()}
     REF = {g: t * S for g, t in REF_TIME.items()}
