@@ -115,6 +115,11 @@ SubsurfaceParams read_subsurface_params(const MaterialDesc& m, Diagnostics& diag
     else if (p.name == "boundary") s.boundary = lookup(kBoundaries, p, "boundary");
     else if (p.name == "walksampling") s.walk_sampling = lookup(kWalkSamplings, p, "walk sampling");
     else if (p.name == "epsilon") s.epsilon = read_float(p);
+    else if (p.name == "albedoinversion") {
+      if (p.strings.size() != 1 || (p.strings[0] != "exact" && p.strings[0] != "fit"))
+        throw SceneError(p.loc, "\"albedoinversion\" must be \"exact\" or \"fit\"");
+      s.albedo_inversion_fit = p.strings[0] == "fit";
+    }
     else if (p.name == "pointdensity") s.point_density = read_float(p);
     else if (p.name == "localdisk") {
       if (p.bools.size() != 1) throw SceneError(p.loc, "\"localdisk\" must be one bool");

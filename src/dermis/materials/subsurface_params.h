@@ -29,6 +29,9 @@ struct SubsurfaceParams {
   Profile profile = Profile::Burley;
   Boundary boundary = Boundary::Diffuse;
   WalkSampling walk_sampling = WalkSampling::Mis;
+  // (reflectance, mfp) -> coefficients: the exact half-space table, or the van de Hulst
+  // fit (g = 0, index-matched) for comparison.
+  bool albedo_inversion_fit = false;
   // Point cloud (Jensen & Buehler 2002; Langlands & Mertens): octree criterion, the
   // local disk on/off, points per mean free path squared, irradiance samples per point.
   float epsilon = 0.05f;

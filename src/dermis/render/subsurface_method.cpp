@@ -69,11 +69,13 @@ void resolve_coefficients(const SubsurfaceParams& p, RGB& sigma_a, RGB& sigma_s)
   // boundary the walk sees at its exit: the material's eta for the dielectric boundary,
   // index-matched (eta = 1) for the diffuse and matched boundaries, whose walks leave at
   // the first boundary crossing.
+  // "albedoinversion" "fit": van de Hulst's fit instead (g = 0, index-matched), for comparison.
   double table_eta = p.boundary == SubsurfaceParams::Boundary::Dielectric ? p.eta : 1.0;
-  const sss::AlbedoInversion& inv = albedo_inversion(table_eta, p.g);
+  const sss::AlbedoInversion* inv = p.albedo_inversion_fit ? nullptr : &albedo_inversion(table_eta, p.g);
   for (int c = 0; c < 3; ++c) {
     double st = 1.0 / (*p.mfp)[c];
-    double alpha = inv.single_scattering_albedo((*p.reflectance)[c]);
+    double A = (*p.reflectance)[c];
+    double alpha = inv ? inv->single_scattering_albedo(A) : sss::van_de_hulst_single_scattering_albedo(A);
     sigma_s[c] = float(alpha * st);
     sigma_a[c] = float((1 - alpha) * st);
   }

@@ -93,6 +93,9 @@ TEST(SubsurfaceRandomWalk, MatchedBoundaryEqualsAMediumInsideAnInterface) {
 #include "dermis/core/warp.h"
 #include "dermis/materials/fresnel.h"
 #include "dermis/render/integrator.h"
+#include "dermis/render/subsurface_method.h"
+
+#include <cstdio>
 
 namespace dermis {
 namespace {
@@ -145,6 +148,23 @@ TEST(SubsurfaceRandomWalk, ExactAlbedoTableMakesASlabReturnTheRequestedReflectan
   // The dielectric boundary is the table's own configuration: within 4 sigma.
   expect_slab_albedo("dielectric", 0.6, 1.4, 4);
   expect_slab_albedo("matched", 0.35, 1.0, 4);
+}
+
+TEST(SubsurfaceRandomWalk, VanDeHulstFitMissesTheReflectanceBehindADielectric) {
+  // The fit ignores the boundary: behind eta = 1.4 the coefficients it gives are far
+  // too absorbing (the walk helper measured |dA| up to 0.21). Measure it on the slab.
+  SubsurfaceParams exact, fit;
+  exact.reflectance = fit.reflectance = RGB(0.6f);
+  exact.mfp = fit.mfp = RGB(1);
+  exact.eta = fit.eta = 1.4f;
+  exact.boundary = fit.boundary = SubsurfaceParams::Boundary::Dielectric;
+  fit.albedo_inversion_fit = true;
+  RGB sa_e, ss_e, sa_f, ss_f;
+  resolve_coefficients(exact, sa_e, ss_e);
+  resolve_coefficients(fit, sa_f, ss_f);
+  double alpha_exact = ss_e[0] / (sa_e[0] + ss_e[0]), alpha_fit = ss_f[0] / (sa_f[0] + ss_f[0]);
+  std::printf("A = 0.6 behind eta 1.4: alpha exact %.5f, van de Hulst %.5f\n", alpha_exact, alpha_fit);
+  EXPECT_GT(alpha_exact - alpha_fit, 0.01);
 }
 
 }  // namespace
