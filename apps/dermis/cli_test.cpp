@@ -157,6 +157,27 @@ Shape "sphere"
   EXPECT_FALSE(fs::exists(path("x.exr")));
 }
 
+TEST_F(Cli, InterruptWritesThePartialImageAndSaysSo) {
+  std::string scene = write("s.pbrt", kSmallScene);
+  // SIGINT one second into a render that would take minutes.
+  std::string cmd = "sh -c '" + std::string(DERMIS_BINARY) + " render " + scene + " --spp 1000000 --res 64x64 -o " +
+                    path("i.exr") + " 2>&1 & pid=$!; sleep 1; kill -INT $pid; wait $pid; echo rc=$?'";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  pclose(p);
+  EXPECT_NE(out.find("interrupted"), std::string::npos) << out;
+  EXPECT_NE(out.find("rc=130"), std::string::npos) << out;
+  ASSERT_TRUE(fs::exists(path("i.exr"))) << out;
+  dermis::Image img = dermis::read_image(path("i.exr"));
+  float sum = 0;
+  for (float v : img.pixels) sum += v;
+  EXPECT_GT(sum, 0.0f);  // the samples finished before the interrupt are in the image
+}
+
 TEST_F(Cli, CompareReportsDifferences) {
   std::string scene = write("s.pbrt", kSmallScene);
   ASSERT_EQ(run_dermis("render " + scene + " -q --seed 1 -o " + path("a.exr")).status, 0);
