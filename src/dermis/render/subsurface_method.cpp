@@ -13,6 +13,7 @@
 #include "dermis/sss/walk/albedo_inversion.h"
 
 #include <map>
+#include <tuple>
 #include <mutex>
 
 namespace dermis {
@@ -43,15 +44,16 @@ void albedo_and_mfp(const SubsurfaceParams& p, RGB& A, RGB& l) {
 
 // The exact albedo inversion of the random walk (sss/walk/albedo_inversion.h), one
 // table per (eta, g), built once per process and cached on disk by the table itself.
-const sss::AlbedoInversion& albedo_inversion(double eta, double g) {
+const sss::AlbedoInversion& albedo_inversion(double eta, double g, bool exit_matched) {
   static std::mutex mutex;
-  static std::map<std::pair<double, double>, std::unique_ptr<sss::AlbedoInversion>> tables;
+  static std::map<std::tuple<double, double, bool>, std::unique_ptr<sss::AlbedoInversion>> tables;
   std::lock_guard<std::mutex> lock(mutex);
-  auto& t = tables[{eta, g}];
+  auto& t = tables[{eta, g, exit_matched}];
   if (!t) {
     sss::AlbedoTableConfig config;
     config.eta = eta;
     config.g = g;
+    config.exit_matched = exit_matched;
     t = std::make_unique<sss::AlbedoInversion>(config);
   }
   return *t;
@@ -65,13 +67,16 @@ void resolve_coefficients(const SubsurfaceParams& p, RGB& sigma_a, RGB& sigma_s)
     sigma_s = *p.sigma_s;
     return;
   }
-  // From (A, mfp): sigma_t = 1 / mfp and alpha from the half-space table of the
-  // boundary the walk sees at its exit: the material's eta for the dielectric boundary,
-  // index-matched (eta = 1) for the diffuse and matched boundaries, whose walks leave at
-  // the first boundary crossing.
+  // From (A, mfp): sigma_t = 1 / mfp and alpha from the half-space table of the walk's
+  // own boundary: the dielectric (Fresnel at entry and at every exit); the diffuse
+  // boundary (refraction at entry, out at the first crossing through the exit lobe);
+  // matched (eta = 1). A is per entering light under diffuse incidence.
   // "albedoinversion" "fit": van de Hulst's fit instead (g = 0, index-matched), for comparison.
-  double table_eta = p.boundary == SubsurfaceParams::Boundary::Dielectric ? p.eta : 1.0;
-  const sss::AlbedoInversion* inv = p.albedo_inversion_fit ? nullptr : &albedo_inversion(table_eta, p.g);
+  using Boundary = SubsurfaceParams::Boundary;
+  const double table_eta = p.boundary == Boundary::Matched ? 1.0 : p.eta;
+  const bool exit_matched = p.boundary == Boundary::Diffuse;
+  const sss::AlbedoInversion* inv =
+      p.albedo_inversion_fit ? nullptr : &albedo_inversion(table_eta, p.g, exit_matched);
   for (int c = 0; c < 3; ++c) {
     double st = 1.0 / (*p.mfp)[c];
     double A = (*p.reflectance)[c];

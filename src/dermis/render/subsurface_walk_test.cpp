@@ -145,8 +145,10 @@ Shape "trianglemesh" "point3 P" [-500 -500 -100  500 -500 -100  500 500 -100  -5
 }
 
 TEST(SubsurfaceRandomWalk, ExactAlbedoTableMakesASlabReturnTheRequestedReflectance) {
-  // The dielectric boundary is the table's own configuration: within 4 sigma.
+  // Each boundary has its own table (dielectric; refracting entry with exit at the first
+  // crossing; index-matched): within 4 sigma.
   expect_slab_albedo("dielectric", 0.6, 1.4, 4);
+  expect_slab_albedo("diffuse", 0.5, 1.4, 4);
   expect_slab_albedo("matched", 0.35, 1.0, 4);
 }
 

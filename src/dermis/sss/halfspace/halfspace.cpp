@@ -85,7 +85,7 @@ void trace_path(const HalfspaceConfig& c, const Policy& policy, Rng& rng, Tally&
     if (flight.reaches_boundary) {
       position.z = 0;
       const double cos_out = flight.direction.z;
-      if (!matched) {
+      if (!matched && !c.exit_matched) {
         // Exit: reflect back inside with probability F (always under total internal
         // reflection), else refract out (Fresnel; the direction outside is not tallied).
         const double f = fresnel_dielectric(cos_out, 1.0 / c.eta);

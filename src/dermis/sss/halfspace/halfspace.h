@@ -24,6 +24,9 @@ struct HalfspaceConfig {
   double sigma_t = 1.0;  // extinction coefficient; mean free path 1 / sigma_t
   double g = 0.0;        // HG anisotropy, in (-1, 1)
   double eta = 1.0;      // n_medium / n_outside; 1 = index-matched, else a smooth dielectric
+  // Refract at entry by eta but leave at the first boundary crossing (the renderer's
+  // `diffuse` random-walk boundary, whose exit lobe lets everything out).
+  bool exit_matched = false;
   Incidence incidence = Incidence::Normal;
   double incidence_angle = 0.0;  // radians in [0, pi/2), for Incidence::Angle
   uint64_t paths = 100000;

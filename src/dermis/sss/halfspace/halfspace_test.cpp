@@ -56,6 +56,19 @@ TEST(Halfspace, ConservativeMediumLosesNothing) {
   r = simulate_halfspace(c);
   EXPECT_NEAR(r.specular + r.albedo + r.truncated_weight, 1.0, 4 * (r.albedo_stderr + r.truncated_weight_stderr));
   EXPECT_GT(r.specular, 0.05);
+
+  // Refracting entry, exit at the first crossing (the renderer's `diffuse` walk boundary):
+  // nothing is reflected back inside, so nothing is lost either, and the walks are
+  // shorter than with Fresnel at the exit.
+  c.incidence = Incidence::Normal;
+  c.exit_matched = true;
+  HalfspaceResult em = simulate_halfspace(c);
+  EXPECT_NEAR(em.specular + em.albedo + em.truncated_weight, 1.0, 1e-12);
+  EXPECT_LT(em.mean_collisions, simulate_halfspace([&] {
+              HalfspaceConfig d = c;
+              d.exit_matched = false;
+              return d;
+            }()).mean_collisions);
 }
 
 // Implicit capture plus Russian roulette conserves energy in expectation, with

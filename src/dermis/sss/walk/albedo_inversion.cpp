@@ -67,8 +67,9 @@ AlbedoInversion::AlbedoInversion(const AlbedoTableConfig& config) : config_(conf
   if (config.use_cache) {
     const std::string dir = config.cache_dir.empty() ? default_cache_dir() : config.cache_dir;
     if (!dir.empty())
-      cache_path_ = fmt::format("{}/albedo-v{}-eta{:.9g}-g{:.9g}-n{}-p{}-s{}-{}.txt", dir, kCacheVersion, config.eta,
-                                config.g, n, config.paths_per_node, config.seed, walk_sampling_name(config.sampling));
+      cache_path_ = fmt::format("{}/albedo-v{}-eta{:.9g}{}-g{:.9g}-n{}-p{}-s{}-{}.txt", dir, kCacheVersion, config.eta,
+                                config.exit_matched ? "-exitmatched" : "", config.g, n, config.paths_per_node,
+                                config.seed, walk_sampling_name(config.sampling));
   }
   if (!cache_path_.empty() && load()) {
     from_cache_ = true;
@@ -107,6 +108,7 @@ void AlbedoInversion::build() {
     c.albedo = alpha_[i];
     c.g = config_.g;
     c.eta = config_.eta;
+    c.exit_matched = config_.exit_matched;
     c.incidence = Incidence::Diffuse;
     c.paths = config_.paths_per_node;
     c.seed = config_.seed;

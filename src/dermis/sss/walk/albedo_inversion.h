@@ -21,6 +21,7 @@ namespace dermis::sss {
 
 struct AlbedoTableConfig {
   double eta = 1.0;  // n_medium / n_outside
+  bool exit_matched = false;  // entry refracts by eta, exit at the first crossing (HalfspaceConfig)
   double g = 0.0;    // HG anisotropy
   // Nodes uniform in t = sqrt(1 - alpha) on [0, 1] (A is close to linear in t near
   // alpha = 1); the end nodes alpha = 1 (A = 1) and alpha = 0 (A = 0) are exact.
