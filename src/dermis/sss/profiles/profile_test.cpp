@@ -14,7 +14,9 @@ TEST(ProfileVariant, DispatchesToTheConcreteProfile) {
   }
   EXPECT_EQ(p.sample_radius(0.3), b.sample_radius(0.3));
   EXPECT_EQ(p.r_max(), b.r_max());
-  EXPECT_EQ(p.r_max(0.5), b.r_max(0.5));
+  // r_max(fraction) solves for the radius numerically: an inlined copy may round in
+  // the last bits differently (seen in the sanitizer build), so 4 ulp, not bit equality.
+  EXPECT_DOUBLE_EQ(p.r_max(0.5), b.r_max(0.5));
   EXPECT_EQ(p.albedo(), b.albedo());
   ASSERT_NE(p.get_if<BurleyProfile>(), nullptr);
   EXPECT_EQ(p.get_if<GaussianProfile>(), nullptr);
