@@ -121,6 +121,10 @@ SubsurfaceParams read_subsurface_params(const MaterialDesc& m, Diagnostics& diag
       s.albedo_inversion_fit = p.strings[0] == "fit";
     }
     else if (p.name == "pointdensity") s.point_density = read_float(p);
+    else if (p.name == "backwardguiding") {
+      if (p.bools.size() != 1) throw SceneError(p.loc, "\"backwardguiding\" must be one bool");
+      s.backward_guiding = p.bools[0];
+    }
     else if (p.name == "localdisk") {
       if (p.bools.size() != 1) throw SceneError(p.loc, "\"localdisk\" must be one bool");
       s.local_disk = p.bools[0];

@@ -29,6 +29,8 @@ struct SubsurfaceParams {
   Profile profile = Profile::Burley;
   Boundary boundary = Boundary::Diffuse;
   WalkSampling walk_sampling = WalkSampling::Mis;
+  // Random walk: also guide toward the object's far side (sss/walk/random_walk.h).
+  bool backward_guiding = false;
   // (reflectance, mfp) -> coefficients: the exact half-space table, or the van de Hulst
   // fit (g = 0, index-matched) for comparison.
   bool albedo_inversion_fit = false;

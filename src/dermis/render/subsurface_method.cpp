@@ -175,6 +175,7 @@ std::unique_ptr<SubsurfaceMethod> make_subsurface_method(const SubsurfaceParams&
         case SubsurfaceParams::WalkSampling::Dwivedi: m->walk_settings.sampling = sss::WalkSampling::Dwivedi; break;
         case SubsurfaceParams::WalkSampling::Mis: m->walk_settings.sampling = sss::WalkSampling::Mis; break;
       }
+      m->walk_settings.backward_guiding = params.backward_guiding;
       m->walk_step = std::make_unique<sss::MixtureWalkStep<3>>(sss::make_walk_step(m->walk_medium, m->walk_settings));
       if (params.boundary == SubsurfaceParams::Boundary::Matched) m->entry_eta = 1;
       break;
@@ -246,10 +247,11 @@ bool sample_walk_exit(const RenderScene& sc, const SubsurfaceMethod& m, const Su
     b.t = length(h.p - o);
     return b;
   };
+  const sss::WalkGuide guide = sss::make_walk_guide(m.walk_settings, entry.p, entry.ng, tracer);
   RGB weight(1);
   for (int reflections = 0; reflections < 256; ++reflections) {
     sss::WalkResult res;
-    if (!sss::random_walk(*m.walk_step, m.walk_settings, start, entry.ng, dir, rng, tracer, res, weight)) {
+    if (!sss::random_walk(*m.walk_step, m.walk_settings, guide, start, dir, rng, tracer, res, weight)) {
       out.truncated = res.truncated;
       return false;
     }

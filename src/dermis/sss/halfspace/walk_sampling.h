@@ -98,12 +98,12 @@ class GuidedSampling {
 
   Flight finish(const FlightProposal& p, double depth) const {
     const double boundary = distance_to_boundary(p.direction, depth);
-    if (p.distance >= boundary) return {p.direction, boundary, step_.passage_weights(p, boundary, kOneChannel)[0], true};
-    return {p.direction, p.distance, step_.collision_weights(p, kOneChannel)[0], false};
+    if (p.distance >= boundary) return {p.direction, boundary, step_.passage_weights(p, axis_, boundary, kOneChannel)[0], true};
+    return {p.direction, p.distance, step_.collision_weights(p, axis_, kOneChannel)[0], false};
   }
 
   MixtureWalkStep<1> step_;
-  Framed axis_{Vec3d{0, 0, 1}};  // outward normal of the boundary z = 0
+  GuideAxes<1> axis_{Framed(Vec3d{0, 0, 1})};  // outward normal of the boundary z = 0
 };
 
 }  // namespace dermis::sss

@@ -33,6 +33,10 @@ struct WalkSettings {
   // free paths across guiding toward the entry plane loses to classical sampling, least
   // so at 0.5, the compromise chosen.
   float p_guided = 0.5f;
+  // Backward guiding (walk_step.h GuideAxes): guided flights also follow the importance
+  // of the object's far side below the entry point, found by one ray against the entry
+  // normal; the share of each side follows the depths (MixtureWalkStep::back_shares).
+  bool backward_guiding = false;
   int max_steps = 1024;  // scattering events before the walk is stopped (truncated)
   // Russian roulette when the largest channel of the throughput drops below this.
   float roulette_threshold = 0.1f;
@@ -58,14 +62,44 @@ struct WalkResult {
 // std::invalid_argument with an actionable message for bad coefficients or settings.
 MixtureWalkStep<3> make_walk_step(const WalkMedium& medium, const WalkSettings& settings);
 
+// Where a walk's guided flights point: the seed's principal axis, the outward normal at
+// the entry point, and for backward guiding the far side below it (where a ray from the
+// entry point against the entry normal leaves the medium, outward normal there).
+struct WalkGuide {
+  Vec3d entry_p, entry_n;
+  bool has_far = false;
+  Vec3d far_p, far_n;
+};
+
+// The guide of a walk from entry_p (outward normal entry_n). With backward guiding (and a
+// guided sampling) it traces one ray from the entry point into the medium along -entry_n
+// with the walk's tracer (which skips the surface the origin lies on).
+template <class Tracer>
+WalkGuide make_walk_guide(const WalkSettings& settings, Vec3 entry_p, Vec3 entry_n, Tracer&& tracer) {
+  WalkGuide guide;
+  guide.entry_p = Vec3d(entry_p);
+  guide.entry_n = normalize(Vec3d(entry_n));
+  if (settings.backward_guiding && settings.sampling != WalkSampling::Classical) {
+    const BoundaryHit far = tracer(entry_p, -entry_n);
+    // A ray leaving the medium meets a boundary facing along it: n_far . n_entry < 0.
+    if (far.hit && dot(Vec3d(far.n), guide.entry_n) < 0) {
+      guide.has_far = true;
+      guide.far_p = Vec3d(far.p);
+      guide.far_n = normalize(Vec3d(far.n));
+    }
+  }
+  return guide;
+}
+
 // Channel choice probabilities proportional to the throughput (METHODS.md section 5).
 inline std::array<double, 3> channel_probabilities(const std::array<double, 3>& throughput) {
   const double sum = throughput[0] + throughput[1] + throughput[2];
   return {throughput[0] / sum, throughput[1] / sum, throughput[2] / sum};
 }
 
-// The walk (settings validated by make_walk_step). entry_n is the outward normal at entry_p (the principal axis of the
-// guiding, as in the seed), dir_in the first propagation direction (into the medium).
+// The walk (settings validated by make_walk_step). guide.entry_n is the outward normal at
+// the entry point (the principal axis of the guiding, as in the seed), dir_in the first
+// propagation direction (into the medium).
 // tracer(Vec3 origin, Vec3 unit_direction) -> BoundaryHit: the first boundary crossing
 // with t > 0; for the first flight the origin lies on the boundary and the tracer must
 // skip that surface (offset or ignore t ~ 0). Returns true when the walk left the
@@ -75,28 +109,38 @@ inline std::array<double, 3> channel_probabilities(const std::array<double, 3>& 
 // `initial` is the throughput the walk starts with (a walk continued after an internal
 // reflection passes what it has carried so far, so that the roulette and the channel
 // choice see it); out.weight includes it.
+// `guide` (make_walk_guide) is made once per path at its entry point and kept for the
+// walks that continue it; start_p is where this walk starts (the entry point, or the
+// boundary point of an internal reflection).
 template <class Tracer>
-bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, Vec3 entry_p, Vec3 entry_n,
+bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, const WalkGuide& guide, Vec3 start_p,
                  Vec3 dir_in, Rng& rng, Tracer&& tracer, WalkResult& out, RGB initial = RGB(1.0f)) {
   out = WalkResult{};
-  const Framed axis(normalize(Vec3d(entry_n)));
+  GuideAxes<3> axes{Framed(guide.entry_n)};
+  if (guide.has_far) axes.back = Framed(guide.far_n), axes.has_back = true;
+  // The back share depends on where a flight starts (depths below both planes).
+  auto update_back_shares = [&](const Vec3d& x) {
+    if (axes.has_back)
+      axes.back_share = step.back_shares(dot(guide.entry_p - x, guide.entry_n), dot(guide.far_p - x, guide.far_n));
+  };
   const double roulette = settings.roulette_threshold;
   std::array<double, 3> throughput{initial[0], initial[1], initial[2]};
   if (!(throughput[0] + throughput[1] + throughput[2] > 0)) return false;
-  Vec3d position(entry_p);
+  Vec3d position(start_p);
   std::array<double, 3> q = channel_probabilities(throughput);
-  FlightProposal flight = step.propose_flight(normalize(Vec3d(dir_in)), axis, q, rng);
+  update_back_shares(position);
+  FlightProposal flight = step.propose_flight(normalize(Vec3d(dir_in)), axes, q, rng);
   for (int steps = 0;;) {
     const BoundaryHit hit = tracer(Vec3(position), Vec3(flight.direction));
     if (hit.hit && flight.distance >= double(hit.t)) {
-      const std::array<double, 3> w = step.passage_weights(flight, double(hit.t), q);
+      const std::array<double, 3> w = step.passage_weights(flight, axes, double(hit.t), q);
       for (int c = 0; c < 3; ++c) out.weight[c] = float(throughput[c] * w[c]);
       out.exit_p = hit.p, out.exit_n = hit.n, out.exit_dir_in_medium = Vec3(flight.direction);
       out.steps = steps;
       return true;
     }
     if (!std::isfinite(flight.distance)) break;  // no boundary ahead of an endless flight: lost
-    const std::array<double, 3> w = step.collision_weights(flight, q);
+    const std::array<double, 3> w = step.collision_weights(flight, axes, q);
     for (int c = 0; c < 3; ++c) throughput[c] *= w[c];
     position += flight.direction * flight.distance;
     out.steps = steps;
@@ -113,9 +157,18 @@ bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, V
       for (double& t : throughput) t *= roulette / m;
     }
     q = channel_probabilities(throughput);
-    flight = step.propose_scatter(flight.direction, axis, q, rng);
+    update_back_shares(position);
+    flight = step.propose_scatter(flight.direction, axes, q, rng);
   }
   return false;
+}
+
+// A walk from the entry point: makes its guide (make_walk_guide) first.
+template <class Tracer>
+bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, Vec3 entry_p, Vec3 entry_n,
+                 Vec3 dir_in, Rng& rng, Tracer&& tracer, WalkResult& out, RGB initial = RGB(1.0f)) {
+  const WalkGuide guide = make_walk_guide(settings, entry_p, entry_n, tracer);
+  return random_walk(step, settings, guide, entry_p, dir_in, rng, std::forward<Tracer>(tracer), out, initial);
 }
 
 template <class Tracer>

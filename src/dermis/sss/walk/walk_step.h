@@ -38,6 +38,13 @@
 // For isotropic scattering, P_g = 1 and one channel, the weight of a scattering step
 // is exp(-kappa sigma_t u s): the product telescopes to I(x_0)/I(x_end), the
 // zero-variance property.
+//
+// Backward guiding (GuideAxes): a guided flight in channel c uses a second principal
+// axis, the outward normal where the object ends below the entry point, with
+// probability b_c (back_share), else the entry normal. The guided term of the mixture
+// becomes (1 - b_c) d_c(w; front) sigma'_c,front exp(-sigma'_c,front s) + b_c d_c(w; back)
+// sigma'_c,back exp(-sigma'_c,back s); the argument above holds unchanged (b_c may depend
+// on the point where the flight starts, not on the flight itself).
 #pragma once
 
 #include <algorithm>
@@ -67,14 +74,31 @@ const char* walk_sampling_name(WalkSampling sampling);
 // The guided choice probability of a strategy: 0, 1 or p_guided (validated in [0, 1]).
 double guided_choice_probability(WalkSampling sampling, double p_guided);
 
-// A sampled flight: unit direction, its cosine u to the principal axis, the phase
+// A sampled flight: unit direction, its cosines to the principal axes, the phase
 // function value (per steradian) if it follows a scattering event, and the free path.
 struct FlightProposal {
   Vec3d direction;
-  double cos_axis = 0;
+  double cos_axis = 0;  // to GuideAxes::front (the entry normal)
+  double cos_back = 0;  // to GuideAxes::back (backward guiding only)
   double phase = 0;
   double distance = 0;  // may be +infinity (a guided flight straight out with sigma' = 0)
   bool scattered = false;
+};
+
+// The principal axes of guided flights, outward normals of the planes whose Dwivedi
+// importance exp(-kappa sigma_t D) (D the depth below the plane) is followed: `front`, the
+// normal at the entry point (the seed's axis), and, for backward guiding, `back`, the
+// normal where the object ends below the entry point (its far side); back_share[c] is the
+// probability that a guided flight in channel c follows `back` (MixtureWalkStep::
+// back_shares). Converts from a single frame: the seed's scheme, front only.
+template <int N>
+struct GuideAxes {
+  Framed front;
+  Framed back;
+  std::array<double, N> back_share{};
+  bool has_back = false;
+  GuideAxes() = default;
+  GuideAxes(const Framed& front_axis) : front(front_axis) {}  // NOLINT: implicit on purpose
 };
 
 template <int N>
@@ -113,46 +137,75 @@ class MixtureWalkStep {
   double p_guided() const { return p_guided_; }
   const DwivediGuide& guide(int c) const { return guide_[c]; }
 
+  // Backward guiding: with the importance of a point taken as the sum of both planes'
+  // eigenmodes, I = exp(-kappa sigma_t D_front) + exp(-kappa sigma_t D_back), sampling the
+  // kernel times I picks each plane's guided pdf in proportion to its share of I (each
+  // guided kernel integrates to the same constant by the eigenvalue equation), so
+  //   b_c = I_back / I = 1 / (1 + exp(kappa_c sigma_t,c (D_back - D_front))),
+  // depths of the flight's starting point below each plane. One half where kappa = 0.
+  Channels back_shares(double depth_front, double depth_back) const {
+    Channels b{};
+    for (int c = 0; c < N; ++c) {
+      const double x = guide_[c].kappa() * sigma_t_[c] * (depth_back - depth_front);
+      b[c] = x >= 0 ? std::exp(-x) / (1 + std::exp(-x)) : 1 / (1 + std::exp(x));  // logistic, no overflow
+    }
+    return b;
+  }
+
   // A flight along a given direction (after entry or a reflection): only its length is sampled.
-  FlightProposal propose_flight(const Vec3d& direction, const Framed& axis, const Channels& q, Rng& rng) const {
+  FlightProposal propose_flight(const Vec3d& direction, const GuideAxes<N>& axes, const Channels& q, Rng& rng) const {
     const int c = choose_channel(q, rng);
     FlightProposal f;
     f.direction = direction;
-    f.cos_axis = dot(direction, axis.n);
-    f.distance = free_path(c, choose_guided(rng), f.cos_axis, rng);
+    f.cos_axis = dot(direction, axes.front.n);
+    if (axes.has_back) f.cos_back = dot(direction, axes.back.n);
+    const bool guided = choose_guided(rng);
+    const bool back = guided && choose_back(axes, c, rng);
+    f.distance = free_path(c, guided, back ? f.cos_back : f.cos_axis, rng);
     return f;
   }
 
   // A scattering event at the end of a flight along direction_in: new direction and flight.
-  FlightProposal propose_scatter(const Vec3d& direction_in, const Framed& axis, const Channels& q, Rng& rng) const {
+  FlightProposal propose_scatter(const Vec3d& direction_in, const GuideAxes<N>& axes, const Channels& q,
+                                 Rng& rng) const {
     const int c = choose_channel(q, rng);
     const bool guided = choose_guided(rng);
+    const bool back = guided && choose_back(axes, c, rng);
     FlightProposal f;
     f.scattered = true;
     const double phi = 2 * kPiD * rng.uniform_double();
     if (guided && (dwivedi_direction_fraction_ >= 1 || rng.uniform_double() < dwivedi_direction_fraction_)) {
       // Krivanek & d'Eon 2014: cosine from p(u) about the principal axis, azimuth uniform.
-      f.cos_axis = guide_[c].sample_cos(rng.uniform_double());
-      f.direction = axis.to_world(local_direction(f.cos_axis, phi));
+      const double u = guide_[c].sample_cos(rng.uniform_double());
+      f.direction = (back ? axes.back : axes.front).to_world(local_direction(u, phi));
       f.phase = hg_phase(dot(direction_in, f.direction), g_);
+      if (back) {
+        f.cos_back = u;
+        f.cos_axis = dot(f.direction, axes.front.n);
+      } else {
+        f.cos_axis = u;
+        if (axes.has_back) f.cos_back = dot(f.direction, axes.back.n);
+      }
     } else {
       // Henyey & Greenstein 1941: the phase function about the propagation direction.
       const double cos_theta = sample_hg_cos(rng.uniform_double(), g_);
       f.direction = direction_about(direction_in, cos_theta, phi);
-      f.cos_axis = dot(f.direction, axis.n);
+      f.cos_axis = dot(f.direction, axes.front.n);
+      if (axes.has_back) f.cos_back = dot(f.direction, axes.back.n);
       f.phase = hg_phase(cos_theta, g_);
     }
-    f.distance = free_path(c, guided, f.cos_axis, rng);
+    f.distance = free_path(c, guided, back ? f.cos_back : f.cos_axis, rng);
     return f;
   }
 
-  // Per-channel weight f_k / q of a flight that ends in a collision after f.distance.
-  Channels collision_weights(const FlightProposal& f, const Channels& q) const {
-    return weights(f, f.distance, true, q);
+  // Per-channel weight f_k / q of a flight that ends in a collision after f.distance;
+  // axes and q as given to the proposal.
+  Channels collision_weights(const FlightProposal& f, const GuideAxes<N>& axes, const Channels& q) const {
+    return weights(f, axes, f.distance, true, q);
   }
   // Per-channel weight F_k / Q of a flight that passes the boundary at distance d <= f.distance.
-  Channels passage_weights(const FlightProposal& f, double d, const Channels& q) const {
-    return weights(f, d, false, q);
+  Channels passage_weights(const FlightProposal& f, const GuideAxes<N>& axes, double d, const Channels& q) const {
+    return weights(f, axes, d, false, q);
   }
 
  private:
@@ -182,6 +235,11 @@ class MixtureWalkStep {
     return rng.uniform_double() < p_guided_;
   }
 
+  // Backward guiding: the back axis with probability back_share[c] (no draw without one).
+  static bool choose_back(const GuideAxes<N>& axes, int c, Rng& rng) {
+    return axes.has_back && rng.uniform_double() < axes.back_share[c];
+  }
+
   // Exponential free path -ln(1 - xi)/sigma (Beer-Lambert), sigma = sigma_t classically
   // or sigma_t (1 - kappa u) guided (Krivanek & d'Eon 2014).
   double free_path(int c, bool guided, double u, Rng& rng) const {
@@ -190,47 +248,58 @@ class MixtureWalkStep {
     return sigma > 0 ? optical / sigma : std::numeric_limits<double>::infinity();
   }
 
-  // The derivation at the top of this file: numerator and mixture as sums of a exp(b).
-  Channels weights(const FlightProposal& f, double length, bool collision, const Channels& q) const {
+  // Guided density about one axis, u the flight's cosine to it, without the exponential:
+  // direction density (per sr) times the free-path density (collision) or 1 (passage);
+  // beta Dwivedi + (1 - beta) HG for a scattering event, no direction for a flight.
+  double guided_density(int c, double u, double phase, bool scattered, bool collision) const {
+    const DwivediGuide& guide = guide_[c];
+    double density = collision ? sigma_t_[c] * guide.extinction_scale(u) : 1.0;
+    if (scattered) {
+      const double beta = dwivedi_direction_fraction_;
+      const double dwivedi =
+          beta > 0 ? beta * (collision ? guide.kappa_over_L() * sigma_t_[c] : guide.pdf_cos(u)) / (2 * kPiD) : 0.0;
+      density = dwivedi + (1 - beta) * phase * density;
+    }
+    return density;
+  }
+
+  // The derivation at the top of this file: numerator and mixture as sums of a exp(b),
+  // per channel the classical term and the guided term about each axis in use.
+  Channels weights(const FlightProposal& f, const GuideAxes<N>& axes, double length, bool collision,
+                   const Channels& q) const {
     const double phase = f.scattered ? f.phase : 1.0;
-    double a_classical[N], b_classical[N], a_guided[N], b_guided[N];
+    double a[3 * N], b[3 * N], b_classical[N];
+    int terms = 0;
     double b_max = -std::numeric_limits<double>::infinity();
+    auto add = [&](double a_i, double b_i) {
+      if (!(a_i > 0)) return;
+      a[terms] = a_i, b[terms] = b_i, ++terms;
+      b_max = std::max(b_max, b_i);
+    };
     for (int c = 0; c < N; ++c) {
       b_classical[c] = -sigma_t_[c] * length;
-      a_classical[c] = q[c] * p_classical_ * phase * (collision ? sigma_t_[c] : 1.0);
-      if (a_classical[c] > 0) b_max = std::max(b_max, b_classical[c]);
-      a_guided[c] = 0, b_guided[c] = 0;
+      add(q[c] * p_classical_ * phase * (collision ? sigma_t_[c] : 1.0), b_classical[c]);
       if (p_guided_ > 0 && q[c] > 0) {
-        const DwivediGuide& guide = guide_[c];
-        const double scale = guide.extinction_scale(f.cos_axis);
-        // Guided direction density (per sr) times the free-path density (collision) or
-        // tail (passage): beta Dwivedi + (1 - beta) HG for a scattering event, none for a flight.
-        double density = collision ? sigma_t_[c] * scale : 1.0;
-        if (f.scattered) {
-          const double beta = dwivedi_direction_fraction_;
-          const double dwivedi = beta > 0 ? beta * (collision ? guide.kappa_over_L() * sigma_t_[c]
-                                                              : guide.pdf_cos(f.cos_axis)) / (2 * kPiD)
-                                          : 0.0;
-          density = dwivedi + (1 - beta) * phase * density;
-        }
-        a_guided[c] = q[c] * p_guided_ * density;
-        b_guided[c] = -sigma_t_[c] * scale * length;
-        if (a_guided[c] > 0) b_max = std::max(b_max, b_guided[c]);
+        const double back = axes.has_back ? axes.back_share[c] : 0.0;
+        const double guided = q[c] * p_guided_;
+        if (back < 1)
+          add(guided * (1 - back) * guided_density(c, f.cos_axis, phase, f.scattered, collision),
+              -sigma_t_[c] * guide_[c].extinction_scale(f.cos_axis) * length);
+        if (back > 0)
+          add(guided * back * guided_density(c, f.cos_back, phase, f.scattered, collision),
+              -sigma_t_[c] * guide_[c].extinction_scale(f.cos_back) * length);
       }
     }
-    double mixture = 0;
     Channels w;
-    for (int c = 0; c < N; ++c) {
-      const double e = std::exp(b_classical[c] - b_max);
-      mixture += a_classical[c] * e;
-      if (a_guided[c] > 0) mixture += a_guided[c] * std::exp(b_guided[c] - b_max);
-      w[c] = (f.scattered ? albedo_[c] * phase : 1.0) * (collision ? sigma_t_[c] : 1.0) * e;
-    }
-    if (!(mixture > 0) || !std::isfinite(b_max)) {
+    if (terms == 0 || !std::isfinite(b_max)) {
       w.fill(0.0);
       return w;
     }
-    for (int c = 0; c < N; ++c) w[c] /= mixture;
+    double mixture = 0;
+    for (int i = 0; i < terms; ++i) mixture += a[i] * std::exp(b[i] - b_max);
+    for (int c = 0; c < N; ++c)
+      w[c] = (f.scattered ? albedo_[c] * phase : 1.0) * (collision ? sigma_t_[c] : 1.0) *
+             std::exp(b_classical[c] - b_max) / mixture;
     return w;
   }
 

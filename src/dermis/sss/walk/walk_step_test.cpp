@@ -78,7 +78,7 @@ TEST(WalkStep, ScatterCollisionWeightsAreUnbiased) {
       Rng rng(3, uint64_t(p_guided * 10), uint64_t(g * 10));
       for (int i = 0; i < 200000; ++i) {
         const FlightProposal f = step.propose_scatter(w_in, axis, q, rng);
-        const auto weight = step.collision_weights(f, q);
+        const auto weight = step.collision_weights(f, axis, q);
         for (int c = 0; c < 3; ++c) {
           w[c].add(weight[c]);
           ws[c].add(weight[c] * f.distance);
@@ -108,7 +108,7 @@ TEST(WalkStep, FlightWeightsReproduceTransmittance) {
     for (int i = 0; i < 100000; ++i) {
       const FlightProposal f = step.propose_flight(direction, axis, q, rng);
       const bool pass = f.distance >= d;
-      const auto weight = pass ? step.passage_weights(f, d, q) : step.collision_weights(f, q);
+      const auto weight = pass ? step.passage_weights(f, axis, d, q) : step.collision_weights(f, axis, q);
       for (int c = 0; c < 3; ++c) collided[c].add(pass ? 0 : weight[c]), passed[c].add(pass ? weight[c] : 0);
     }
     for (int c = 0; c < 3; ++c) {
@@ -133,7 +133,7 @@ TEST(WalkStep, ScatterPassageWeightsMatchQuadrature) {
       const FlightProposal f = step.propose_scatter(kAxis, axis, q, rng);
       const double boundary = f.cos_axis > 0 ? depth / f.cos_axis : 1e300;
       const bool pass = f.distance >= boundary;
-      const auto weight = pass ? step.passage_weights(f, boundary, q) : std::array<double, 3>{0, 0, 0};
+      const auto weight = pass ? step.passage_weights(f, axis, boundary, q) : std::array<double, 3>{0, 0, 0};
       for (int c = 0; c < 3; ++c) passed[c].add(weight[c]);
     }
     for (int c = 0; c < 3; ++c) {
