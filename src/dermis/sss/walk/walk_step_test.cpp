@@ -25,12 +25,27 @@ struct MeanEstimate {
       << what << " mean=" << (estimate).mean() << " ref=" << (reference) << " stderr=" << (estimate).stderr_()
 
 const Vec3d kAxis = normalize(Vec3d{0.3, -0.5, 0.8});
+// The far side's outward normal for backward guiding: roughly opposite kAxis, as on a slab
+// with non-parallel faces.
+const Vec3d kBackAxis = normalize(Vec3d{-0.1, 0.6, -0.7});
+
+// The guide configurations every weight test runs with: the seed's (front only), and
+// front + back with a different back share per channel (one of them pure back).
+std::vector<GuideAxes<3>> guide_configurations() {
+  GuideAxes<3> front{Framed(kAxis)}, both{Framed(kAxis)};
+  both.back = Framed(kBackAxis);
+  both.has_back = true;
+  both.back_share = {0.3, 0.7, 1.0};
+  return {front, both};
+}
 
 // The guided joint density of (u, s): p(u) sigma' exp(-sigma' s), sigma' = sigma_t (1 - kappa u)
 // (Krivanek & d'Eon 2014), checked on a 2D grid of (u, s) bins, u measured from the
 // sampled direction vector against a tilted axis.
+// With backward guiding and back share 1 the same joint holds about the back axis.
 TEST(WalkStep, GuidedDirectionAndDistanceChiSquare) {
   const double sigma_t = 2.0;
+  for (bool back : {false, true})
   for (double alpha : {0.5, 0.95}) {
     const MixtureWalkStep<1> step({sigma_t}, {alpha}, 0.0, 1.0);
     const DwivediGuide& guide = step.guide(0);
@@ -38,12 +53,16 @@ TEST(WalkStep, GuidedDirectionAndDistanceChiSquare) {
     const std::vector<double> s_edges = {0, 0.1, 0.25, 0.5, 1, 2, 4, 1e300};
     const int nu = int(u_edges.size()) - 1, ns = int(s_edges.size()) - 1, n = 200000;
     std::vector<double> observed(nu * ns, 0.0), expected(nu * ns, 0.0);
-    Rng rng(11, uint64_t(alpha * 100));
-    const Framed axis(kAxis);
+    Rng rng(11, uint64_t(alpha * 100), back);
+    GuideAxes<1> axes{Framed(back ? kBackAxis : kAxis)};
+    if (back) axes = GuideAxes<1>{Framed(kAxis)}, axes.back = Framed(kBackAxis), axes.has_back = true,
+              axes.back_share = {1.0};
+    const Vec3d sampled_axis = back ? kBackAxis : kAxis;
     for (int i = 0; i < n; ++i) {
-      const FlightProposal f = step.propose_scatter({0, 0, -1}, axis, {1.0}, rng);
-      const double u = dot(f.direction, kAxis);
-      ASSERT_NEAR(u, f.cos_axis, 1e-9);
+      const FlightProposal f = step.propose_scatter({0, 0, -1}, axes, {1.0}, rng);
+      const double u = dot(f.direction, sampled_axis);
+      ASSERT_NEAR(u, back ? f.cos_back : f.cos_axis, 1e-9);
+      ASSERT_NEAR(dot(f.direction, kAxis), f.cos_axis, 1e-9);
       ASSERT_NEAR(length(f.direction), 1.0, 1e-12);
       const int a = int(std::upper_bound(u_edges.begin(), u_edges.end(), u) - u_edges.begin()) - 1;
       const int b = int(std::upper_bound(s_edges.begin(), s_edges.end(), f.distance) - s_edges.begin()) - 1;
@@ -59,7 +78,7 @@ TEST(WalkStep, GuidedDirectionAndDistanceChiSquare) {
                                   (std::exp(-sigma * s_edges[b]) - std::exp(-sigma * s_edges[b + 1]));
       }
     const auto r = testing::chi_square(observed, expected);
-    EXPECT_GT(r.p_value, testing::kChiSquareAlpha) << "alpha=" << alpha << " chi2=" << r.statistic;
+    EXPECT_GT(r.p_value, testing::kChiSquareAlpha) << "alpha=" << alpha << " back=" << back << " chi2=" << r.statistic;
   }
 }
 
@@ -70,12 +89,12 @@ TEST(WalkStep, GuidedDirectionAndDistanceChiSquare) {
 TEST(WalkStep, ScatterCollisionWeightsAreUnbiased) {
   const std::array<double, 3> sigma_t{1.0, 2.5, 0.4}, albedo{0.5, 0.9, 0.99}, q{0.2, 0.5, 0.3};
   const Vec3d w_in = normalize(Vec3d{0.2, 0.1, -1});
-  const Framed axis(kAxis);
+  for (const GuideAxes<3>& axis : guide_configurations())
   for (double g : {0.0, 0.6})
     for (double p_guided : {0.0, 0.5, 1.0}) {
       const MixtureWalkStep<3> step(sigma_t, albedo, g, p_guided);
       MeanEstimate w[3], ws[3], wu[3];
-      Rng rng(3, uint64_t(p_guided * 10), uint64_t(g * 10));
+      Rng rng(3, uint64_t(p_guided * 10), uint64_t(g * 10) + 100 * axis.has_back);
       for (int i = 0; i < 200000; ++i) {
         const FlightProposal f = step.propose_scatter(w_in, axis, q, rng);
         const auto weight = step.collision_weights(f, axis, q);
@@ -86,7 +105,8 @@ TEST(WalkStep, ScatterCollisionWeightsAreUnbiased) {
         }
       }
       for (int c = 0; c < 3; ++c) {
-        const std::string what = "g=" + std::to_string(g) + " P_g=" + std::to_string(p_guided) + " c=" + std::to_string(c);
+        const std::string what = "g=" + std::to_string(g) + " P_g=" + std::to_string(p_guided) +
+                                 " c=" + std::to_string(c) + " back=" + std::to_string(axis.has_back);
         EXPECT_WITHIN_4_SIGMA(w[c], albedo[c], what);
         EXPECT_WITHIN_4_SIGMA(ws[c], albedo[c] / sigma_t[c], what);
         EXPECT_WITHIN_4_SIGMA(wu[c], albedo[c] * g * dot(w_in, kAxis), what);
@@ -98,13 +118,13 @@ TEST(WalkStep, ScatterCollisionWeightsAreUnbiased) {
 // weighted collision and passage events reproduce 1 - exp(-sigma_t d) and exp(-sigma_t d).
 TEST(WalkStep, FlightWeightsReproduceTransmittance) {
   const std::array<double, 3> sigma_t{1.0, 3.0, 0.3}, albedo{0.5, 0.9, 0.99}, q{0.5, 0.1, 0.4};
-  const Framed axis(kAxis);
   const Vec3d direction = normalize(kAxis + Vec3d{0.4, 0, 0});  // toward the boundary: u > 0
   const double d = 0.8;
+  for (const GuideAxes<3>& axis : guide_configurations())
   for (double p_guided : {0.0, 0.75, 1.0}) {
     const MixtureWalkStep<3> step(sigma_t, albedo, 0.3, p_guided);
     MeanEstimate collided[3], passed[3];
-    Rng rng(5, uint64_t(p_guided * 100));
+    Rng rng(5, uint64_t(p_guided * 100), axis.has_back);
     for (int i = 0; i < 100000; ++i) {
       const FlightProposal f = step.propose_flight(direction, axis, q, rng);
       const bool pass = f.distance >= d;
@@ -112,8 +132,8 @@ TEST(WalkStep, FlightWeightsReproduceTransmittance) {
       for (int c = 0; c < 3; ++c) collided[c].add(pass ? 0 : weight[c]), passed[c].add(pass ? weight[c] : 0);
     }
     for (int c = 0; c < 3; ++c) {
-      EXPECT_WITHIN_4_SIGMA(passed[c], std::exp(-sigma_t[c] * d), "P_g=" << p_guided << " c=" << c);
-      EXPECT_WITHIN_4_SIGMA(collided[c], 1 - std::exp(-sigma_t[c] * d), "P_g=" << p_guided << " c=" << c);
+      EXPECT_WITHIN_4_SIGMA(passed[c], std::exp(-sigma_t[c] * d), "P_g=" << p_guided << " c=" << c << " back=" << axis.has_back);
+      EXPECT_WITHIN_4_SIGMA(collided[c], 1 - std::exp(-sigma_t[c] * d), "P_g=" << p_guided << " c=" << c << " back=" << axis.has_back);
     }
   }
 }
@@ -123,12 +143,12 @@ TEST(WalkStep, FlightWeightsReproduceTransmittance) {
 TEST(WalkStep, ScatterPassageWeightsMatchQuadrature) {
   const std::array<double, 3> sigma_t{1.0, 2.0, 0.5}, albedo{0.6, 0.9, 0.99}, q{0.3, 0.3, 0.4};
   const double g = 0.5, depth = 0.7;
-  const Framed axis(kAxis);
   const QuadratureRule rule = gauss_legendre(200, 0.0, 1.0);
+  for (const GuideAxes<3>& axis : guide_configurations())
   for (double p_guided : {0.0, 0.75, 1.0}) {
     const MixtureWalkStep<3> step(sigma_t, albedo, g, p_guided);
     MeanEstimate passed[3];
-    Rng rng(9, uint64_t(p_guided * 100));
+    Rng rng(9, uint64_t(p_guided * 100), axis.has_back);
     for (int i = 0; i < 200000; ++i) {
       const FlightProposal f = step.propose_scatter(kAxis, axis, q, rng);
       const double boundary = f.cos_axis > 0 ? depth / f.cos_axis : 1e300;
@@ -142,9 +162,29 @@ TEST(WalkStep, ScatterPassageWeightsMatchQuadrature) {
         const double u = rule.nodes[j];
         reference += rule.weights[j] * 2 * kPiD * hg_phase(u, g) * std::exp(-sigma_t[c] * depth / u);
       }
-      EXPECT_WITHIN_4_SIGMA(passed[c], albedo[c] * reference, "P_g=" << p_guided << " c=" << c);
+      EXPECT_WITHIN_4_SIGMA(passed[c], albedo[c] * reference, "P_g=" << p_guided << " c=" << c << " back=" << axis.has_back);
     }
   }
+}
+
+// The back share is the far plane's part of the summed importance exp(-kappa sigma_t D):
+// the closed form, one half at equal depths, complementary when the depths swap, and
+// finite for depths far beyond the range of exp.
+TEST(WalkStep, BackSharesFollowTheImportanceOfBothPlanes) {
+  const std::array<double, 3> sigma_t{1.0, 2.0, 0.5}, albedo{0.5, 0.9, 1.0};
+  const MixtureWalkStep<3> step(sigma_t, albedo, 0.0, 0.5);
+  for (auto [front, back] : {std::pair{0.2, 1.5}, {3.0, 0.1}, {1.0, 1.0}}) {
+    const auto b = step.back_shares(front, back), swapped = step.back_shares(back, front);
+    for (int c = 0; c < 3; ++c) {
+      const double k = step.guide(c).kappa() * sigma_t[c];
+      const double i_front = std::exp(-k * front), i_back = std::exp(-k * back);
+      EXPECT_NEAR(b[c], i_back / (i_front + i_back), 1e-15) << c;
+      EXPECT_NEAR(b[c] + swapped[c], 1.0, 1e-15) << c;
+    }
+  }
+  EXPECT_EQ(step.back_shares(0.0, 1e6)[0], 0.0);
+  EXPECT_EQ(step.back_shares(1e6, 0.0)[0], 1.0);
+  EXPECT_EQ(step.back_shares(0.0, 5.0)[2], 0.5);  // albedo 1: kappa = 0, no preference
 }
 
 TEST(WalkStep, RejectsBadMedia) {
