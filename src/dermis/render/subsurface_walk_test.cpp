@@ -74,6 +74,37 @@ TEST(SubsurfaceRandomWalk, DielectricBoundaryEqualsAMediumInsideADielectric) {
   }
 }
 
+// A thin slab (0.8 to 1.7 mean free paths thick) lit from behind: most of what the camera
+// sees has crossed it, the case backward guiding is for. The walk with backward guiding
+// (Dwivedi-only and MIS) against the medium inside a dielectric.
+TEST(SubsurfaceRandomWalk, BackwardGuidingOnABacklitThinSlabEqualsAMediumInsideADielectric) {
+  const std::string header = R"(LookAt 0 -4 0.3  0 0 0  0 0 1
+Camera "perspective" "float fov" 36
+Film "rgb" "integer xresolution" 16 "integer yresolution" 16
+Integrator "volpath" "integer maxdepth" 100000
+WorldBegin
+LightSource "infinite" "rgb L" [0.2 0.2 0.25]
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [8 8 8]
+  Translate 0.3 2.5 0.6
+  Shape "sphere" "float radius" 0.6
+AttributeEnd
+)";
+  const std::string box = R"(Shape "trianglemesh" "point3 P" [-1 -0.2 -1  1 -0.2 -1  1 0.2 -1  -1 0.2 -1
+                                  -1 -0.2 1  1 -0.2 1  1 0.2 1  -1 0.2 1]
+  "integer indices" [0 2 1  0 3 2   4 5 6  4 6 7   0 1 5  0 5 4   1 2 6  1 6 5   2 3 7  2 7 6   3 0 4  3 4 7]
+)";
+  const std::string volume = header + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " + kCoefficients +
+                             "\nMediumInterface \"m\" \"\"\nMaterial \"dielectric\" \"float eta\" 1.4\n" + box;
+  for (const char* sampling : {"dwivedi", "mis"}) {
+    SCOPED_TRACE(sampling);
+    const std::string walk = header + "Material \"subsurface\" " + kCoefficients +
+                             " \"float eta\" 1.4 \"string method\" \"randomwalk\" \"string boundary\" \"dielectric\" "
+                             "\"string walksampling\" \"" + sampling + "\" \"bool backwardguiding\" true\n" + box;
+    expect_same_picture(walk, volume, 1024);
+  }
+}
+
 TEST(SubsurfaceRandomWalk, MatchedBoundaryEqualsAMediumInsideAnInterface) {
   std::string walk = std::string(kHeader) + "Material \"subsurface\" " + kCoefficients +
                      " \"string method\" \"randomwalk\" \"string boundary\" \"matched\"\nShape \"sphere\"\n";
