@@ -86,7 +86,7 @@ void run(benchmark::State& state, const Tracer& tracer, Vec3 entry_p) {
   const MixtureWalkStep<3> step = make_walk_step({RGB(float(alpha)), RGB(1.0f), 0.0f}, settings);
   constexpr int kPaths = 20000;
   Moments near_side, far_side, both;
-  double seconds = 0, paths = 0;
+  double seconds = 0, paths = 0, steps = 0;
   uint64_t seed = 1;
   for (auto _ : state) {
     dermis::Rng rng(seed++, 3);
@@ -96,6 +96,7 @@ void run(benchmark::State& state, const Tracer& tracer, Vec3 entry_p) {
       double r = 0, t = 0;
       if (random_walk(step, settings, entry_p, {0, 0, 1}, {0, 0, -1}, rng, tracer, out))
         (out.exit_n.z > 0 ? r : t) = out.weight[0];  // a ball: the lower half is the far side
+      steps += out.steps;
       near_side.add(r), far_side.add(t), both.add(r + t);
     }
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -105,6 +106,7 @@ void run(benchmark::State& state, const Tracer& tracer, Vec3 entry_p) {
   state.counters["R"] = near_side.sum / paths;
   state.counters["T"] = far_side.sum / paths;
   state.counters["paths_per_s"] = rate;
+  state.counters["steps"] = steps / paths;  // scattering events per path
   state.counters["eff_R"] = rate / near_side.variance(paths);
   state.counters["eff_T"] = rate / far_side.variance(paths);
   state.counters["eff_RT"] = rate / both.variance(paths);

@@ -143,10 +143,15 @@ class MixtureWalkStep {
   // guided kernel integrates to the same constant by the eigenvalue equation), so
   //   b_c = I_back / I = 1 / (1 + exp(kappa_c sigma_t,c (D_back - D_front))),
   // depths of the flight's starting point below each plane. One half where kappa = 0.
+  // For a slab (planes parallel, d apart) the summed importance is the diffusion solution
+  // with both faces absorbing, cosh(kappa sigma_t (D_front - d/2)) / cosh(kappa sigma_t d/2).
+  // Shares below e^-40 (far below double precision next to 1) are set to 0: the walk then
+  // skips the back terms; any share keeps the walk unbiased, as proposal and weight use it.
   Channels back_shares(double depth_front, double depth_back) const {
     Channels b{};
     for (int c = 0; c < N; ++c) {
       const double x = guide_[c].kappa() * sigma_t_[c] * (depth_back - depth_front);
+      if (x > kNegligibleBackExponent) continue;  // b = 0
       b[c] = x >= 0 ? std::exp(-x) / (1 + std::exp(-x)) : 1 / (1 + std::exp(x));  // logistic, no overflow
     }
     return b;
@@ -304,6 +309,7 @@ class MixtureWalkStep {
   }
 
   static constexpr double kDwivediDirectionMaxG = 0.25;
+  static constexpr double kNegligibleBackExponent = 40;
 
   Channels sigma_t_, albedo_;
   std::array<DwivediGuide, N> guide_{};
