@@ -1,13 +1,15 @@
 #!/usr/bin/python3
 """Equal-time comparison of backward guiding for the random walk (issue 6).
 
-The random walk with the `dielectric` boundary, rendered for the same time with
-classical sampling, the seed's MIS (guiding toward the entry plane), MIS with backward
-guiding, and Dwivedi-only with backward guiding, against the brute-force volumetric path
-tracer (20x the time, two halves). The measurement is bench/sss_methods.py's (CPU time,
-reference noise removed); this script only adds the geometries and the rows.
+The random walk rendered for the same time with classical sampling, the seed's MIS
+(guiding toward the entry plane), MIS with backward guiding, and Dwivedi-only with
+backward guiding. With the `dielectric` boundary the reference is the brute-force
+volumetric path tracer, with the `diffuse` boundary (the production default) the
+classical walk itself; 20x the time, two halves. The measurement is
+bench/sss_methods.py's (CPU time, reference noise removed); this script only adds the
+geometries and the rows.
 
-  /usr/bin/python3 bench/walk_backward.py              # ~8 min on 2 cores
+  /usr/bin/python3 bench/walk_backward.py              # ~16 min on 2 cores
   /usr/bin/python3 bench/walk_backward.py --scale 0.2  # smoke test
 
 Writes docs/results-backward.md (tables; hand-written findings below the marker are kept)
@@ -52,13 +54,13 @@ ROWS = [  # label, walksampling, backward guiding
 MARKER = "<!-- findings: written by hand below this line; kept when the script rewrites the tables -->"
 
 
-def scene(g, label, sampling, backward):
+def scene(g, boundary, label, sampling, backward):
     if sampling is None:
         mat, name = f'{sm.WALK_MATERIAL} "string method" "volumetric"', f"{g}-volumetric"
     else:
-        mat = (f'{sm.WALK_MATERIAL} "string method" "randomwalk" "string boundary" "dielectric" '
+        mat = (f'{sm.WALK_MATERIAL} "string method" "randomwalk" "string boundary" "{boundary}" '
                f'"string walksampling" "{sampling}" "bool backwardguiding" {"true" if backward else "false"}')
-        name = f"{g}-walk-" + label.replace(" + ", "-").replace(" ", "-")
+        name = f"{g}-walk-{boundary}-" + label.replace(" + ", "-").replace(" ", "-")
     text = sm.scene_text(g, mat, name)
     if g == "slab":
         text = text.replace(sm.LIGHTS, BACKLIGHT)
@@ -70,6 +72,7 @@ def main():
     ap.add_argument("--scale", type=float, default=1.0, help="multiply every render time (default 1)")
     ap.add_argument("--work", default="/tmp/dermis-walk-backward", help="scratch folder for EXR files")
     ap.add_argument("--geometries", default="slab,fin,sphere,bust", help="comma-separated subset")
+    ap.add_argument("--boundaries", default="dielectric,diffuse", help="comma-separated subset")
     ap.add_argument("--no-docs", action="store_true", help="do not write docs/results-backward.md")
     args = ap.parse_args()
     os.makedirs(sm.SCENES, exist_ok=True)
@@ -78,28 +81,36 @@ def main():
     S = args.scale
     t0 = time.time()
     fams = {}
-    for g in args.geometries.split(","):
-        print(f"[{g}]", flush=True)
-        mask = sm.make_mask(g, args.work)
-        fam = sm.Family(f"{g}-backward", g, args.work, mask)
-        fam.reference(scene(g, None, None, None), REF_TIME[g] * S, f"`volumetric` on `scenes/bench/{g}-volumetric.pbrt`")
-        for label, sampling, backward in ROWS:
-            out = os.path.join(args.work, f"{g}-{label.replace(' + ', '-')}.exr")
-            fam.measure(label, sm.render(scene(g, label, sampling, backward), out, seconds=EQUAL_TIME[g] * S, seed=1))
-        fams[g] = fam
+    masks = {g: sm.make_mask(g, args.work) for g in args.geometries.split(",")}
+    for b in args.boundaries.split(","):
+        for g in args.geometries.split(","):
+            print(f"[{b} {g}]", flush=True)
+            fam = sm.Family(f"{g}-{b}-backward", g, args.work, masks[g])
+            if b == "dielectric":
+                fam.reference(scene(g, b, None, None, None), REF_TIME[g] * S,
+                              f"`volumetric` on `scenes/bench/{g}-volumetric.pbrt`")
+            else:
+                fam.reference(scene(g, b, "classical", "classical", False), REF_TIME[g] * S,
+                              f"`randomwalk` {b} classical on `scenes/bench/{g}-walk-{b}-classical.pbrt`")
+            for label, sampling, backward in ROWS:
+                out = os.path.join(args.work, f"{g}-{b}-{label.replace(' + ', '-')}.exr")
+                fam.measure(label, sm.render(scene(g, b, label, sampling, backward), out, seconds=EQUAL_TIME[g] * S,
+                                             seed=1))
+            fams[(b, g)] = fam
     total = time.time() - t0
     print(f"total wall time {total:.0f} s", flush=True)
-    for g, fam in fams.items():
-        print(f"\n{g}\n" + sm.fmt_table(fam, "mis"))
+    for (b, g), fam in fams.items():
+        print(f"\n{b} {g}\n" + sm.fmt_table(fam, "mis"))
     if not args.no_docs:
         write_docs(fams, total, S)
 
 
 def write_docs(fams, total, S):
     os.makedirs(sm.IMAGES, exist_ok=True)
-    for g, fam in fams.items():
-        pngs = [fam.ref_png] + [os.path.join(fam.work, f"{g}-{label.replace(' + ', '-')}.png") for label, _, _ in ROWS]
-        sm.strip(pngs, os.path.join(sm.IMAGES, f"results-backward-{g}.png"), ["volumetric ref"] + [r[0] for r in ROWS])
+    for (b, g), fam in fams.items():
+        pngs = [fam.ref_png] + [os.path.join(fam.work, f"{g}-{b}-{label.replace(' + ', '-')}.png")
+                                for label, _, _ in ROWS]
+        sm.strip(pngs, os.path.join(sm.IMAGES, f"results-backward-{b}-{g}.png"), ["reference"] + [r[0] for r in ROWS])
     path = os.path.join(sm.DOCS, "results-backward.md")
     kept = ""
     if os.path.exists(path):
@@ -115,19 +126,20 @@ def write_docs(fams, total, S):
            "pixels, the reference's own noise removed; efficiency = MSE·CPU of `mis` (the seed's guiding, the default "
            "before backward guiding) over MSE·CPU of the row.\n",
            f"Material: `subsurface` {sm.WALK_MATERIAL} (mean free path 13 / 9.5 / 6.7 mm in R / G / B), "
-           '`"string method" "randomwalk" "string boundary" "dielectric"`, and the rows\' `walksampling` and '
-           "`backwardguiding`. Reference: the `volumetric` method (the same medium inside a smooth dielectric), 20× the "
-           "time.\n"]
+           '`"string method" "randomwalk"`, the section\'s `boundary`, and the rows\' `walksampling` and '
+           "`backwardguiding`. Reference, 20× the time: for `dielectric` the `volumetric` method (the same medium "
+           "inside a smooth dielectric), for `diffuse` the classical walk (all rows are unbiased estimators of the same "
+           "image: tested).\n"]
     titles = dict(slab="100 × 100 × 8 mm slab lit from behind (0.6–1.2 mfp thick)",
                   fin="block with a 4 mm fin (0.3–0.6 mfp), front-lit", sphere="sphere of radius 20 mm (3–6 mfp across)",
                   bust="Nefertiti bust (≈ 40 mfp across)")
-    for g, fam in fams.items():
-        out.append(f"## {titles[g]}: {EQUAL_TIME[g] * S:g} s each\n")
+    for (b, g), fam in fams.items():
+        out.append(f"## `{b}` boundary: {titles[g]}, {EQUAL_TIME[g] * S:g} s each\n")
         out.append(sm.fmt_table(fam, "mis") + "\n")
         out.append(sm.ref_line(fam) + "\n")
         out.append("Mean over the object (R, G, B): reference " + sm.means(fam.rows[0]["mean_obj_ref"]) + "; " +
                    "; ".join(f"{row['label']} {sm.means(row['mean_obj'])}" for row in fam.rows) + ".\n")
-        out.append(f"![{g}](images/results-backward-{g}.png)\n")
+        out.append(f"![{b} {g}](images/results-backward-{b}-{g}.png)\n")
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n" + MARKER + (kept if kept else "\n"))
     print(f"wrote {path}")

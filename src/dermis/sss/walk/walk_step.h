@@ -145,8 +145,10 @@ class MixtureWalkStep {
   // depths of the flight's starting point below each plane. One half where kappa = 0.
   // For a slab (planes parallel, d apart) the summed importance is the diffusion solution
   // with both faces absorbing, cosh(kappa sigma_t (D_front - d/2)) / cosh(kappa sigma_t d/2).
-  // Shares below e^-40 (far below double precision next to 1) are set to 0: the walk then
-  // skips the back terms; any share keeps the walk unbiased, as proposal and weight use it.
+  // Shares below 1/1000 are set to 0 (the back term would be at most 1/2000 of the
+  // mixture, next to 1/2 for classical sampling): the walk then skips the back terms,
+  // which cost a third of a step's exponentials. Any share keeps the walk unbiased, as
+  // proposal and weight use the same one.
   Channels back_shares(double depth_front, double depth_back) const {
     Channels b{};
     for (int c = 0; c < N; ++c) {
@@ -309,7 +311,7 @@ class MixtureWalkStep {
   }
 
   static constexpr double kDwivediDirectionMaxG = 0.25;
-  static constexpr double kNegligibleBackExponent = 40;
+  static constexpr double kNegligibleBackExponent = 6.907755278982137;  // ln 1000
 
   Channels sigma_t_, albedo_;
   std::array<DwivediGuide, N> guide_{};

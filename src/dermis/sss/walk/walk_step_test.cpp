@@ -173,7 +173,7 @@ TEST(WalkStep, ScatterPassageWeightsMatchQuadrature) {
 TEST(WalkStep, BackSharesFollowTheImportanceOfBothPlanes) {
   const std::array<double, 3> sigma_t{1.0, 2.0, 0.5}, albedo{0.5, 0.9, 1.0};
   const MixtureWalkStep<3> step(sigma_t, albedo, 0.0, 0.5);
-  for (auto [front, back] : {std::pair{0.2, 1.5}, {3.0, 0.1}, {1.0, 1.0}}) {
+  for (auto [front, back] : {std::pair{0.2, 1.5}, {3.0, 0.1}, {1.0, 1.0}, {0.5, 5.0}}) {
     const auto b = step.back_shares(front, back), swapped = step.back_shares(back, front);
     for (int c = 0; c < 3; ++c) {
       const double k = step.guide(c).kappa() * sigma_t[c];
@@ -182,6 +182,10 @@ TEST(WalkStep, BackSharesFollowTheImportanceOfBothPlanes) {
       EXPECT_NEAR(b[c] + swapped[c], 1.0, 1e-15) << c;
     }
   }
+  // Below 1/1000 the share is dropped (exactly 0: no back terms), above it kept.
+  const double k0 = step.guide(0).kappa() * sigma_t[0];
+  EXPECT_EQ(step.back_shares(0.0, std::log(1001.0) / k0)[0], 0.0);
+  EXPECT_GT(step.back_shares(0.0, std::log(999.0) / k0)[0], 0.0);
   EXPECT_EQ(step.back_shares(0.0, 1e6)[0], 0.0);
   EXPECT_EQ(step.back_shares(1e6, 0.0)[0], 1.0);
   EXPECT_EQ(step.back_shares(0.0, 5.0)[2], 0.5);  // albedo 1: kappa = 0, no preference
