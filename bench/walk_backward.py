@@ -9,7 +9,7 @@ classical walk itself; 20x the time, two halves. The measurement is
 bench/sss_methods.py's (CPU time, reference noise removed); this script only adds the
 geometries and the rows.
 
-  /usr/bin/python3 bench/walk_backward.py              # ~16 min on 2 cores
+  /usr/bin/python3 bench/walk_backward.py              # ~20 min on 2 cores
   /usr/bin/python3 bench/walk_backward.py --scale 0.2  # smoke test
 
 Writes docs/results-backward.md (tables; hand-written findings below the marker are kept)
@@ -26,10 +26,17 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import sss_methods as sm  # noqa: E402
 
-# A 100 x 100 x 8 mm slab standing on the floor, lit from behind by the key light
-# (moved behind it) and seen from the front: the light the camera sees has crossed it.
-SLAB = ('Shape "trianglemesh" "point3 P" [ -50 -4 0  50 -4 0  50 4 0  -50 4 0  -50 -4 100  50 -4 100  50 4 100  -50 4 100 ]\n'
-        '      "integer indices" [ 0 2 1  0 3 2   4 5 6  4 6 7   0 1 5  0 5 4   1 2 6  1 6 5   2 3 7  2 7 6   3 0 4  3 4 7 ]')
+
+
+def slab(thickness):
+    """A 100 x 100 mm slab standing on the floor, `thickness` mm thick along y."""
+    h = thickness / 2
+    p = f"-50 {-h} 0  50 {-h} 0  50 {h} 0  -50 {h} 0  -50 {-h} 100  50 {-h} 100  50 {h} 100  -50 {h} 100"
+    return (f'Shape "trianglemesh" "point3 P" [ {p} ]\n'
+            '      "integer indices" [ 0 2 1  0 3 2   4 5 6  4 6 7   0 1 5  0 5 4   1 2 6  1 6 5   2 3 7  2 7 6   3 0 4  3 4 7 ]')
+
+
+# Slabs lit from behind (BACKLIGHT) and seen from the front: the light the camera sees has crossed them.
 BACKLIGHT = """
 # Soft blue-grey sky and a warm 120 x 120 mm light behind the slab, to the left, out of
 # the camera's view and out of its line of sight through the slab.
@@ -42,8 +49,10 @@ AttributeBegin
       "point3 P" [ -60 0 -60   60 0 -60   -60 0 60   60 0 60 ]
 AttributeEnd
 """
-sm.GEOMETRY["slab"] = ("-120 -300 80   0 0 50   0 0 1", -0.3, SLAB)
-EQUAL_TIME = dict(bust=6, fin=4, sphere=4, slab=4)
+sm.GEOMETRY["slab"] = ("-120 -300 80   0 0 50   0 0 1", -0.3, slab(8))
+sm.GEOMETRY["thickslab"] = ("-120 -300 80   0 0 50   0 0 1", -0.3, slab(30))
+BACKLIT = ("slab", "thickslab")
+EQUAL_TIME = dict(bust=6, fin=4, sphere=4, slab=4, thickslab=4)
 REF_TIME = {g: 20 * t for g, t in EQUAL_TIME.items()}
 ROWS = [  # label, walksampling, backward guiding
     ("classical", "classical", False),
@@ -62,7 +71,7 @@ def scene(g, boundary, label, sampling, backward):
                f'"string walksampling" "{sampling}" "bool backwardguiding" {"true" if backward else "false"}')
         name = f"{g}-walk-{boundary}-" + label.replace(" + ", "-").replace(" ", "-")
     text = sm.scene_text(g, mat, name)
-    if g == "slab":
+    if g in BACKLIT:
         text = text.replace(sm.LIGHTS, BACKLIGHT)
     return sm.write_scene(name, text)
 
@@ -71,7 +80,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--scale", type=float, default=1.0, help="multiply every render time (default 1)")
     ap.add_argument("--work", default="/tmp/dermis-walk-backward", help="scratch folder for EXR files")
-    ap.add_argument("--geometries", default="slab,fin,sphere,bust", help="comma-separated subset")
+    ap.add_argument("--geometries", default="slab,thickslab,fin,sphere,bust", help="comma-separated subset")
     ap.add_argument("--boundaries", default="dielectric,diffuse", help="comma-separated subset")
     ap.add_argument("--no-docs", action="store_true", help="do not write docs/results-backward.md")
     args = ap.parse_args()
@@ -131,6 +140,7 @@ def write_docs(fams, total, S):
            "inside a smooth dielectric), for `diffuse` the classical walk (all rows are unbiased estimators of the same "
            "image: tested).\n"]
     titles = dict(slab="100 × 100 × 8 mm slab lit from behind (0.6–1.2 mfp thick)",
+                  thickslab="100 × 100 × 30 mm slab lit from behind (2.3–4.5 mfp thick)",
                   fin="block with a 4 mm fin (0.3–0.6 mfp), front-lit", sphere="sphere of radius 20 mm (3–6 mfp across)",
                   bust="Nefertiti bust (≈ 40 mfp across)")
     for (b, g), fam in fams.items():

@@ -37,6 +37,8 @@ TEST(SubsurfaceParams, ReadsCoefficientsScaleAndDermisOptions) {
   EXPECT_FLOAT_EQ(p.g, 0.3f);
   EXPECT_EQ(p.method, SubsurfaceParams::Method::Volumetric);
   EXPECT_EQ(p.profile, SubsurfaceParams::Profile::Dipole);
+  EXPECT_FALSE(p.backward_guiding);  // the default
+  EXPECT_TRUE(params_of("Material \"subsurface\" \"bool backwardguiding\" true").backward_guiding);
 }
 
 TEST(SubsurfaceParams, PresetNameUsesJensenTableTimesScale) {
@@ -71,6 +73,7 @@ TEST(SubsurfaceParams, BadInputIsAnErrorAtItsLocation) {
   expect_error("Material \"subsurface\" \"rgb sigma_a\" [-1 0 0]", "non-negative");
   expect_error("Material \"subsurface\" \"float eta\" 0.5", "eta");
   expect_error("Material \"subsurface\" \"string name\" \"Skin1\" \"rgb sigma_a\" [1 1 1]", "either");
+  expect_error("Material \"subsurface\" \"bool backwardguiding\" [true false]", "\"backwardguiding\" must be one bool");
 }
 
 TEST(SubsurfaceVolumetric, IsExactlyAMediumInsideADielectric) {
