@@ -271,42 +271,46 @@ class MixtureWalkStep {
   }
 
   // The derivation at the top of this file: numerator and mixture as sums of a exp(b),
-  // per channel the classical term and the guided term about each axis in use.
+  // per channel the classical term and the guided term about each axis in use. The
+  // classical exponentials serve the numerator too.
   Channels weights(const FlightProposal& f, const GuideAxes<N>& axes, double length, bool collision,
                    const Channels& q) const {
     const double phase = f.scattered ? f.phase : 1.0;
-    double a[3 * N], b[3 * N], b_classical[N];
-    int terms = 0;
+    double a_classical[N], b_classical[N], a_guided[2 * N], b_guided[2 * N];
+    int guided_terms = 0;
     double b_max = -std::numeric_limits<double>::infinity();
-    auto add = [&](double a_i, double b_i) {
+    auto add_guided = [&](double a_i, double b_i) {
       if (!(a_i > 0)) return;
-      a[terms] = a_i, b[terms] = b_i, ++terms;
+      a_guided[guided_terms] = a_i, b_guided[guided_terms] = b_i, ++guided_terms;
       b_max = std::max(b_max, b_i);
     };
     for (int c = 0; c < N; ++c) {
       b_classical[c] = -sigma_t_[c] * length;
-      add(q[c] * p_classical_ * phase * (collision ? sigma_t_[c] : 1.0), b_classical[c]);
+      a_classical[c] = q[c] * p_classical_ * phase * (collision ? sigma_t_[c] : 1.0);
+      if (a_classical[c] > 0) b_max = std::max(b_max, b_classical[c]);
       if (p_guided_ > 0 && q[c] > 0) {
         const double back = axes.has_back ? axes.back_share[c] : 0.0;
         const double guided = q[c] * p_guided_;
         if (back < 1)
-          add(guided * (1 - back) * guided_density(c, f.cos_axis, phase, f.scattered, collision),
-              -sigma_t_[c] * guide_[c].extinction_scale(f.cos_axis) * length);
+          add_guided(guided * (1 - back) * guided_density(c, f.cos_axis, phase, f.scattered, collision),
+                     -sigma_t_[c] * guide_[c].extinction_scale(f.cos_axis) * length);
         if (back > 0)
-          add(guided * back * guided_density(c, f.cos_back, phase, f.scattered, collision),
-              -sigma_t_[c] * guide_[c].extinction_scale(f.cos_back) * length);
+          add_guided(guided * back * guided_density(c, f.cos_back, phase, f.scattered, collision),
+                     -sigma_t_[c] * guide_[c].extinction_scale(f.cos_back) * length);
       }
     }
     Channels w;
-    if (terms == 0 || !std::isfinite(b_max)) {
-      w.fill(0.0);
-      return w;
+    w.fill(0.0);
+    if (!std::isfinite(b_max)) return w;  // no strategy could have sampled this flight
+    double mixture = 0, e[N];
+    for (int c = 0; c < N; ++c) {
+      e[c] = std::exp(b_classical[c] - b_max);
+      mixture += a_classical[c] * e[c];
     }
-    double mixture = 0;
-    for (int i = 0; i < terms; ++i) mixture += a[i] * std::exp(b[i] - b_max);
+    for (int i = 0; i < guided_terms; ++i) mixture += a_guided[i] * std::exp(b_guided[i] - b_max);
+    if (!(mixture > 0)) return w;
     for (int c = 0; c < N; ++c)
-      w[c] = (f.scattered ? albedo_[c] * phase : 1.0) * (collision ? sigma_t_[c] : 1.0) *
-             std::exp(b_classical[c] - b_max) / mixture;
+      w[c] = (f.scattered ? albedo_[c] * phase : 1.0) * (collision ? sigma_t_[c] : 1.0) * e[c] / mixture;
     return w;
   }
 
