@@ -39,9 +39,10 @@ struct DemoFixture {
     for (int y = 0; y < kHeight; ++y)
       for (int x = 0; x < kWidth; ++x)
         for (int s = 0; s < kSpp; ++s) {
-          Rng rng(7, uint64_t(y) * kWidth + x, uint64_t(s));
-          Ray r = scene->camera.generate_ray({x + rng.uniform(), y + rng.uniform()}, {rng.uniform(), rng.uniform()});
-          benchmark::DoNotOptimize(trace_path(*scene, r, scene->camera_medium, rng, counters));
+          Sampler sampler(SamplerKind::Sobol, 7, uint64_t(y) * kWidth + x, uint32_t(s));
+          Vec2 u_film = sampler.get2d();
+          Ray r = scene->camera.generate_ray({x + u_film.x, y + u_film.y}, sampler.get2d());
+          benchmark::DoNotOptimize(trace_path(*scene, r, scene->camera_medium, sampler, counters));
         }
   }
 };

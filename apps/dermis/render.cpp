@@ -1,4 +1,4 @@
-// dermis render SCENE [--spp N] [--threads N] [--seed S] [-o OUT] [--res WxH] [--time-limit SEC]
+// dermis render SCENE [--spp N] [--threads N] [--seed S] [--sampler sobol|independent] [-o OUT] [--res WxH] [--time-limit SEC]
 #include <fmt/format.h>
 
 #include <atomic>
@@ -28,6 +28,7 @@ struct RenderArgs {
   std::string scene;
   int spp = 0, threads = 0;
   int64_t seed = -1;
+  std::string sampler;  // empty: the scene's Sampler
   std::string output, res;
   double time_limit = 0;
   bool quiet = false, no_png = false;
@@ -50,6 +51,7 @@ int run_render(const RenderArgs& a) {
       desc.film.yres = h;
     }
     if (a.spp > 0) desc.settings.spp = a.spp;
+    if (!a.sampler.empty()) parse_sampler_kind(a.sampler, desc.settings.sampler);  // checked by CLI11
     for (const auto& w : desc.diagnostics.warnings) fmt::print(stderr, "{}\n", w);
     Diagnostics build_diag;
     PointCloudOptions pco;
@@ -57,6 +59,7 @@ int run_render(const RenderArgs& a) {
     pco.save_path = a.save_pointcloud;
     pco.load_path = a.load_pointcloud;
     pco.seed = a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
+    pco.sampler = desc.settings.sampler;
     scene = build_render_scene(desc, build_diag, pco);
     for (const auto& w : build_diag.warnings) fmt::print(stderr, "{}\n", w);
   } catch (const std::exception& e) {
@@ -81,6 +84,7 @@ int run_render(const RenderArgs& a) {
   opt.spp = desc.settings.spp;
   opt.threads = a.threads;
   opt.seed = a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
+  opt.sampler = desc.settings.sampler;
   opt.time_limit = a.time_limit;
   opt.cancel = &g_interrupted;
   const int64_t total = int64_t(scene->film.xres) * scene->film.yres * opt.spp;
@@ -146,6 +150,9 @@ void register_render(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--threads", args->threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", args->seed, "random seed (default: the scene's, else 0)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--sampler", args->sampler,
+                  "sobol (Owen-scrambled Sobol', the default) or independent (default: the scene's Sampler)")
+      ->check(CLI::IsMember({"sobol", "independent"}));
   cmd->add_option("-o,--output", args->output, "output image (.exr, .png, ...; default: the Film's filename)");
   cmd->add_option("--res", args->res, "resolution WIDTHxHEIGHT, overriding the Film's");
   cmd->add_option("--time-limit", args->time_limit, "stop after this many seconds, keeping the samples taken")

@@ -36,15 +36,20 @@ inline Vec3 direction_about(Vec3 axis, float cos_theta, float u) {
 
 // Next-event estimation from point p (already offset for surfaces) in `medium`.
 // `scatter(wi)` returns f(wo, wi)|cos| (or the phase function) and its sampling pdf.
+// Takes three dimensions (light choice, then the position on it as a pair) whether or
+// not it returns early, so that the dimensions after it do not shift.
 template <class Scatter>
-RGB estimate_direct(const RenderScene& sc, Vec3 p, int medium, Rng& rng, PathCounters& counters, Scatter&& scatter) {
+RGB estimate_direct(const RenderScene& sc, Vec3 p, int medium, Sampler& sampler, PathCounters& counters,
+                    Scatter&& scatter) {
+  const float u_light = sampler.get1d();
+  const Vec2 u_position = sampler.get2d();
   if (sc.lights.empty()) return RGB(0);
   float pmf;
-  std::size_t li = sc.light_distribution.sample_discrete(rng.uniform(), &pmf);
+  std::size_t li = sc.light_distribution.sample_discrete(u_light, &pmf);
   if (pmf <= 0) return RGB(0);
   const Light& light = sc.lights[li];
   LightSample ls;
-  if (!light_sample(light, sc.shapes, p, {rng.uniform(), rng.uniform()}, ls) || ls.pdf <= 0) return RGB(0);
+  if (!light_sample(light, sc.shapes, p, u_position, ls) || ls.pdf <= 0) return RGB(0);
   auto [f, scatter_pdf] = scatter(ls.wi);
   if (f.is_black()) return RGB(0);
   float dist = ls.delta && std::isinf(ls.distance) ? kInf : ls.distance * (1 - 1e-4f);
@@ -57,7 +62,7 @@ RGB estimate_direct(const RenderScene& sc, Vec3 p, int medium, Rng& rng, PathCou
 
 }  // namespace
 
-RGB transmitted_irradiance(const RenderScene& sc, Vec3 p, Vec3 n, float eta, int medium, Rng& rng,
+RGB transmitted_irradiance(const RenderScene& sc, Vec3 p, Vec3 n, float eta, int medium, Sampler& sampler,
                            PathCounters& counters) {
   auto transmitted_cos = [&](Vec3 wi) {
     float c = dot(wi, n);
@@ -65,11 +70,11 @@ RGB transmitted_irradiance(const RenderScene& sc, Vec3 p, Vec3 n, float eta, int
   };
   Vec3 p_out = offset_ray_origin(p, n, n);
   // Direct light by next-event estimation (MIS against the cosine sampling below).
-  RGB E = estimate_direct(sc, p_out, medium, rng, counters, [&](Vec3 wi) {
+  RGB E = estimate_direct(sc, p_out, medium, sampler, counters, [&](Vec3 wi) {
     return std::pair{RGB(transmitted_cos(wi)), cosine_hemisphere_pdf(dot(wi, n))};
   });
   // Everything else along one cosine-distributed direction.
-  Vec3 local = sample_cosine_hemisphere({rng.uniform(), rng.uniform()});
+  Vec3 local = sample_cosine_hemisphere(sampler.get2d());
   if (local.z <= 0) return E;
   Vec3 wi = Frame(n).to_world(local);
   PathStart start;
@@ -77,7 +82,8 @@ RGB transmitted_irradiance(const RenderScene& sc, Vec3 p, Vec3 n, float eta, int
   start.prev_pdf = cosine_hemisphere_pdf(local.z);
   start.prev_p = p;
   start.depth = 1;
-  RGB Li = trace_path(sc, Ray{p_out, wi}, medium, rng, counters, start);
+  start.first_dimension = Sampler::region(sampler.dimension(), 0x1aadu);
+  RGB Li = trace_path(sc, Ray{p_out, wi}, medium, sampler, counters, start);
   return E + Li * (transmitted_cos(wi) / start.prev_pdf);
 }
 
@@ -116,13 +122,15 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
   return RGB(0);
 }
 
-RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounters& counters, const PathStart& start) {
+RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, PathCounters& counters,
+               const PathStart& start) {
   RGB L(0), beta(1);
   float eta_scale = 1;
   bool specular = start.from_camera;  // the last scattering was specular (or the camera): no MIS on emission
   float prev_pdf = start.prev_pdf;    // solid-angle pdf of the last scattering direction
   Vec3 prev_p = start.from_camera ? ray.o : start.prev_p;  // position of the last scattering event
   int depth = start.depth, crossings = 0;
+  uint64_t vertex_dimension = start.first_dimension;  // this vertex's block (integrator.h)
   const int max_depth = sc.settings.max_depth;
   // Russian roulette after the second bounce on max(throughput) x eta scale (pbrt-v4
   // sec. 14.1.3); reweights beta when the path survives.
@@ -131,12 +139,13 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
     float rr = beta.max() * eta_scale;
     if (rr >= 1) return true;
     float q = std::max(0.0f, 1 - rr);
-    if (rng.uniform() < q) return false;
+    if (sampler.get1d() < q) return false;
     beta /= 1 - q;
     return true;
   };
 
-  while (true) {
+  for (;; vertex_dimension += kVertexDimensions) {
+    sampler.set_dimension(vertex_dimension);
     SurfaceHit hit;
     ++counters.rays;
     if (counters.recorded_rays) counters.recorded_rays->push_back(ray);
@@ -151,10 +160,10 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
       for (int c = 0; c < 3; ++c) qsum += q[c] = std::abs(beta[c]);
       if (qsum <= 0) break;
       for (float& v : q) v /= qsum;
-      float uc = rng.uniform();
+      float uc = sampler.get1d();
       int c = uc < q[0] ? 0 : (uc < q[0] + q[1] ? 1 : 2);
       float st = m.sigma_t[c];
-      float t = st > 0 ? -std::log1p(-rng.uniform()) / st : kInf;
+      float t = st > 0 ? -std::log1p(-sampler.get1d()) / st : kInf;
       if (t < t_hit) {
         // Scattering event in the medium.
         RGB tr = m.transmittance(t);
@@ -167,13 +176,14 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
         Vec3 wo = -ray.d;
         const float g = m.g;
         if (sc.medium_sees_lights[medium])
-          L += beta * estimate_direct(sc, p, medium, rng, counters, [&](Vec3 wi) {
+          L += beta * estimate_direct(sc, p, medium, sampler, counters, [&](Vec3 wi) {
                  float ph = henyey_greenstein(dot(-wo, wi), g);
                  return std::pair{RGB(ph), ph};
                });
         // Sample the phase function about the propagation direction (weight 1).
-        float cos_theta = sample_henyey_greenstein_cos(rng.uniform(), g);
-        Vec3 wi = direction_about(ray.d, cos_theta, rng.uniform());
+        const Vec2 u_phase = sampler.get2d();
+        float cos_theta = sample_henyey_greenstein_cos(u_phase.x, g);
+        Vec3 wi = direction_about(ray.d, cos_theta, u_phase.y);
         prev_pdf = henyey_greenstein(cos_theta, g);
         specular = false;
         prev_p = p;
@@ -242,7 +252,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
         continue;
       }
       float F = fresnel_dielectric(cos_o, sm.entry_eta);
-      if (rng.uniform() < F) {
+      if (sampler.get1d() < F) {
         Vec3 wi = reflect(wo, hit.ng);
         specular = true;
         prev_pdf = F;
@@ -255,13 +265,18 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
         // the local disk needs the irradiance at x itself: one estimate per sample).
         const auto* cloud = sc.point_clouds.empty() ? nullptr : sc.point_clouds[hit.shape].get();
         if (!cloud) break;  // during the pre-pass: the object's own cloud does not exist yet
-        RGB Ex = sm.params.local_disk ? transmitted_irradiance(sc, hit.p, hit.ng, sm.params.eta, medium, rng, counters)
+        RGB Ex = sm.params.local_disk ? transmitted_irradiance(sc, hit.p, hit.ng, sm.params.eta, medium, sampler, counters)
                                       : RGB(0);
         L += beta * cloud->radiant_exitance(hit.p, Ex) / (sm.sw_norm * kPi);
         break;
       }
+      // The exit sampler draws from its own region; the exit's light and lobe from this block.
+      const uint64_t after_exit = sampler.dimension();
+      sampler.set_dimension(Sampler::region(after_exit, 0x55e1u));
       SubsurfaceExit ex;
-      if (!sample_subsurface_exit(sc, sm, hit, wo, rng, counters, ex)) {
+      const bool exited = sample_subsurface_exit(sc, sm, hit, wo, sampler, counters, ex);
+      sampler.set_dimension(after_exit);
+      if (!exited) {
         if (ex.truncated) ++counters.truncated;
         break;
       }
@@ -280,10 +295,11 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
       sw.eta = sm.params.eta;
       sw.sw_norm = sm.sw_norm;
       Vec3 p_out = offset_ray_origin(ex.hit.p, ex.hit.ng, ex.hit.ng);
-      L += beta * estimate_direct(sc, p_out, medium, rng, counters, [&](Vec3 wi) {
+      L += beta * estimate_direct(sc, p_out, medium, sampler, counters, [&](Vec3 wi) {
              return std::pair{bsdf_eval(sw, ex.hit.ng, wi), bsdf_pdf(sw, ex.hit.ng, wi)};
            });
-      auto bs = bsdf_sample(sw, ex.hit.ng, rng.uniform(), {rng.uniform(), rng.uniform()});
+      const float u_exit_lobe = sampler.get1d();
+      auto bs = bsdf_sample(sw, ex.hit.ng, u_exit_lobe, sampler.get2d());
       if (!bs) break;
       beta *= bs->weight;
       specular = false;
@@ -300,12 +316,12 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Rng& rng, PathCounter
       // Shadow rays leave on the side of the light; the medium there is the one the
       // path is in, since Lambertian reflection stays on the side of wo.
       Vec3 p_out = offset_ray_origin(hit.p, hit.ng, wo);
-      L += beta * estimate_direct(sc, p_out, medium, rng, counters, [&](Vec3 wi) {
+      L += beta * estimate_direct(sc, p_out, medium, sampler, counters, [&](Vec3 wi) {
              return std::pair{bsdf_eval(bsdf, wo, wi), bsdf_pdf(bsdf, wo, wi)};
            });
     }
-    float u_lobe = rng.uniform();
-    Vec2 u_dir{rng.uniform(), rng.uniform()};
+    float u_lobe = sampler.get1d();
+    Vec2 u_dir = sampler.get2d();
     auto bs = bsdf_sample(bsdf, wo, u_lobe, u_dir);
     if (!bs) break;
     beta *= bs->weight;

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "dermis/core/rgb.h"
-#include "dermis/core/rng.h"
+#include "dermis/core/sampler.h"
 #include "dermis/geometry/ray.h"
 #include "dermis/render/render_scene.h"
 
@@ -26,22 +26,32 @@ struct PathCounters {
 // How a path begins: from the camera (emission seen at full weight), or as the
 // continuation of a scattering at `prev_p` sampled with solid-angle density `prev_pdf`
 // (emission found by the ray is MIS-weighted against next-event estimation there).
+// Dimensions of a pixel sample (core/sampler.h): the camera takes the first four (film
+// position 2D, lens 2D); path vertex v (the v-th ray the path casts) takes the block of
+// kVertexDimensions from first_dimension + v kVertexDimensions, in the order its
+// decisions are made, so that the same decision of every sample of a pixel reads the
+// same stratified dimension. A subsurface exit and a nested path draw from their own
+// regions (Sampler::region) of the block they start in.
+inline constexpr uint64_t kCameraDimensions = 4;
+inline constexpr uint64_t kVertexDimensions = 32;
+
 struct PathStart {
   bool from_camera = true;
   float prev_pdf = 0;
   Vec3 prev_p;
   int depth = 0;  // scattering events already taken
+  uint64_t first_dimension = kCameraDimensions;  // of vertex 0's block
 };
 
 // Radiance arriving along `ray` (from the camera), starting in `medium`.
-RGB trace_path(const RenderScene& scene, Ray ray, int medium, Rng& rng, PathCounters& counters,
+RGB trace_path(const RenderScene& scene, Ray ray, int medium, Sampler& sampler, PathCounters& counters,
                const PathStart& start = {});
 
 // One-sample estimate of the irradiance transmitted into a smooth dielectric surface
 // (index eta) at p with outward normal n: E = integral of L (1 - Fr(cos, eta)) cos dw over
 // the outside hemisphere, by next-event estimation and cosine sampling combined with
 // the power heuristic. The point cloud's pre-pass and its local term use it.
-RGB transmitted_irradiance(const RenderScene& scene, Vec3 p, Vec3 n, float eta, int medium, Rng& rng,
+RGB transmitted_irradiance(const RenderScene& scene, Vec3 p, Vec3 n, float eta, int medium, Sampler& sampler,
                            PathCounters& counters);
 
 // Transmittance from `origin` along unit `dir` over `distance` (infinity allowed),

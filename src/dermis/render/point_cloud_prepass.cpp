@@ -60,8 +60,10 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
         const pc::SurfacePoint& p = cloud.points[j];
         RGB sum(0);
         for (int s = 0; s < samples; ++s) {
-          Rng rng(options.seed, 0x70c10d00000000ull + (uint64_t(i) << 32) + j, uint64_t(s));
-          RGB e = transmitted_irradiance(sc, p.position, p.normal, m.params.eta, shape.outside_medium, rng, counters);
+          // Each point is a "pixel" of the sampler: its irradiance samples are stratified.
+          Sampler sampler(options.sampler, options.seed, 0x70c10d00000000ull + (uint64_t(i) << 32) + j, uint32_t(s));
+          RGB e = transmitted_irradiance(sc, p.position, p.normal, m.params.eta, shape.outside_medium, sampler,
+                                         counters);
           if (e.is_finite()) sum += e;
         }
         cloud.irradiance[j] = sum / float(samples);

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+
+#include "dermis/core/sampler.h"
 #include <string>
 
 namespace dermis {
@@ -16,6 +18,7 @@ struct PointCloudOptions {
   std::string save_path;    // write the cloud(s) here (object k > 0 gets ".k" appended)
   std::string load_path;    // read them instead of computing them
   uint64_t seed = 0;
+  SamplerKind sampler = SamplerKind::Sobol;
 };
 
 struct PointCloudReport {

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include "dermis/core/rng.h"
+#include "dermis/core/sampler.h"
 #include "dermis/render/film.h"
 #include "dermis/render/integrator.h"
 
@@ -49,11 +49,11 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
         const std::size_t pixel = std::size_t(y) * w + x;
         double sum[3] = {film.sum[3 * pixel], film.sum[3 * pixel + 1], film.sum[3 * pixel + 2]};
         for (int s = first_sample; s < first_sample + n_samples; ++s) {
-          Rng rng(opt.seed, pixel, uint64_t(s));
-          Vec2 offset = filter.sample({rng.uniform(), rng.uniform()});
+          Sampler sampler(opt.sampler, opt.seed, pixel, uint32_t(s));
+          Vec2 offset = filter.sample(sampler.get2d());  // dimensions 0, 1
           Vec2 film_pos{float(x) + 0.5f + offset.x, float(y) + 0.5f + offset.y};
-          Ray ray = sc.camera.generate_ray(film_pos, {rng.uniform(), rng.uniform()});
-          RGB L = trace_path(sc, ray, sc.camera_medium, rng, counters);
+          Ray ray = sc.camera.generate_ray(film_pos, sampler.get2d());  // 2, 3: the lens
+          RGB L = trace_path(sc, ray, sc.camera_medium, sampler, counters);
           if (!L.is_finite()) {
             ++bad;  // never reaches the film: counted as a zero sample and reported
             continue;

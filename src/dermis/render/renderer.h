@@ -1,8 +1,8 @@
 // The render loop: image tiles in parallel (oneTBB), samples in passes so that a
 // time limit or an interrupt stops between tiles with a consistent image. Each
-// pixel sample has its own random stream Rng(seed, pixel, sample) and each pixel
-// is accumulated by one thread in sample order: the same seed gives the same image
-// whatever the number of threads.
+// pixel sample draws its numbers from Sampler(kind, seed, pixel, sample) (core/sampler.h)
+// and each pixel is accumulated by one thread in sample order: the same seed gives the
+// same image whatever the number of threads.
 #pragma once
 
 #include <atomic>
@@ -10,6 +10,7 @@
 #include <functional>
 #include <vector>
 
+#include "dermis/core/sampler.h"
 #include "dermis/render/render_scene.h"
 
 namespace dermis {
@@ -18,6 +19,7 @@ struct RenderOptions {
   int spp = 16;
   int threads = 0;            // 0: all cores
   uint64_t seed = 0;
+  SamplerKind sampler = SamplerKind::Sobol;
   double time_limit = 0;      // seconds; 0: none
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop early
   // Called from worker threads with the number of pixel samples just finished.

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <limits>
 
+#include "support/pixel_statistics.h"
+
 namespace dermis {
 namespace {
 
@@ -51,6 +53,35 @@ SceneDesc small_scene() {
   spot.spectrum = RGB(20);
   d.lights.push_back(spot);
   return d;
+}
+
+// The default sampler (Owen-scrambled Sobol') changes the noise, never the mean: every
+// path-tracer branch (medium in glass, floor, spot and environment light), 8
+// randomisations of 16 Sobol' samples against 128 independent samples, in 12 regions of
+// 10 x 10 pixels, within 4 standard errors.
+TEST(Renderer, SobolSamplerGivesTheMeanOfIndependentSampling) {
+  Diagnostics diag;
+  auto sc = build_render_scene(small_scene(), diag);
+  auto sobol = testing::replicated_pixel_statistics(*sc, SamplerKind::Sobol, 16, 8, 50);
+  auto indep = testing::pixel_statistics(*sc, 128, 51);
+  int failures = 0;
+  for (int ry = 0; ry < 3; ++ry)
+    for (int rx = 0; rx < 4; ++rx) {
+      RGB ms(0), mi(0), vs(0), vi(0);
+      for (int y = ry * 10; y < ry * 10 + 10; ++y)
+        for (int x = rx * 10; x < rx * 10 + 10; ++x) {
+          const std::size_t p = std::size_t(y) * sc->film.xres + x;
+          ms += sobol.mean[p] / 100.0f, mi += indep.mean[p] / 100.0f;
+          vs += sobol.stderr_[p] * sobol.stderr_[p] / 1e4f, vi += indep.stderr_[p] * indep.stderr_[p] / 1e4f;
+        }
+      for (int c = 0; c < 3; ++c) {
+        const double sigma = std::sqrt(double(vs[c]) + vi[c]);
+        if (std::abs(ms[c] - mi[c]) > 4 * sigma && failures++ < 6)
+          ADD_FAILURE() << "region " << rx << "," << ry << " channel " << c << ": " << ms[c] << " vs " << mi[c]
+                        << " (4 sigma = " << 4 * sigma << ")";
+      }
+    }
+  EXPECT_EQ(failures, 0);
 }
 
 TEST(Renderer, SameSeedSameImageWhateverTheThreadCount) {

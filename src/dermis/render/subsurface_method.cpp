@@ -195,7 +195,7 @@ RGB profile_values(const sss::ProfileRGB& p, double r) {
 // One probe: candidates on the segment, one chosen uniformly, weight k R / pdf.
 template <class Pdf>
 bool pick_probe_hit(const RenderScene& sc, const SubsurfaceMethod& m, const SurfaceHit& entry,
-                    const sss::ProbeSegment& seg, Rng& rng, PathCounters& counters, Pdf&& pdf_area,
+                    const sss::ProbeSegment& seg, Sampler& sampler, PathCounters& counters, Pdf&& pdf_area,
                     SubsurfaceExit& out) {
   thread_local std::vector<SurfaceHit> hits;
   hits.clear();
@@ -203,7 +203,7 @@ bool pick_probe_hit(const RenderScene& sc, const SubsurfaceMethod& m, const Surf
                       counters);
   if (hits.empty()) return false;
   int k = int(hits.size());
-  const SurfaceHit& h = hits[std::min(int(rng.uniform() * k), k - 1)];
+  const SurfaceHit& h = hits[std::min(int(sampler.uniform() * k), k - 1)];
   double pdf = pdf_area(h);
   if (!(pdf > 0)) return false;
   double r = length(to_d(h.p) - to_d(entry.p));
@@ -222,7 +222,7 @@ namespace {
 // boundary crossing, `matched` straight through it, `dielectric` by Fresnel: internal
 // reflection continues the walk, refraction leaves specularly. Entry and exit 1/eta^2
 // radiance factors cancel and are omitted.
-bool sample_walk_exit(const RenderScene& sc, const SubsurfaceMethod& m, const SurfaceHit& entry, Vec3 wo, Rng& rng,
+bool sample_walk_exit(const RenderScene& sc, const SubsurfaceMethod& m, const SurfaceHit& entry, Vec3 wo, Sampler& sampler,
                       PathCounters& counters, SubsurfaceExit& out) {
   using Boundary = SubsurfaceParams::Boundary;
   const Boundary boundary = m.params.boundary;
@@ -251,7 +251,7 @@ bool sample_walk_exit(const RenderScene& sc, const SubsurfaceMethod& m, const Su
   RGB weight(1);
   for (int reflections = 0; reflections < 256; ++reflections) {
     sss::WalkResult res;
-    if (!sss::random_walk(*m.walk_step, m.walk_settings, guide, start, dir, rng, tracer, res, weight)) {
+    if (!sss::random_walk(*m.walk_step, m.walk_settings, guide, start, dir, sampler, tracer, res, weight)) {
       out.truncated = res.truncated;
       return false;
     }
@@ -271,7 +271,7 @@ bool sample_walk_exit(const RenderScene& sc, const SubsurfaceMethod& m, const Su
       return true;
     }
     float F = fresnel_dielectric(dot(-d, res.exit_n), m.params.eta);
-    if (rng.uniform() >= F) {
+    if (sampler.uniform() >= F) {
       auto t = refract(-d, res.exit_n, m.params.eta);
       if (!t) return false;  // F = 1 under total internal reflection: not reached
       out.direction = *t;
@@ -289,22 +289,25 @@ bool sample_walk_exit(const RenderScene& sc, const SubsurfaceMethod& m, const Su
 }  // namespace
 
 bool sample_subsurface_exit(const RenderScene& sc, const SubsurfaceMethod& m, const SurfaceHit& entry, Vec3 wo,
-                            Rng& rng, PathCounters& counters, SubsurfaceExit& out) {
+                            Sampler& sampler, PathCounters& counters, SubsurfaceExit& out) {
   switch (m.params.method) {
     case Method::Volumetric:
       return false;  // rendered as a medium, never reaches here
     case Method::Disk:
     case Method::DiskSingleAxis: {
       sss::ProbeFrame frame = sss::ProbeFrame::around(to_d(entry.p), to_d(entry.ng));
-      sss::DiskProbeSample s = m.disk->sample(frame, rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
-      return pick_probe_hit(sc, m, entry, s.segment, rng, counters,
+      const float u_axis = sampler.get1d(), u_strategy = sampler.get1d();
+      const Vec2 u_disk = sampler.get2d();  // radius and angle on the disk, stratified together
+      sss::DiskProbeSample s = m.disk->sample(frame, u_axis, u_strategy, u_disk.x, u_disk.y);
+      return pick_probe_hit(sc, m, entry, s.segment, sampler, counters,
                             [&](const SurfaceHit& h) { return m.disk->pdf_area(frame, to_d(h.p), to_d(h.ng)); }, out);
     }
     case Method::SphereLines: {
       Vec3d p = to_d(entry.p);
-      sss::SphereLineSample s = m.lines->sample(p, rng.uniform(), rng.uniform(), {rng.uniform(), rng.uniform()},
-                                                {rng.uniform(), rng.uniform()});
-      return pick_probe_hit(sc, m, entry, s.segment, rng, counters,
+      const float u_channel = sampler.get1d(), u_radius = sampler.get1d();
+      const Vec2 u_first = sampler.get2d(), u_second = sampler.get2d();
+      sss::SphereLineSample s = m.lines->sample(p, u_channel, u_radius, {u_first.x, u_first.y}, {u_second.x, u_second.y});
+      return pick_probe_hit(sc, m, entry, s.segment, sampler, counters,
                             [&](const SurfaceHit& h) { return m.lines->pdf_area(p, to_d(h.p)); }, out);
     }
     case Method::SphereLinesRetry: {
@@ -317,7 +320,7 @@ bool sample_subsurface_exit(const RenderScene& sc, const SubsurfaceMethod& m, co
                             counters);
         return int(hits.size());
       };
-      sss::SphereLineRetry r = m.lines->sample_retry(p, rng, count_hits);
+      sss::SphereLineRetry r = m.lines->sample_retry(p, sampler, count_hits);
       if (r.hits == 0) {
         out.hit = entry;
         for (int c = 0; c < 3; ++c) out.weight[c] = float(m.lines->fallback_weight(c));
@@ -333,7 +336,7 @@ bool sample_subsurface_exit(const RenderScene& sc, const SubsurfaceMethod& m, co
       return true;
     }
     case Method::RandomWalk:
-      return sample_walk_exit(sc, m, entry, wo, rng, counters, out);
+      return sample_walk_exit(sc, m, entry, wo, sampler, counters, out);
     case Method::PointCloud:
       return false;  // not an exit sampler: the integrator asks the cloud for M(x)
   }

@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "dermis/core/rgb.h"
-#include "dermis/core/rng.h"
+#include "dermis/core/sampler.h"
 #include "dermis/geometry/ray.h"
 #include "dermis/materials/subsurface_params.h"
 #include "dermis/sss/probe/disk_probe.h"
@@ -57,6 +57,6 @@ struct SubsurfaceExit {
 
 // Returns false when the estimate is zero (no exit found, or the path was absorbed).
 bool sample_subsurface_exit(const RenderScene& scene, const SubsurfaceMethod& method, const SurfaceHit& entry, Vec3 wo,
-                            Rng& rng, PathCounters& counters, SubsurfaceExit& out);
+                            Sampler& sampler, PathCounters& counters, SubsurfaceExit& out);
 
 }  // namespace dermis

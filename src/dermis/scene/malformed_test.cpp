@@ -44,6 +44,7 @@ void expect_scene_error(const std::string& text, int line, int column, const std
 // '@' marks the offending token (it is removed before parsing); the expected line and
 // column are where it stood.
 const Case kCases[] = {
+    {"Sampler @\"sobolish\" \"integer pixelsamples\" 4\nWorldBegin\n", "unknown Sampler \"sobolish\""},
     {"WorldBegin\nShape \"sphere\" \"float radius\" @\"two\"\n", "expects numbers, found string 'two'"},
     {"WorldBegin\nShape \"sphere\" @\"string radius\" \"2\"\n", "has type 'string', expected float"},
     {"WorldBegin\nShape \"trianglemesh\" \"point3 P\" @[0 0 0 1 0 0 0 1]\n", "multiple of 3"},

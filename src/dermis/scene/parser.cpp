@@ -402,13 +402,35 @@ void SceneParser::pixel_filter(const Token& d, TokenStream& ts) {
 
 void SceneParser::sampler(const Token& d, TokenStream& ts) {
   require_options(d, ts);
-  std::string type = string_arg(ts, d);
+  SourceLoc type_loc;
+  std::string type = string_arg(ts, d, &type_loc);
   ParamList pl = ParamList::parse(ts);
+  // pbrt-v4's samplers, mapped to the nearest of Dermis' (core/sampler.h): its Sobol' variants
+  // (zsobol, sobol, paddedsobol) to the padded Owen-scrambled Sobol', the other
+  // low-discrepancy ones to it too with a warning.
+  if (type == "independent") {
+    s_.settings.sampler = SamplerKind::Independent;
+  } else if (type == "zsobol" || type == "sobol" || type == "paddedsobol") {
+    s_.settings.sampler = SamplerKind::Sobol;
+  } else if (type == "halton" || type == "pmj02bn" || type == "stratified") {
+    s_.diagnostics.warn(type_loc, fmt::format("Sampler \"{}\" is not available; using \"sobol\" (Owen-scrambled "
+                                              "Sobol', the nearest Dermis has)", type));
+    s_.settings.sampler = SamplerKind::Sobol;
+  } else {
+    throw SceneError(type_loc, fmt::format("unknown Sampler \"{}\" (pbrt-v4 has zsobol, sobol, paddedsobol, halton, "
+                                           "pmj02bn, stratified, independent)", type));
+  }
+  // Dermis always randomises by Owen scrambling; pbrt-v4's other randomisations are refused.
+  const std::string randomization = pl.get_string("randomization", "owen");
+  if (randomization != "owen" && randomization != "fastowen")
+    s_.diagnostics.warn(pl.find("randomization")->value_loc,
+                        fmt::format("Sampler \"randomization\" \"{}\" is not available; using Owen scrambling",
+                                    randomization));
   s_.settings.spp = pl.get_int("pixelsamples", s_.settings.spp);
   if (s_.settings.spp <= 0)
     throw SceneError(pl.find("pixelsamples")->value_loc, fmt::format("pixelsamples must be positive, got {}", s_.settings.spp));
   s_.settings.seed = pl.get_int("seed", s_.settings.seed);
-  pl.warn_unused(s_.diagnostics, fmt::format("Sampler \"{}\" (Dermis uses its own sampler)", type));
+  pl.warn_unused(s_.diagnostics, fmt::format("Sampler \"{}\"", type));
 }
 
 void SceneParser::integrator(const Token& d, TokenStream& ts) {

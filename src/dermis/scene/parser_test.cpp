@@ -190,6 +190,20 @@ TEST(ParserOptions, FilmFilterSamplerIntegrator) {
   EXPECT_TRUE(s.diagnostics.warnings.empty());
 }
 
+TEST(ParserOptions, SamplerNamesMapToTheNearestSampler) {
+  EXPECT_EQ(test::parse_text("Sampler \"zsobol\"\nWorldBegin\n").settings.sampler, SamplerKind::Sobol);
+  EXPECT_EQ(test::parse_text("Sampler \"paddedsobol\"\nWorldBegin\n").settings.sampler, SamplerKind::Sobol);
+  SceneDesc ind = test::parse_text("Sampler \"independent\"\nWorldBegin\n");
+  EXPECT_EQ(ind.settings.sampler, SamplerKind::Independent);
+  EXPECT_TRUE(ind.diagnostics.warnings.empty());
+  SceneDesc halton = test::parse_text("Sampler \"halton\" \"integer pixelsamples\" 8\nWorldBegin\n");
+  EXPECT_EQ(halton.settings.sampler, SamplerKind::Sobol);
+  EXPECT_EQ(halton.settings.spp, 8);
+  EXPECT_TRUE(has_warning(halton, "test.pbrt:1:9: warning: Sampler \"halton\" is not available; using \"sobol\""));
+  SceneDesc digits = test::parse_text("Sampler \"sobol\" \"string randomization\" \"permutedigits\"\nWorldBegin\n");
+  EXPECT_TRUE(has_warning(digits, "warning: Sampler \"randomization\" \"permutedigits\" is not available"));
+}
+
 TEST(ParserOptions, GaussianFilterAndFallbacks) {
   SceneDesc s = test::parse_text(
       "Film \"gbuffer\"\nPixelFilter \"mitchell\" \"float sigma\" 0.7\nIntegrator \"bdpt\"\nWorldBegin\n");

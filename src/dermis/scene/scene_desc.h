@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "dermis/core/rgb.h"
+#include "dermis/core/sampler.h"
 #include "dermis/core/transform.h"
 #include "dermis/core/vec.h"
 #include "dermis/scene/diagnostics.h"
@@ -56,6 +57,7 @@ struct RenderSettingsDesc {
   int max_depth = 5;
   std::string integrator = "volpath";
   int seed = 0;  // pbrt-v4 Sampler "integer seed"
+  SamplerKind sampler = SamplerKind::Sobol;  // pbrt-v4 Sampler's name, mapped (docs/scene-format.md)
 };
 
 struct TextureDesc {

@@ -112,8 +112,8 @@ class SphereLineSampler {
   // returns their number; the chosen one is picked uniformly. Weight of the chosen hit
   // at distance d: retry_weight(R_c(d), hits, pdf_area); with no hit, stay at P with
   // weight fallback_weight(c). Unbiased on a plane through P only (docs/probe-sampling.md).
-  template <class CountHits>
-  SphereLineRetry sample_retry(Vec3d p, Rng& rng, CountHits&& count_hits) const {
+  template <class Random, class CountHits>
+  SphereLineRetry sample_retry(Vec3d p, Random& rng, CountHits&& count_hits) const {
     SphereLineRetry out;
     for (out.lines = 1; out.lines <= kRetryMaxLines; ++out.lines) {
       const double u0 = rng.uniform_double(), u1 = rng.uniform_double();

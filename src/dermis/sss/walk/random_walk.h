@@ -106,15 +106,17 @@ inline std::array<double, 3> channel_probabilities(const std::array<double, 3>& 
 // medium (out filled); false when it was absorbed by Russian roulette, truncated
 // (out.truncated) or lost (no boundary along an infinite flight). A caller that
 // reflects the walk back at the boundary calls random_walk again from the exit point.
+// `rng` is a random stream (core/rng.h) or a pixel sampler (core/sampler.h): each
+// uniform_double() is the next number.
 // `initial` is the throughput the walk starts with (a walk continued after an internal
 // reflection passes what it has carried so far, so that the roulette and the channel
 // choice see it); out.weight includes it.
 // `guide` (make_walk_guide) is made once per path at its entry point and kept for the
 // walks that continue it; start_p is where this walk starts (the entry point, or the
 // boundary point of an internal reflection).
-template <class Tracer>
+template <class Random, class Tracer>
 bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, const WalkGuide& guide, Vec3 start_p,
-                 Vec3 dir_in, Rng& rng, Tracer&& tracer, WalkResult& out, RGB initial = RGB(1.0f)) {
+                 Vec3 dir_in, Random& rng, Tracer&& tracer, WalkResult& out, RGB initial = RGB(1.0f)) {
   out = WalkResult{};
   GuideAxes<3> axes{Framed(guide.entry_n)};
   if (guide.has_far) axes.back = Framed(guide.far_n), axes.has_back = true;
@@ -164,16 +166,16 @@ bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, c
 }
 
 // A walk from the entry point: makes its guide (make_walk_guide) first.
-template <class Tracer>
+template <class Random, class Tracer>
 bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, Vec3 entry_p, Vec3 entry_n,
-                 Vec3 dir_in, Rng& rng, Tracer&& tracer, WalkResult& out, RGB initial = RGB(1.0f)) {
+                 Vec3 dir_in, Random& rng, Tracer&& tracer, WalkResult& out, RGB initial = RGB(1.0f)) {
   const WalkGuide guide = make_walk_guide(settings, entry_p, entry_n, tracer);
   return random_walk(step, settings, guide, entry_p, dir_in, rng, std::forward<Tracer>(tracer), out, initial);
 }
 
-template <class Tracer>
+template <class Random, class Tracer>
 bool random_walk(const WalkMedium& medium, const WalkSettings& settings, Vec3 entry_p, Vec3 entry_n, Vec3 dir_in,
-                 Rng& rng, Tracer&& tracer, WalkResult& out) {
+                 Random& rng, Tracer&& tracer, WalkResult& out) {
   return random_walk(make_walk_step(medium, settings), settings, entry_p, entry_n, dir_in, rng,
                      std::forward<Tracer>(tracer), out);
 }

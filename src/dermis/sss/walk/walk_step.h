@@ -160,7 +160,8 @@ class MixtureWalkStep {
   }
 
   // A flight along a given direction (after entry or a reflection): only its length is sampled.
-  FlightProposal propose_flight(const Vec3d& direction, const GuideAxes<N>& axes, const Channels& q, Rng& rng) const {
+  template <class Random>
+  FlightProposal propose_flight(const Vec3d& direction, const GuideAxes<N>& axes, const Channels& q, Random& rng) const {
     const int c = choose_channel(q, rng);
     FlightProposal f;
     f.direction = direction;
@@ -173,8 +174,9 @@ class MixtureWalkStep {
   }
 
   // A scattering event at the end of a flight along direction_in: new direction and flight.
+  template <class Random>
   FlightProposal propose_scatter(const Vec3d& direction_in, const GuideAxes<N>& axes, const Channels& q,
-                                 Rng& rng) const {
+                                 Random& rng) const {
     const int c = choose_channel(q, rng);
     const bool guided = choose_guided(rng);
     const bool back = guided && choose_back(axes, c, rng);
@@ -221,7 +223,8 @@ class MixtureWalkStep {
     return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
   }
 
-  int choose_channel(const Channels& q, Rng& rng) const {
+  template <class Random>
+  int choose_channel(const Channels& q, Random& rng) const {
     if constexpr (N == 1) {
       return 0;
     } else {
@@ -236,20 +239,23 @@ class MixtureWalkStep {
     }
   }
 
-  bool choose_guided(Rng& rng) const {
+  template <class Random>
+  bool choose_guided(Random& rng) const {
     if (p_guided_ <= 0) return false;
     if (p_guided_ >= 1) return true;
     return rng.uniform_double() < p_guided_;
   }
 
   // Backward guiding: the back axis with probability back_share[c] (no draw without one).
-  static bool choose_back(const GuideAxes<N>& axes, int c, Rng& rng) {
+  template <class Random>
+  static bool choose_back(const GuideAxes<N>& axes, int c, Random& rng) {
     return axes.has_back && rng.uniform_double() < axes.back_share[c];
   }
 
   // Exponential free path -ln(1 - xi)/sigma (Beer-Lambert), sigma = sigma_t classically
   // or sigma_t (1 - kappa u) guided (Krivanek & d'Eon 2014).
-  double free_path(int c, bool guided, double u, Rng& rng) const {
+  template <class Random>
+  double free_path(int c, bool guided, double u, Random& rng) const {
     const double sigma = guided ? sigma_t_[c] * guide_[c].extinction_scale(u) : sigma_t_[c];
     const double optical = -std::log1p(-rng.uniform_double());
     return sigma > 0 ? optical / sigma : std::numeric_limits<double>::infinity();

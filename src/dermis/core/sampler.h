@@ -1,0 +1,96 @@
+// The random numbers of one pixel sample, by dimension.
+//
+// `Sobol`: Owen-scrambled Sobol' points padded dimension by dimension (Burley 2020,
+// "Practical Hash-based Owen Scrambling", sec. 5): dimension d of sample i is point
+// shuffle_d(i) of the scrambled sequence, with the shuffle and the scramble seeded by
+// (pixel seed, d). Each 1D dimension and each 2D pair taken by `get2d` is a (0,2)-sequence
+// in the sample index of its own pixel; different dimensions, and different pixels, are
+// decorrelated by their seeds. Dimensions are 64-bit keys, so a caller lays out regions
+// (camera, path vertices, subsurface walks) without a fixed table (`region`).
+// `Independent`: PCG32 numbers of the stream (seed, pixel, sample); dimensions ignored.
+//
+// Both give the same image for the same seed whatever the thread count: a pixel sample's
+// numbers depend on (seed, pixel, sample index, dimension) only.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "dermis/core/rng.h"
+#include "dermis/core/sobol.h"
+#include "dermis/core/vec.h"
+
+namespace dermis {
+
+enum class SamplerKind : uint8_t { Sobol, Independent };
+
+// "sobol" or "independent"; false for anything else.
+inline bool parse_sampler_kind(std::string_view name, SamplerKind& kind) {
+  if (name == "sobol") return kind = SamplerKind::Sobol, true;
+  if (name == "independent") return kind = SamplerKind::Independent, true;
+  return false;
+}
+inline const char* sampler_kind_name(SamplerKind kind) {
+  return kind == SamplerKind::Sobol ? "sobol" : "independent";
+}
+
+class Sampler {
+ public:
+  Sampler(SamplerKind kind, uint64_t seed, uint64_t pixel, uint32_t sample_index)
+      : kind_(kind),
+        rng_(seed, pixel, sample_index),
+        pixel_seed_(uint32_t(mix64(seed ^ mix64(pixel + 0x5ab1e5eedull)))),
+        index_(sample_index) {}
+
+  SamplerKind kind() const { return kind_; }
+  // The next number is taken from dimension d (and d + 1 for get2d), and so on.
+  void set_dimension(uint64_t d) { dim_ = d; }
+  uint64_t dimension() const { return dim_; }
+  // The first dimension of a region of 2^32 dimensions named by (parent dimension, tag):
+  // a hash, so that nested regions (a walk inside a path inside another path) never
+  // share a dimension, short of a 64-bit collision.
+  static uint64_t region(uint64_t parent, uint32_t tag) {
+    return mix64(parent ^ mix64(uint64_t(tag) + 0x7e610000ull)) & ~uint64_t(0xffffffffu);
+  }
+
+  // The next dimension as a 32-bit fraction of one.
+  uint32_t next_fraction() {
+    if (kind_ == SamplerKind::Independent) return rng_.next_u32();
+    const uint32_t seed = dimension_seed(dim_++);
+    const uint32_t i = nested_uniform_scramble(index_, seed);
+    // Dimension 0 of Sobol' is the bit reversal of the index; reverse(scramble(reverse(x)))
+    // composed with it is one Laine–Karras pass (Burley 2020, listing 5).
+    return reverse_bits(laine_karras_permutation(i, hash_combine(seed, 0x0b1c0u)));
+  }
+  float get1d() { return fraction_to_float(next_fraction()); }
+  // Two dimensions jointly stratified (Sobol' dimensions 0 and 1 of one shuffled index).
+  Vec2 get2d() {
+    if (kind_ == SamplerKind::Independent) return {get1d(), get1d()};
+    const uint32_t seed = dimension_seed(dim_);
+    dim_ += 2;
+    const uint32_t i = nested_uniform_scramble(index_, seed);
+    const uint32_t x = reverse_bits(laine_karras_permutation(i, hash_combine(seed, 0x0b1c0u)));
+    const uint32_t y = nested_uniform_scramble(sobol_sample(i, 1), hash_combine(seed, 0x0b1c1u));
+    return {fraction_to_float(x), fraction_to_float(y)};
+  }
+
+  // The interface of Rng, so that code written for a random stream (the sss library)
+  // takes a Sampler too: each call is the next dimension.
+  float uniform() { return get1d(); }
+  double uniform_double() {
+    return kind_ == SamplerKind::Independent ? rng_.uniform_double() : fraction_to_double(next_fraction());
+  }
+
+ private:
+  uint32_t dimension_seed(uint64_t d) const {
+    return hash_combine(hash_combine(pixel_seed_, uint32_t(d)), uint32_t(d >> 32));
+  }
+
+  SamplerKind kind_;
+  Rng rng_;
+  uint32_t pixel_seed_;
+  uint32_t index_;
+  uint64_t dim_ = 0;
+};
+
+}  // namespace dermis
