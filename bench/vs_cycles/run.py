@@ -1,0 +1,531 @@
+#!/usr/bin/python3
+"""Dermis vs Blender Cycles at equal error (issue 15).
+
+Every scene of bench/vs_cycles/scenes.py is written once as a pbrt-v4 file for Dermis and
+built by bench/vs_cycles/blender_scene.py in Blender; both renderers render a converged
+reference (two independent time-limited halves) and a sweep of sample counts; each sweep
+image is measured against its own renderer's reference over the object's pixels.
+
+  /usr/bin/python3 bench/vs_cycles/run.py --quick                 # smoke test, ~2 min
+  /usr/bin/python3 bench/vs_cycles/run.py --reference-time 40     # the full run (~15 min on 2 cores)
+  /usr/bin/python3 bench/vs_cycles/run.py --scenes medium-matched,calibration --spp 16,64
+
+Measurement (as bench/sss_methods.py): E[(A - R)^2] = Var A + bias^2 + Var R, and the
+reference's own per-pixel variance is estimated from its two halves h1, h2 as
+(h1 - h2)^2 / 4 and subtracted. Efficiency = 1 / (MSE x render time) (higher is better;
+for unbiased estimators it does not depend on the sample count).
+"""
+
+import argparse
+import datetime
+import json
+import math
+import os
+import re
+import shlex
+import subprocess
+import sys
+import time
+
+import numpy as np
+import OpenImageIO as oiio
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.dirname(HERE))
+
+import pbrt_writer  # noqa: E402
+import scenes as S  # noqa: E402
+from sss_methods import LIMIT_RE, RENDER_RE, strip, write_png  # noqa: E402  (shared helpers)
+
+HUGE_SPP = 1000000
+DOC = os.path.join(ROOT, "docs", "results-vs-cycles.md")
+IMAGES = os.path.join(ROOT, "docs", "images", "vs-cycles")
+
+
+def log(msg):
+    print(msg, flush=True)
+
+
+# ------------------------------------------------------------------ images
+
+def read_exr(path):
+    inp = oiio.ImageInput.open(path)
+    if inp is None:
+        sys.exit(f"cannot read {path}: {oiio.geterror()}")
+    spec = inp.spec()
+    px = inp.read_image(0, 0, 0, 3, oiio.FLOAT)
+    attrs = {a.name: a.value for a in spec.extra_attribs}
+    inp.close()
+    return np.asarray(px, dtype=np.float64).reshape(spec.height, spec.width, 3), attrs
+
+
+def parse_clock(s):
+    """Blender's "MM:SS.ss" or "HH:MM:SS.ss" -> seconds."""
+    secs = 0.0
+    for part in s.split(":"):
+        secs = secs * 60 + float(part)
+    return secs
+
+
+# ------------------------------------------------------------------ Dermis
+
+class Run:
+    """One render: image, seconds (render stage only), samples per pixel, extra info."""
+
+    def __init__(self, exr, seconds, spp, wall, **info):
+        self.exr, self.seconds, self.spp, self.wall, self.info = exr, seconds, spp, wall, info
+        self.img = None
+
+    def load(self):
+        if self.img is None:
+            self.img, self.attrs = read_exr(self.exr)
+        return self.img
+
+
+def dermis_render(args, scene_file, out, spp=None, seconds=None, seed=1, res=None):
+    cmd = [args.dermis, "render", scene_file, "--threads", str(args.threads), "--seed", str(seed), "-q", "--no-png",
+           "-o", out, "--spp", str(spp if spp else HUGE_SPP)]
+    if args.dermis_sampler:
+        cmd += ["--sampler", args.dermis_sampler]
+    if seconds:
+        cmd += ["--time-limit", f"{seconds:g}"]
+    t0 = time.perf_counter()
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    if p.returncode != 0:
+        sys.exit(f"failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr}")
+    m = RENDER_RE.search(p.stderr)
+    reported, samples = float(m.group(1)), int(m.group(3))
+    lm = LIMIT_RE.search(p.stderr)
+    npx = res[0] * res[1]
+    warnings = [l for l in p.stderr.splitlines() if "warning" in l]
+    # `dermis render` prints the render-stage time with 0.1 s resolution: below 2 s use the
+    # process's wall time minus that of loading the same scene (a 1 x 1 pixel, 1 spp render).
+    secs, approx = reported, False
+    if reported < 2.0:
+        secs, approx = max(wall - dermis_load_wall(args, scene_file), 1e-3), True
+    log(f"    dermis {os.path.basename(out)}: render {reported:.1f} s{f' (~{secs:.2f} s)' if approx else ''} "
+        f"(process {wall:.1f} s), {samples / npx:.1f} spp"
+        + (f" [{lm.group(1)}..{lm.group(2)}]" if lm else "") + (f"  {'; '.join(warnings)}" if warnings else ""))
+    return Run(out, secs, samples / npx, wall, cmd=" ".join(cmd), warnings=warnings, approx=approx, reported=reported)
+
+
+_load_wall = {}
+
+
+def dermis_load_wall(args, scene_file):
+    """Wall seconds to start Dermis, load and prepare a scene and write a tiny image: the
+    best of three 1 x 1 pixel, 1 spp renders."""
+    if scene_file not in _load_wall:
+        out = scene_file + ".load.exr"
+        best = float("inf")
+        for _ in range(3):
+            t0 = time.perf_counter()
+            subprocess.run([args.dermis, "render", scene_file, "--threads", str(args.threads), "--res", "1x1",
+                            "--spp", "1", "-q", "--no-png", "-o", out], check=True, capture_output=True)
+            best = min(best, time.perf_counter() - t0)
+        os.remove(out)
+        _load_wall[scene_file] = best
+    return _load_wall[scene_file]
+
+
+# ------------------------------------------------------------------ Cycles
+
+def cycles_renders(args, sc, renders, work):
+    """All Cycles renders of a scene in one Blender process (the scene is built once;
+    every render re-syncs it, and only Cycles' render_time is used as the cost)."""
+    job = dict(scene=sc, threads=args.threads, root=ROOT, renders=renders,
+               result=os.path.join(work, "cycles-result.json"))
+    jpath = os.path.join(work, "cycles-job.json")
+    with open(jpath, "w") as f:
+        json.dump(job, f, indent=1)
+    cmd = [args.blender, "-b", "--factory-startup", "--python", os.path.join(HERE, "blender_scene.py"), "--", jpath]
+    t0 = time.perf_counter()
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    with open(os.path.join(work, "cycles-log.txt"), "w") as f:
+        f.write(p.stdout + p.stderr)
+    if p.returncode != 0 or not os.path.exists(job["result"]):
+        sys.exit(f"blender failed ({p.returncode}): {' '.join(cmd)}\n{p.stdout[-3000:]}\n{p.stderr[-3000:]}")
+    res = json.load(open(job["result"]))
+    # Samples reached: the last "Sample N/M" line before each "vs_cycles: rendered" marker.
+    segments = re.split(r"vs_cycles: rendered .*\n", p.stdout)
+    runs = []
+    for r, seg in zip(res["renders"], segments):
+        reached = [int(n) for n in re.findall(r"Sample (\d+)/\d+", seg)]
+        img, attrs = read_exr(r["out"])
+        rt = parse_clock(attrs["cycles.ViewLayer.render_time"])
+        sync = parse_clock(attrs["cycles.ViewLayer.synchronization_time"])
+        spp = max(reached) if reached else r["spp"]
+        run = Run(r["out"], rt, spp, r["wall"], sync=sync, total=parse_clock(attrs["cycles.ViewLayer.total_time"]))
+        run.img, run.attrs = img, attrs
+        log(f"    cycles {os.path.basename(r['out'])}: render {rt:.2f} s (sync {sync:.2f} s, operator {r['wall']:.1f} s), "
+            f"{spp} spp")
+        runs.append(run)
+    log(f"    (blender process {wall:.1f} s)")
+    return runs, res["info"], " ".join(cmd)
+
+
+# ------------------------------------------------------------------ measurement
+
+class Family:
+    """One renderer (variant) of one scene: a two-half reference and a sweep."""
+
+    def __init__(self, label, halves, sweep, mask):
+        self.label, self.halves, self.sweep, self.mask = label, halves, sweep, mask
+        a, b = halves[0].load(), halves[1].load()
+        self.ref = 0.5 * (a + b)
+        self.ref_var = (a - b) ** 2 / 4  # per-pixel variance of the averaged reference
+        self.rows = [self.measure(r) for r in sweep]
+
+    def measure(self, r):
+        m = self.mask
+        img = r.load()
+        mse = float(np.mean((img - self.ref)[m] ** 2))
+        var_ref = float(np.mean(self.ref_var[m]))
+        d = np.mean((img - self.ref)[m] ** 2 - self.ref_var[m], axis=-1)
+        se = float(np.std(d) / math.sqrt(d.size))
+        corr = max(mse - var_ref, 1e-30)
+        return dict(run=r, spp=r.spp, seconds=r.seconds, mse=mse, var_ref=var_ref, mse_corr=corr, rse=se / corr,
+                    eff=1.0 / (corr * max(r.seconds, 1e-3)))
+
+    @property
+    def ref_spp(self):
+        return sum(h.spp for h in self.halves)
+
+    @property
+    def ref_seconds(self):
+        return sum(h.seconds for h in self.halves)
+
+
+def cross_check(dref, cref, mask, block=8):
+    """Dermis vs Cycles references over the object: per-channel means, relative RMSE, the
+    correlation of the two images, and block means (block x block pixels fully inside)."""
+    m = mask
+    dm, cm = dref[m].mean(axis=0), cref[m].mean(axis=0)
+    rrmse = math.sqrt(float(np.mean((dref - cref)[m] ** 2))) / float(cref[m].mean())
+    dl, cl = dref[m].mean(axis=-1), cref[m].mean(axis=-1)
+    corr = float(np.corrcoef(dl, cl)[0, 1])
+    h, w = m.shape
+    rel = []
+    for y in range(0, h - block + 1, block):
+        for x in range(0, w - block + 1, block):
+            if m[y:y + block, x:x + block].all():
+                a = dref[y:y + block, x:x + block].mean()
+                b = cref[y:y + block, x:x + block].mean()
+                rel.append((a - b) / b)
+    rel = np.array(rel) if rel else np.zeros(1)
+    # The mirror image: if the twins were mirrored, this correlation would be the higher one.
+    corr_mirror = float(np.corrcoef(dref[m].mean(axis=-1), cref[:, ::-1][m].mean(axis=-1))[0, 1])
+    return dict(mean_d=dm, mean_c=cm, ratio=dm / cm, rrmse=rrmse, corr=corr, corr_mirror=corr_mirror,
+                blocks=len(rel), block_med=float(np.median(np.abs(rel))), block_max=float(np.max(np.abs(rel))),
+                block_mean=float(np.mean(rel)))
+
+
+def make_mask(args, sc, work):
+    path = os.path.join(work, "mask.pbrt")
+    with open(path, "w") as f:
+        f.write(pbrt_writer.mask_text(sc))
+    out = os.path.join(work, "mask.exr")
+    subprocess.run([args.dermis, "render", path, "--spp", "16", "--threads", str(args.threads), "-q", "--no-png",
+                    "-o", out], check=True, capture_output=True)
+    cov = read_exr(out)[0][..., 0]
+    return cov > 0.999  # fully covered pixels only
+
+
+# ------------------------------------------------------------------ per scene
+
+def run_scene(args, name):
+    sc = json.loads(json.dumps(S.SCENES[name]))  # a copy
+    if args.res:
+        sc["res"] = list(args.res)
+    if sc["material"]["kind"] == "subsurface":
+        sc["material"]["cycles_radius"] = S.cycles_radius(sc["material"])
+    work = os.path.join(args.out, name)
+    os.makedirs(work, exist_ok=True)
+    log(f"[{name}] {sc['res'][0]}x{sc['res'][1]}")
+    mask = make_mask(args, sc, work)
+    log(f"  mask: {int(mask.sum())} pixels")
+    half = args.reference_time * sc["ref_factor"] / 2 if args.reference_time else None
+    rspp = int(args.reference_spp * sc["ref_factor"]) // 2 if args.reference_spp else None
+
+    dermis = {}
+    for i, (label, extra) in enumerate(sc["dermis"].items()):
+        scene_file = os.path.join(work, f"dermis-{i}.pbrt")
+        with open(scene_file, "w") as f:
+            f.write(pbrt_writer.scene_text(sc, label, extra))
+        log(f"  dermis '{label}': {scene_file}")
+        halves = [dermis_render(args, scene_file, os.path.join(work, f"dermis-{i}-ref{k}.exr"), spp=rspp, seconds=half,
+                                seed=1000 + k, res=sc["res"]) for k in (1, 2)]
+        sweep = [dermis_render(args, scene_file, os.path.join(work, f"dermis-{i}-{n}spp.exr"), spp=n, seed=1,
+                               res=sc["res"]) for n in args.spp]
+        dermis[label] = Family(label, halves, sweep, mask)
+        dermis[label].scene_file = scene_file
+
+    log("  cycles")
+    renders = [dict(out=os.path.join(work, f"cycles-ref{k}.exr"), spp=rspp or HUGE_SPP, seed=1000 + k,
+                    time_limit=half or 0.0) for k in (1, 2)]
+    renders += [dict(out=os.path.join(work, f"cycles-{n}spp.exr"), spp=n, seed=1) for n in args.spp]
+    runs, info, cmd = cycles_renders(args, sc, renders, work)
+    cycles = Family("Cycles", runs[:2], runs[2:], mask)
+    cycles.cmd = cmd
+
+    first = next(iter(dermis.values()))
+    xc = cross_check(first.ref, cycles.ref, mask)
+    xcs = {label: cross_check(f.ref, cycles.ref, mask) for label, f in dermis.items()}
+    if len(dermis) > 1:  # Dermis variants against each other (same physics)
+        labels = list(dermis)
+        xcs[f"{labels[1]} vs {labels[0]}"] = cross_check(dermis[labels[1]].ref, dermis[labels[0]].ref, mask)
+    log(f"  cross-check (Dermis '{first.label}' vs Cycles references): mean ratio "
+        + ", ".join(f"{v:.3f}" for v in xc["ratio"]) + f"; rel. RMSE {xc['rrmse']:.3f}; correlation {xc['corr']:.3f} "
+        f"(mirrored {xc['corr_mirror']:.3f}); 8x8 blocks |rel diff| median {xc['block_med']:.3f} max {xc['block_max']:.3f}")
+    for label, f in dermis.items():
+        for rd, rc in zip(f.rows, cycles.rows):
+            log(f"  {rd['spp']:.0f} spp: Dermis '{label}' {rd['seconds']:.2f} s MSE {rd['mse_corr']:.3g}  |  Cycles "
+                f"{rc['seconds']:.2f} s MSE {rc['mse_corr']:.3g}  ->  efficiency ratio {rd['eff'] / rc['eff']:.2f}")
+    return dict(name=name, sc=sc, mask=mask, dermis=dermis, cycles=cycles, info=info, xcs=xcs, work=work)
+
+
+# ------------------------------------------------------------------ images
+
+def lum(x):
+    return x @ np.array([0.2126, 0.7152, 0.0722])
+
+
+def contact_sheet(res, spp, out):
+    """Dermis ref | Cycles ref | |Dermis - its ref| | |Cycles - its ref| at `spp` (the two
+    error maps on one common scale: the 99th percentile of both over the object)."""
+    from PIL import Image
+    w = res["work"]
+    d = next(iter(res["dermis"].values()))
+    c = res["cycles"]
+    i = [r["spp"] for r in d.rows].index(spp) if spp in [r["spp"] for r in d.rows] else len(d.rows) // 2
+    ed = np.abs(lum(d.rows[i]["run"].load() - d.ref))
+    ec = np.abs(lum(c.rows[i]["run"].load() - c.ref))
+    m = res["mask"]
+    scale = max(np.percentile(np.concatenate([ed[m], ec[m]]), 99), 1e-12)
+    pngs = []
+    for k, img in enumerate([d.ref, c.ref]):
+        p = os.path.join(w, f"sheet-{k}.png")
+        write_png(img, p)
+        pngs.append(p)
+    for k, e in enumerate([ed, ec]):
+        p = os.path.join(w, f"sheet-err{k}.png")
+        g = (np.clip(e / scale, 0, 1) ** (1 / 2.2) * 255 + 0.5).astype(np.uint8)
+        Image.fromarray(np.stack([g] * 3, axis=-1), "RGB").save(p)
+        pngs.append(p)
+    n = int(d.rows[i]["spp"])
+    strip(pngs, out, ["Dermis ref", "Cycles ref", f"|Dermis-ref| {n}spp", f"|Cycles-ref| {n}spp"])
+    return n, scale
+
+
+# ------------------------------------------------------------------ report
+
+def v3(v, f="{:.4f}"):
+    return "(" + ", ".join(f.format(x) for x in v) + ")"
+
+
+def write_report(args, results, info, total, path, image_dir, argv):
+    os.makedirs(image_dir, exist_ok=True)
+    commit = args.dermis_commit or subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
+                                                  capture_output=True, text=True).stdout.strip()
+    dermis_version = subprocess.run([args.dermis, "--version"], capture_output=True, text=True).stdout.strip()
+    cpu = ""
+    try:
+        with open("/proc/cpuinfo") as f:
+            cpu = next(l.split(":", 1)[1].strip() for l in f if l.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    rel_images = os.path.relpath(image_dir, os.path.dirname(path))
+    o = []
+    w = o.append
+    w("# Dermis vs Blender Cycles at equal error\n")
+    w(f"Produced by `/usr/bin/python3 bench/vs_cycles/run.py {shlex.join(argv)}` on {datetime.date.today().isoformat()} "
+      f"in {total / 60:.1f} min. Dermis: `{args.dermis}` ({dermis_version}), code at commit `{commit}`. "
+      f"Blender {info['blender']} (Debian package), Cycles on the CPU. Machine: {cpu}, {os.cpu_count()} cores, "
+      f"{args.threads} render threads in both renderers.\n")
+    if args.note:
+        w(f"**Note.** {args.note}\n")
+    w("## How it is measured\n")
+    w("- Each scene is described once (`bench/vs_cycles/scenes.py`) and written as a pbrt-v4 file for Dermis "
+      "(`pbrt_writer.py`) and built in Blender by `blender_scene.py` (one Blender process per scene).")
+    w("- **Reference** per renderer: two independent halves (seeds 1001, 1002) "
+      + (f"of {args.reference_time / 2:g} s each × the scene's factor (1; `calibration` 0.25) "
+         "(`dermis render --time-limit`, Cycles `time_limit`)"
+         if args.reference_time else f"of {args.reference_spp // 2} spp each")
+      + "; their difference estimates the reference's own variance, which is subtracted from every MSE "
+        "(E(A−R)² = Var A + bias² + Var R; the method of `bench/sss_methods.py`).")
+    w(f"- **Sweep**: {', '.join(str(n) for n in args.spp)} samples per pixel, seed 1. **MSE** over the pixels fully "
+      "covered by the object (a Dermis render of the object as a unit emitter; coverage > 0.999), mean over R, G, B, "
+      "against the renderer's OWN reference: it measures noise, not the differences between the renderers' models.")
+    w("- **Time**: Dermis — the time `dermis render` reports for the render stage (`render_image`: tiles, "
+      "all samples; excludes parsing, scene/BVH build and the albedo-inversion table, image writing; printed "
+      "with 0.1 s resolution). Cycles — `cycles.ViewLayer.render_time` from the EXR's metadata (path tracing only; "
+      "excludes `synchronization_time`: scene export, BVH, shader compilation; 10 ms resolution). The wall time of "
+      "`bpy.ops.render.render()` (sync + render + EXR write) is listed too.")
+    w("- **Efficiency** = 1 / (MSE × time); the ratio Dermis ÷ Cycles is the speed-up of Dermis at equal error "
+      "(> 1: Dermis reaches the same noise in less time). ± is one standard error from the spread of the per-pixel "
+      "squared errors (pixels taken as independent).\n")
+
+    w("## Summary: efficiency Dermis ÷ Cycles\n")
+    w("| scene | Dermis variant | " + " | ".join(f"{n} spp" for n in args.spp) + " | geometric mean |")
+    w("|---|---|" + "---|" * (len(args.spp) + 1))
+    for r in results:
+        for label, f in r["dermis"].items():
+            ratios = [rd["eff"] / rc["eff"] for rd, rc in zip(f.rows, r["cycles"].rows)]
+            errs = [q * math.hypot(rd["rse"], rc["rse"]) for q, rd, rc in zip(ratios, f.rows, r["cycles"].rows)]
+            gm = math.exp(sum(math.log(q) for q in ratios) / len(ratios))
+            w(f"| {r['name']} | {label} | " + " | ".join(f"{q:.3g} ± {e:.2g}" for q, e in zip(ratios, errs))
+              + f" | **{gm:.3g}** |")
+    w("")
+
+    w("## Per scene\n")
+    for r in results:
+        sc = r["sc"]
+        m = sc["material"]
+        w(f"### {r['name']}\n")
+        w(sc["checks"] + "\n")
+        if m["kind"] == "subsurface":
+            w(f"Dermis: `subsurface` reflectance {v3(m['reflectance'], '{:g}')}, mfp {v3(m['mfp'], '{:g}')} mm, "
+              f"eta {m['eta']:g}, g {m['g']:g}. Cycles: Principled `{'RANDOM_WALK' if m['method'] == 'randomwalk' else 'BURLEY'}`, "
+              f"Base/Subsurface Color = reflectance, Subsurface 1, Subsurface Radius "
+              f"{v3(m['cycles_radius'], '{:.3f}')} (converted, see scenes.py), Subsurface IOR {m['eta']:g}, "
+              f"Anisotropy {m['g']:g}, Specular {S.principled_specular(m['eta']):.3f} (F0 of eta {m['eta']:g}), "
+              "Roughness 0.\n")
+        elif m["kind"] == "medium":
+            w(f"Medium: sigma_a {v3(m['sigma_a'], '{:g}')}, sigma_s {v3(m['sigma_s'], '{:g}')} per mm, HG g {m['g']:g}; "
+              + ("index-matched boundary." if m["boundary"] == "matched" else f"smooth dielectric, IOR {m['eta']:g}.") + "\n")
+        w("| renderer | spp | time (s) | other time (s) | MSE (ref. noise removed) | ref. variance removed | efficiency |")
+        w("|---|---|---|---|---|---|---|")
+        fams = list(r["dermis"].items()) + [("Cycles", r["cycles"])]
+        for label, f in fams:
+            for row in f.rows:
+                run = row["run"]
+                other = (f"printed {run.info['reported']:.1f}, process {run.wall:.1f}" if label != "Cycles"
+                         else f"sync {run.info['sync']:.2f}, operator {run.wall:.1f}")
+                approx = "≈" if run.info.get("approx") else ""
+                w(f"| {'Dermis ' + label if label != 'Cycles' else 'Cycles'} | {row['spp']:.0f} | {approx}{row['seconds']:.2f} | "
+                  f"{other} | {row['mse_corr']:.4g} ± {row['mse_corr'] * row['rse']:.2g} | {row['var_ref']:.3g} | "
+                  f"{row['eff']:.4g} |")
+        refs = "; ".join(f"{'Dermis ' + label if label != 'Cycles' else 'Cycles'} {f.ref_spp:.0f} spp in {f.ref_seconds:.1f} s"
+                         for label, f in fams)
+        w(f"\nReferences (two halves together): {refs}.\n")
+        w("Cross-check of the references over the object (mean R, G, B; relative RMSE = RMS difference / mean; "
+          "correlation of the luminance images, and of one with the other mirrored; |relative difference| of 8×8-pixel "
+          "block means):\n")
+        for label, x in r["xcs"].items():
+            name = label if " vs " in label else f"Dermis {label} vs Cycles"
+            w(f"- {name}: means {v3(x['mean_d'])} vs {v3(x['mean_c'])}, ratio {v3(x['ratio'], '{:.3f}')}; "
+              f"relative RMSE {x['rrmse']:.3f}; correlation {x['corr']:.4f} (mirrored {x['corr_mirror']:.4f}); "
+              f"blocks ({x['blocks']}): median {x['block_med']:.3f}, max {x['block_max']:.3f}, mean signed "
+              f"{x['block_mean']:+.3f}.")
+        n, scale = contact_sheet(r, args.sheet_spp, os.path.join(image_dir, f"{r['name']}.png"))
+        w(f"\n![{r['name']}]({rel_images}/{r['name']}.png)\n")
+        w(f"Error maps: luminance of |image − own reference| at {n} spp, both on one scale (white = {scale:.3g}, "
+          "gamma 2.2).\n")
+
+    w("## Commands\n")
+    r0 = results[0]
+    f0 = next(iter(r0["dermis"].values()))
+    w("Dermis (per render; references with `--spp 1000000 --time-limit T/2 --seed 1001|1002`):\n")
+    w(f"```\n{f0.rows[0]['run'].info['cmd']}\n```\n")
+    w(f"Cycles (per scene; the job file lists the renders):\n\n```\n{r0['cycles'].cmd}\n```\n")
+    w("## Cycles settings (read back from Blender)\n")
+    w("| setting | value |\n|---|---|")
+    for k, v in info.items():
+        w(f"| {k} | {v} |")
+    w("\nAlso: world Background colour = sky radiance with strength 1; the key light is a mesh quad with an "
+      "Emission shader of strength 1 × radiance on its front face (Geometry › Backfacing mixes in a black "
+      "emission: one-sided, as Dermis' `twosided false`), material Multiple Importance on; colour management "
+      "Standard / None / exposure 0 / gamma 1, EXR 32-bit float (scene-linear, checked by the `calibration` "
+      "scene); volume materials `homogeneous_volume` on, volume sampling Multiple Importance; Glass BSDF "
+      "distribution Sharp.\n")
+    w(FINDINGS_MARKER)
+    text = "\n".join(o) + "\n"
+    old = open(path).read() if os.path.exists(path) else ""
+    if FINDINGS_MARKER in old:  # keep the hand-written discussion below the marker
+        text += old.split(FINDINGS_MARKER, 1)[1].lstrip("\n")
+    with open(path, "w") as f:
+        f.write(text)
+    log(f"wrote {path}")
+
+
+FINDINGS_MARKER = "<!-- findings: written by hand below this line; kept when run.py rewrites the report -->\n"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--scenes", default=",".join(S.DEFAULT_SCENES),
+                    help=f"comma-separated, from {', '.join(S.SCENES)} (default: all of them)")
+    ap.add_argument("--spp", default="16,64,256", help="sweep sample counts (default 16,64,256)")
+    ap.add_argument("--reference-time", type=float, default=40.0,
+                    help="seconds per reference per renderer (two halves; default 40)")
+    ap.add_argument("--reference-spp", type=int, default=0, help="instead of --reference-time: spp per reference")
+    ap.add_argument("--dermis", default=os.path.join(ROOT, "build", "dermis"))
+    ap.add_argument("--dermis-sampler", default="",
+                    help="pass `--sampler NAME` to dermis render (binaries from ffd318d on: sobol, independent); "
+                    "default: the scene files' Sampler \"zsobol\" (Owen-scrambled Sobol' from ffd318d on; "
+                    "older binaries have only independent random numbers)")
+    ap.add_argument("--blender", default="blender")
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--out", default="/tmp/dermis-vs-cycles", help="scratch folder (scenes, EXRs, logs)")
+    ap.add_argument("--res", type=lambda s: tuple(int(x) for x in s.lower().split("x")), help="override WxH")
+    ap.add_argument("--sheet-spp", type=int, default=64, help="spp of the error maps in the contact sheets")
+    ap.add_argument("--quick", action="store_true",
+                    help="smoke test: 64x64, spp 4,16, 4 s references, report in --out (not docs/)")
+    ap.add_argument("--no-docs", action="store_true", help="write the report into --out instead of docs/")
+    ap.add_argument("--dermis-commit", default="", help="the commit the Dermis binary was built from "
+                    "(default: git rev-parse --short HEAD)")
+    ap.add_argument("--note", default="", help="a sentence for the report (e.g. the state of the machine)")
+    args = ap.parse_args()
+    argv = sys.argv[1:]
+    if args.quick:
+        args.res = args.res or (64, 64)
+        if args.spp == "16,64,256":
+            args.spp = "4,16"
+        if args.reference_time == 40.0 and not args.reference_spp:
+            args.reference_time = 4.0
+        args.no_docs = True
+        args.sheet_spp = 16
+    args.spp = [int(x) for x in args.spp.split(",")]
+    if args.reference_spp:
+        args.reference_time = 0
+    args.dermis = os.path.abspath(args.dermis)
+    for _ in range(6):  # build/dermis may be being rebuilt by someone else: wait a little
+        if os.path.exists(args.dermis):
+            break
+        log(f"{args.dermis} not found; waiting 30 s")
+        time.sleep(30)
+    else:
+        sys.exit(f"{args.dermis} not found: build first (make build)")
+    names = [n for n in args.scenes.split(",") if n]
+    for n in names:
+        if n not in S.SCENES:
+            sys.exit(f"unknown scene {n}; known: {', '.join(S.SCENES)}")
+    os.makedirs(args.out, exist_ok=True)
+    nvar = sum(len(S.SCENES[n]["dermis"]) for n in names)
+    if args.reference_time:
+        ref_total = sum((len(S.SCENES[n]["dermis"]) + 1) * S.SCENES[n]["ref_factor"] * args.reference_time for n in names)
+        log(f"planned: references {ref_total / 60:.1f} min "
+            f"({nvar} Dermis variants + {len(names)} Cycles scenes x {args.reference_time:g} s x the scene's factor), plus the sweeps "
+            f"({', '.join(map(str, args.spp))} spp each), masks and Blender start-up/sync")
+    t0 = time.time()
+    results, info = [], None
+    for n in names:
+        r = run_scene(args, n)
+        results.append(r)
+        info = r["info"]
+        log(f"  elapsed {(time.time() - t0) / 60:.1f} min")
+    total = time.time() - t0
+    log(f"total wall time {total:.0f} s")
+    if args.no_docs:
+        write_report(args, results, info, total, os.path.join(args.out, "results-vs-cycles.md"),
+                     os.path.join(args.out, "images"), argv)
+    else:
+        write_report(args, results, info, total, DOC, IMAGES, argv)
+
+
+if __name__ == "__main__":
+    main()
