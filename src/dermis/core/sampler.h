@@ -44,7 +44,17 @@ class Sampler {
 
   SamplerKind kind() const { return kind_; }
   // The next number is taken from dimension d (and d + 1 for get2d), and so on.
-  void set_dimension(uint64_t d) { dim_ = d; }
+  void set_dimension(uint64_t d) {
+    dim_ = d;
+    stratified_end_ = ~uint64_t(0);
+  }
+  // From dimension d, only the first `stratified` numbers are low-discrepancy; the rest
+  // (the deep steps of a random walk, where stratification no longer pays for the
+  // hashing) continue the sample's own PCG32 stream, which never repeats a number.
+  void set_dimension(uint64_t d, uint32_t stratified) {
+    dim_ = d;
+    stratified_end_ = d + stratified;
+  }
   uint64_t dimension() const { return dim_; }
   // The first dimension of a region of 2^32 dimensions named by (parent dimension, tag):
   // a hash, so that nested regions (a walk inside a path inside another path) never
@@ -55,7 +65,7 @@ class Sampler {
 
   // The next dimension as a 32-bit fraction of one.
   uint32_t next_fraction() {
-    if (kind_ == SamplerKind::Independent) return rng_.next_u32();
+    if (kind_ == SamplerKind::Independent || dim_ >= stratified_end_) return rng_.next_u32();
     const uint32_t seed = dimension_seed(dim_++);
     const uint32_t i = nested_uniform_scramble(index_, seed);
     // Dimension 0 of Sobol' is the bit reversal of the index; reverse(scramble(reverse(x)))
@@ -65,7 +75,7 @@ class Sampler {
   float get1d() { return fraction_to_float(next_fraction()); }
   // Two dimensions jointly stratified (Sobol' dimensions 0 and 1 of one shuffled index).
   Vec2 get2d() {
-    if (kind_ == SamplerKind::Independent) return {get1d(), get1d()};
+    if (kind_ == SamplerKind::Independent || dim_ + 1 >= stratified_end_) return {get1d(), get1d()};
     const uint32_t seed = dimension_seed(dim_);
     dim_ += 2;
     const uint32_t i = nested_uniform_scramble(index_, seed);
@@ -78,7 +88,8 @@ class Sampler {
   // takes a Sampler too: each call is the next dimension.
   float uniform() { return get1d(); }
   double uniform_double() {
-    return kind_ == SamplerKind::Independent ? rng_.uniform_double() : fraction_to_double(next_fraction());
+    return kind_ == SamplerKind::Independent || dim_ >= stratified_end_ ? rng_.uniform_double()
+                                                                         : fraction_to_double(next_fraction());
   }
 
  private:
@@ -91,6 +102,7 @@ class Sampler {
   uint32_t pixel_seed_;
   uint32_t index_;
   uint64_t dim_ = 0;
+  uint64_t stratified_end_ = ~uint64_t(0);
 };
 
 }  // namespace dermis

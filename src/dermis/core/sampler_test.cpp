@@ -191,6 +191,21 @@ TEST(Sampler, SameArgumentsSameNumbersAndIndependentIsTheRngStream) {
   for (int i = 0; i < 100; ++i) EXPECT_EQ(ind.get1d(), rng.uniform());
 }
 
+// After `stratified` numbers a region continues the sample's PCG32 stream: the numbers
+// before the limit are the low-discrepancy ones, those after are the stream's.
+TEST(Sampler, StratifiedCountHandsOverToTheStream) {
+  Sampler a(SamplerKind::Sobol, 3, 11, 5), b(SamplerKind::Sobol, 3, 11, 5);
+  Rng stream(3, 11, 5);
+  a.set_dimension(1000, 3);
+  b.set_dimension(1000);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(a.next_fraction(), b.next_fraction());
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(a.next_fraction(), stream.next_u32());
+  a.set_dimension(1000);  // a new region is stratified again
+  Sampler c(SamplerKind::Sobol, 3, 11, 5);
+  c.set_dimension(1000);
+  EXPECT_EQ(a.next_fraction(), c.next_fraction());
+}
+
 TEST(Sampler, UniformValuesStayInsideTheUnitInterval) {
   for (uint32_t x : {0u, 1u, 0xffffff00u, 0xffffffffu}) {
     EXPECT_GE(fraction_to_float(x), 0.0f);

@@ -272,7 +272,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       }
       // The exit sampler draws from its own region; the exit's light and lobe from this block.
       const uint64_t after_exit = sampler.dimension();
-      sampler.set_dimension(Sampler::region(after_exit, 0x55e1u));
+      sampler.set_dimension(Sampler::region(after_exit, 0x55e1u), kStratifiedExitDimensions);
       SubsurfaceExit ex;
       const bool exited = sample_subsurface_exit(sc, sm, hit, wo, sampler, counters, ex);
       sampler.set_dimension(after_exit);
