@@ -36,17 +36,19 @@ inline Vec3 direction_about(Vec3 axis, float cos_theta, float u) {
 
 // Next-event estimation from point p (already offset for surfaces) in `medium`.
 // `scatter(wi)` returns f(wo, wi)|cos| (or the phase function) and its sampling pdf.
-// Takes three dimensions (light choice, then the position on it as a pair) whether or
-// not it returns early, so that the dimensions after it do not shift.
+// n: the unit normal of the hemisphere the scattering at p sees (zero in a medium), for
+// the light selection; a path that finds a light by scattering from here weighs itself
+// against this estimate with the same (p, n). Takes three dimensions (light choice, then
+// the position on it as a pair) whether or not it returns early, so that the dimensions
+// after it do not shift.
 template <class Scatter>
-RGB estimate_direct(const RenderScene& sc, Vec3 p, int medium, Sampler& sampler, PathCounters& counters,
+RGB estimate_direct(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
                     Scatter&& scatter) {
   const float u_light = sampler.get1d();
   const Vec2 u_position = sampler.get2d();
-  if (sc.lights.empty()) return RGB(0);
   float pmf;
-  std::size_t li = sc.light_distribution.sample_discrete(u_light, &pmf);
-  if (pmf <= 0) return RGB(0);
+  const int li = sc.light_selection.sample(u_light, p, n, &pmf);
+  if (li < 0 || pmf <= 0) return RGB(0);
   const Light& light = sc.lights[li];
   LightSample ls;
   if (!light_sample(light, sc.shapes, p, u_position, ls) || ls.pdf <= 0) return RGB(0);
@@ -70,7 +72,7 @@ RGB transmitted_irradiance(const RenderScene& sc, Vec3 p, Vec3 n, float eta, int
   };
   Vec3 p_out = offset_ray_origin(p, n, n);
   // Direct light by next-event estimation (MIS against the cosine sampling below).
-  RGB E = estimate_direct(sc, p_out, medium, sampler, counters, [&](Vec3 wi) {
+  RGB E = estimate_direct(sc, p_out, n, medium, sampler, counters, [&](Vec3 wi) {
     return std::pair{RGB(transmitted_cos(wi)), cosine_hemisphere_pdf(dot(wi, n))};
   });
   // Everything else along one cosine-distributed direction.
@@ -80,7 +82,8 @@ RGB transmitted_irradiance(const RenderScene& sc, Vec3 p, Vec3 n, float eta, int
   PathStart start;
   start.from_camera = false;
   start.prev_pdf = cosine_hemisphere_pdf(local.z);
-  start.prev_p = p;
+  start.prev_p = p_out;
+  start.prev_n = n;
   start.depth = 1;
   start.first_dimension = Sampler::region(sampler.dimension(), 0x1aadu);
   RGB Li = trace_path(sc, Ray{p_out, wi}, medium, sampler, counters, start);
@@ -128,7 +131,9 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
   float eta_scale = 1;
   bool specular = start.from_camera;  // the last scattering was specular (or the camera): no MIS on emission
   float prev_pdf = start.prev_pdf;    // solid-angle pdf of the last scattering direction
-  Vec3 prev_p = start.from_camera ? ray.o : start.prev_p;  // position of the last scattering event
+  // The last scattering event's next-event point and normal (integrator.h PathStart).
+  Vec3 prev_p = start.from_camera ? ray.o : start.prev_p;
+  Vec3 prev_n = start.from_camera ? Vec3(0, 0, 0) : start.prev_n;
   int depth = start.depth, crossings = 0;
   uint64_t vertex_dimension = start.first_dimension;  // this vertex's block (integrator.h)
   const int max_depth = sc.settings.max_depth;
@@ -176,7 +181,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         Vec3 wo = -ray.d;
         const float g = m.g;
         if (sc.medium_sees_lights[medium])
-          L += beta * estimate_direct(sc, p, medium, sampler, counters, [&](Vec3 wi) {
+          L += beta * estimate_direct(sc, p, Vec3(0, 0, 0), medium, sampler, counters, [&](Vec3 wi) {
                  float ph = henyey_greenstein(dot(-wo, wi), g);
                  return std::pair{RGB(ph), ph};
                });
@@ -187,6 +192,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         prev_pdf = henyey_greenstein(cos_theta, g);
         specular = false;
         prev_p = p;
+        prev_n = Vec3(0, 0, 0);
         ray = Ray{p, wi};
         if (!survives_roulette()) break;
         continue;
@@ -205,7 +211,9 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         const Light& light = sc.lights[li];
         RGB Le = infinite_light_radiance(light, ray.d);
         if (Le.is_black()) continue;
-        float w = specular ? 1.0f : power_heuristic(prev_pdf, sc.light_pick_pmf(li) * light_pdf(light, prev_p, ray.d, {}, {}));
+        float w = specular ? 1.0f
+                           : power_heuristic(prev_pdf, sc.light_selection.pmf(li, prev_p, prev_n) *
+                                                           light_pdf(light, prev_p, ray.d, {}, {}));
         L += beta * Le * w;
       }
       break;
@@ -218,7 +226,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       RGB Le = area_light_radiance(light, hit.ng, -ray.d);
       if (!Le.is_black()) {
         float w = specular ? 1.0f
-                           : power_heuristic(prev_pdf, sc.light_pick_pmf(li) *
+                           : power_heuristic(prev_pdf, sc.light_selection.pmf(li, prev_p, prev_n) *
                                                            light_pdf(light, prev_p, ray.d, hit.p, hit.ng));
         L += beta * Le * w;
       }
@@ -252,7 +260,23 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         continue;
       }
       float F = fresnel_dielectric(cos_o, sm.entry_eta);
-      if (sampler.get1d() < F) {
+      if (start.from_camera && start.depth == 0 && depth == 1) {
+        // The camera's first hit is split: reflection and transmission are both followed,
+        // weighted F and 1 - F (unbiased: one sample of each term of F L_r + (1 - F) L_t).
+        // Chosen by Fresnel, a sharp highlight of a small light rests on the few per cent
+        // of samples that reflect: on the skin-like sphere it made half the image's error.
+        if (F > 0) {
+          const uint64_t resume = sampler.dimension();
+          PathStart reflected;  // after a specular bounce: emission counts in full
+          reflected.depth = depth;
+          reflected.first_dimension = Sampler::region(resume, 0x5e1fu);
+          Vec3 wi = reflect(wo, hit.ng);
+          L += beta * F * trace_path(sc, Ray{offset_ray_origin(hit.p, hit.ng, wi), wi}, medium, sampler, counters,
+                                     reflected);
+          sampler.set_dimension(resume);
+        }
+        beta *= 1 - F;
+      } else if (sampler.get1d() < F) {
         Vec3 wi = reflect(wo, hit.ng);
         specular = true;
         prev_pdf = F;
@@ -295,7 +319,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       sw.eta = sm.params.eta;
       sw.sw_norm = sm.sw_norm;
       Vec3 p_out = offset_ray_origin(ex.hit.p, ex.hit.ng, ex.hit.ng);
-      L += beta * estimate_direct(sc, p_out, medium, sampler, counters, [&](Vec3 wi) {
+      L += beta * estimate_direct(sc, p_out, ex.hit.ng, medium, sampler, counters, [&](Vec3 wi) {
              return std::pair{bsdf_eval(sw, ex.hit.ng, wi), bsdf_pdf(sw, ex.hit.ng, wi)};
            });
       const float u_exit_lobe = sampler.get1d();
@@ -304,7 +328,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       beta *= bs->weight;
       specular = false;
       prev_pdf = bs->pdf;
-      prev_p = ex.hit.p;
+      prev_p = p_out;
+      prev_n = ex.hit.ng;
       ray = Ray{p_out, bs->wi};
       if (!beta.is_finite() || beta.is_black()) break;
       if (!survives_roulette()) break;
@@ -312,11 +337,12 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     }
 
     BSDF bsdf = bsdf_at(mat, sc.textures, hit);
+    // Shadow rays leave on the side of the light; the medium there is the one the path
+    // is in, since Lambertian reflection stays on the side of wo.
+    const Vec3 p_out = offset_ray_origin(hit.p, hit.ng, wo);
+    const Vec3 surface_n = dot(hit.ng, wo) >= 0 ? hit.ng : -hit.ng;
     if (!bsdf.is_specular()) {
-      // Shadow rays leave on the side of the light; the medium there is the one the
-      // path is in, since Lambertian reflection stays on the side of wo.
-      Vec3 p_out = offset_ray_origin(hit.p, hit.ng, wo);
-      L += beta * estimate_direct(sc, p_out, medium, sampler, counters, [&](Vec3 wi) {
+      L += beta * estimate_direct(sc, p_out, surface_n, medium, sampler, counters, [&](Vec3 wi) {
              return std::pair{bsdf_eval(bsdf, wo, wi), bsdf_pdf(bsdf, wo, wi)};
            });
     }
@@ -328,7 +354,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     eta_scale *= bs->eta_scale;
     specular = bs->specular;
     prev_pdf = bs->pdf;
-    prev_p = hit.p;
+    prev_p = p_out;
+    prev_n = surface_n;
     if (bs->transmission) medium = medium_after_crossing(s, bs->wi, hit.ng, medium);
     ray = Ray{offset_ray_origin(hit.p, hit.ng, bs->wi), bs->wi};
     if (!beta.is_finite() || beta.is_black()) break;

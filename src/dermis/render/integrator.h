@@ -44,7 +44,8 @@ inline constexpr uint32_t kStratifiedExitDimensions = 8;
 struct PathStart {
   bool from_camera = true;
   float prev_pdf = 0;
-  Vec3 prev_p;
+  Vec3 prev_p;  // the next-event point there (offset off the surface)
+  Vec3 prev_n;  // and the normal of the hemisphere its light selection saw (zero in a medium)
   int depth = 0;  // scattering events already taken
   uint64_t first_dimension = kCameraDimensions;  // of vertex 0's block
 };

@@ -343,22 +343,9 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnosti
     if (sc->materials[s.material].is_interface() || s.first_light >= 0) open_medium(s.inside_medium);
   }
 
-  // Light selection: in proportion to power within two groups, lights at infinity
-  // (infinite, distant) and finite lights, each group chosen with probability 1/2
-  // when both exist. The power of a light at infinity depends on the scene's
-  // radius, which a large floor inflates; splitting the groups keeps small key
-  // lights from starving (pbrt-v4's BVH light sampler splits the same way).
-  std::vector<float> power(sc->lights.size());
-  float radius = sc->embree->bounds_radius();
-  double group_sum[2] = {0, 0};
-  auto at_infinity = [](const Light& l) { return l.type == Light::Type::Infinite || l.type == Light::Type::Distant; };
-  for (std::size_t i = 0; i < sc->lights.size(); ++i) {
-    power[i] = std::max(0.0f, light_power(sc->lights[i], radius));
-    group_sum[at_infinity(sc->lights[i])] += power[i];
-  }
-  if (group_sum[0] > 0 && group_sum[1] > 0)
-    for (std::size_t i = 0; i < sc->lights.size(); ++i) power[i] = float(power[i] / group_sum[at_infinity(sc->lights[i])]);
-  if (!power.empty()) sc->light_distribution = Distribution1D(power);
+  // Light selection (lights/light_selection.h): by each light's importance at the
+  // shading point with few lights, by power with many.
+  sc->light_selection = LightSelection(sc->lights, sc->embree->bounds_radius());
   sc->point_cloud_report = build_point_clouds(*sc, point_cloud_options);
   return sc;
 }

@@ -10,6 +10,7 @@
 #include "dermis/geometry/embree_scene.h"
 #include "dermis/geometry/shape.h"
 #include "dermis/lights/light.h"
+#include "dermis/lights/light_selection.h"
 #include "dermis/materials/material.h"
 #include "dermis/materials/medium.h"
 #include "dermis/materials/texture.h"
@@ -32,7 +33,7 @@ struct RenderScene {
   std::vector<std::unique_ptr<sss::pointcloud::PointCloudDiffusion>> point_clouds;
   PointCloudReport point_cloud_report;
   std::vector<Light> lights;
-  Distribution1D light_distribution;  // light selection in proportion to power
+  LightSelection light_selection;     // which light next-event estimation samples
   std::vector<int> infinite_lights;
   bool has_interfaces = false;        // any shape with an `interface` material
   // Per medium: can a shadow ray from inside it reach a light? Not when the medium only
@@ -43,8 +44,6 @@ struct RenderScene {
   PerspectiveCamera camera;
   FilmDesc film;
   RenderSettingsDesc settings;
-
-  float light_pick_pmf(int light) const { return light_distribution.pmf_discrete(std::size_t(light)); }
 };
 
 // Throws SceneError for problems found while building (e.g. an unreadable texture),

@@ -1,0 +1,163 @@
+#include "dermis/lights/light_selection.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace dermis {
+
+namespace {
+
+constexpr float kPiF = 3.14159265358979f;
+
+// Upper bound of cos(angle between unit axis a and any direction from the origin into
+// a sphere at unit direction w, distance d, radius r): cos(max(0, theta - alpha)) with
+// sin(alpha) = r / d (Conty Estevez & Kulla 2018, eq. 3, the cone of the bounds).
+float cos_bound(float cos_theta, float sin_alpha) {
+  const float cos_alpha = std::sqrt(std::max(0.0f, 1 - sin_alpha * sin_alpha));
+  if (cos_theta >= cos_alpha) return 1;
+  const float sin_theta = std::sqrt(std::max(0.0f, 1 - cos_theta * cos_theta));
+  return cos_theta * cos_alpha + sin_theta * sin_alpha;  // cos(theta - alpha)
+}
+
+bool at_infinity(const Light& l) { return l.type == Light::Type::Infinite || l.type == Light::Type::Distant; }
+
+}  // namespace
+
+LightSelection::LightSelection(const std::vector<Light>& lights, float scene_radius) : count_(lights.size()) {
+  if (lights.empty()) return;
+  // The power distribution (lights at infinity and finite lights as two groups, each
+  // with probability 1/2 when both exist: the power of a light at infinity grows with
+  // the scene's radius, which a large floor inflates).
+  std::vector<float> power(lights.size());
+  double group_sum[2] = {0, 0};
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    power[i] = std::max(0.0f, light_power(lights[i], scene_radius));
+    group_sum[at_infinity(lights[i])] += power[i];
+  }
+  if (group_sum[0] > 0 && group_sum[1] > 0)
+    for (std::size_t i = 0; i < lights.size(); ++i) power[i] = float(power[i] / group_sum[at_infinity(lights[i])]);
+  power_ = Distribution1D(power);
+
+  pointwise_ = lights.size() <= kPointwiseLightLimit;
+  if (!pointwise_) return;
+  bounds_.resize(lights.size());
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const Light& l = lights[i];
+    Bounds& b = bounds_[i];
+    b.type = l.type;
+    b.emission = std::max(0.0f, l.emission.average());
+    switch (l.type) {
+      case Light::Type::Triangle: {
+        b.center = (l.p0 + l.p1 + l.p2) / 3.0f;
+        b.radius = std::sqrt(std::max({length_squared(l.p0 - b.center), length_squared(l.p1 - b.center),
+                                       length_squared(l.p2 - b.center)}));
+        const Vec3 c = cross(l.p1 - l.p0, l.p2 - l.p0);
+        const float len = length(c);
+        b.normal = len > 0 ? c / len : Vec3(0, 0, 1);
+        b.area = l.area;
+        break;
+      }
+      case Light::Type::Sphere:
+        b.center = l.center;
+        b.radius = l.radius;
+        b.area = kPiF * l.radius * l.radius;
+        break;
+      case Light::Type::Point:
+        b.center = l.position;
+        break;
+      case Light::Type::Spot:
+        b.center = l.position;
+        b.normal = l.direction;
+        b.cos_falloff_end = l.cos_falloff_end;
+        break;
+      case Light::Type::Distant:
+        b.normal = l.direction;
+        break;
+      case Light::Type::Infinite:
+        b.emission = l.environment ? l.environment->average_luminance() : b.emission;
+        break;
+    }
+  }
+}
+
+float LightSelection::importance(std::size_t i, Vec3 p, Vec3 n) const {
+  const Bounds& b = bounds_[i];
+  const bool surface = n.x != 0 || n.y != 0 || n.z != 0;
+  switch (b.type) {
+    case Light::Type::Infinite:
+      // Irradiance of a uniform sky of the map's mean radiance (fluence in a medium).
+      return b.emission * (surface ? kPiF : 4 * kPiF);
+    case Light::Type::Distant: {
+      const float c = surface ? dot(n, b.normal) : 1.0f;  // exact: one direction
+      return c > 0 ? b.emission * c : 0.0f;
+    }
+    case Light::Type::Point:
+    case Light::Type::Spot: {
+      const Vec3 d = b.center - p;
+      const float d2 = length_squared(d);
+      if (d2 <= 0) return 0;
+      const float inv_d = 1 / std::sqrt(d2);
+      const float c = surface ? dot(n, d) * inv_d : 1.0f;
+      if (c <= 0) return 0;
+      // Outside the spot's outer cone nothing is emitted toward p (exact).
+      if (b.type == Light::Type::Spot && dot(d, b.normal) * -inv_d < b.cos_falloff_end) return 0;
+      return b.emission * c / d2;
+    }
+    case Light::Type::Triangle:
+    case Light::Type::Sphere: {
+      const Vec3 d = b.center - p;
+      const float d2 = length_squared(d);
+      const float r2 = b.radius * b.radius;
+      if (d2 <= r2 * 1.0001f) return b.emission * b.area / std::max(r2, 1e-12f);  // inside the bounds
+      const float dist = std::sqrt(d2), sin_alpha = b.radius / dist;
+      float c_s = 1, c_l = 1;
+      if (surface) {
+        c_s = cos_bound(dot(n, d) / dist, sin_alpha);
+        if (c_s <= 0) return 0;  // the whole bounding sphere is below the tangent plane
+      }
+      // Emitter cosine over the bounds, either side of the triangle (conservative for
+      // one-sided lights).
+      if (b.type == Light::Type::Triangle) c_l = cos_bound(std::abs(dot(b.normal, d)) / dist, sin_alpha);
+      return b.emission * b.area * std::max(c_l, 1e-4f) * c_s / d2;
+    }
+  }
+  return 0;
+}
+
+int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf) const {
+  *pmf = 0;
+  if (count_ == 0) return -1;
+  if (!pointwise_) {
+    const std::size_t i = power_.sample_discrete(u, pmf);
+    return *pmf > 0 ? int(i) : -1;
+  }
+  std::array<float, kPointwiseLightLimit> w;
+  float sum = 0;
+  for (std::size_t i = 0; i < count_; ++i) sum += w[i] = importance(i, p, n);
+  if (!(sum > 0)) return -1;
+  float target = u * sum;
+  std::size_t chosen = count_;
+  for (std::size_t i = 0; i < count_; ++i) {
+    if (w[i] <= 0) continue;
+    chosen = i;  // the last light with weight, should round-off carry target past the end
+    if (target < w[i]) break;
+    target -= w[i];
+  }
+  *pmf = w[chosen] / sum;
+  return int(chosen);
+}
+
+float LightSelection::pmf(int light, Vec3 p, Vec3 n) const {
+  if (light < 0 || std::size_t(light) >= count_) return 0;
+  if (!pointwise_) return power_.pmf_discrete(std::size_t(light));
+  float sum = 0, mine = 0;
+  for (std::size_t i = 0; i < count_; ++i) {
+    const float w = importance(i, p, n);
+    sum += w;
+    if (int(i) == light) mine = w;
+  }
+  return sum > 0 ? mine / sum : 0.0f;
+}
+
+}  // namespace dermis

@@ -1,0 +1,65 @@
+// Which light next-event estimation samples at a shading point.
+//
+// With few lights (at most kPointwiseLightLimit), each light is chosen in proportion to a
+// bound on the irradiance it can bring to the point — its emitted radiance, its solid
+// angle and the cosines at both ends, bounded over the light's bounding sphere (the
+// light importance of Conty Estevez & Kulla 2018, "Importance Sampling of Many Lights
+// with Adaptive Tree Splitting", eq. 3, for one light per cluster; pbrt-v4's
+// ExhaustiveLightSampler). The bound is conservative: a light that can reach the point
+// (or the hemisphere of its normal) never has probability zero, so the estimator stays
+// unbiased; one that cannot (behind the surface, outside a spot's cone) is never
+// chosen. A small key light near a skin-like object thus gets the samples it deserves
+// instead of half of them going to a dim sky.
+// With more lights, a point-independent distribution in proportion to power (lights at
+// infinity and finite lights as two groups, each chosen with probability 1/2).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "dermis/core/distribution.h"
+#include "dermis/core/vec.h"
+#include "dermis/lights/light.h"
+
+namespace dermis {
+
+inline constexpr std::size_t kPointwiseLightLimit = 32;
+
+class LightSelection {
+ public:
+  LightSelection() = default;
+  // `scene_radius` bounds the power of lights at infinity (power distribution only).
+  LightSelection(const std::vector<Light>& lights, float scene_radius);
+
+  bool pointwise() const { return pointwise_; }
+  std::size_t size() const { return count_; }
+
+  // Chooses a light for the point p whose scattering sees only the hemisphere about the
+  // unit normal n (zero for a point in a medium). Returns -1 (pmf 0) when no light can
+  // reach the point.
+  int sample(float u, Vec3 p, Vec3 n, float* pmf) const;
+  // The probability that sample() chooses `light` at (p, n).
+  float pmf(int light, Vec3 p, Vec3 n) const;
+
+  // The unnormalised importance of light i at (p, n); zero only where it cannot
+  // contribute. Exposed for tests.
+  float importance(std::size_t i, Vec3 p, Vec3 n) const;
+
+ private:
+  struct Bounds {
+    Light::Type type;
+    Vec3 center;            // bounding sphere of an area light; position of point and spot
+    float radius = 0;
+    Vec3 normal;            // triangle's unit normal (either side); spot axis; toward a distant light
+    float emission = 0;     // average radiance (area, infinite), intensity (point, spot), irradiance (distant)
+    float area = 0;         // triangle: area; sphere: its cross-section
+    float cos_falloff_end = -1;
+  };
+
+  std::vector<Bounds> bounds_;
+  Distribution1D power_;
+  std::size_t count_ = 0;
+  bool pointwise_ = false;
+};
+
+}  // namespace dermis
