@@ -1,0 +1,161 @@
+// Tests of the light selection: a light is never given probability zero where some of
+// it reaches the point's hemisphere (brute force over points on the light), sample()
+// chooses with the probabilities pmf() reports (chi-square), the probabilities sum to
+// one, and a small bright light facing the point gets most of the samples.
+#include "dermis/lights/light_selection.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dermis/core/rng.h"
+#include "dermis/core/warp.h"
+#include "support/chi_square.h"
+
+namespace dermis {
+namespace {
+
+using testing::chi_square;
+using testing::kChiSquareAlpha;
+
+Light triangle(Vec3 a, Vec3 b, Vec3 c, float L) {
+  Light l;
+  l.type = Light::Type::Triangle;
+  l.p0 = a, l.p1 = b, l.p2 = c;
+  l.area = 0.5f * length(cross(b - a, c - a));
+  l.emission = RGB(L);
+  return l;
+}
+
+Light sky(float L) {
+  Light l;
+  l.type = Light::Type::Infinite;
+  l.emission = RGB(L);
+  return l;
+}
+
+// A small bright quad, a sky, a sphere light, a point and a spot light.
+std::vector<Light> mixed_lights() {
+  std::vector<Light> ls;
+  ls.push_back(triangle({-0.5f, 3, -0.5f}, {0.5f, 3, -0.5f}, {0.5f, 3, 0.5f}, 40));
+  ls.push_back(triangle({-0.5f, 3, -0.5f}, {0.5f, 3, 0.5f}, {-0.5f, 3, 0.5f}, 40));
+  ls.push_back(sky(0.1f));
+  Light sphere;
+  sphere.type = Light::Type::Sphere;
+  sphere.center = {3, 0, 0};
+  sphere.radius = 0.4f;
+  sphere.emission = RGB(5);
+  ls.push_back(sphere);
+  Light point;
+  point.type = Light::Type::Point;
+  point.position = {0, -2, 1};
+  point.emission = RGB(3);
+  ls.push_back(point);
+  Light spot;
+  spot.type = Light::Type::Spot;
+  spot.position = {0, 0, 4};
+  spot.direction = {0, 0, -1};
+  spot.cos_falloff_start = 0.95f;
+  spot.cos_falloff_end = 0.9f;
+  spot.emission = RGB(20);
+  ls.push_back(spot);
+  return ls;
+}
+
+TEST(LightSelection, ProbabilitiesSumToOneAndMatchTheChoices) {
+  const auto lights = mixed_lights();
+  LightSelection sel(lights, 10);
+  ASSERT_TRUE(sel.pointwise());
+  Rng rng(5, 1);
+  for (int trial = 0; trial < 6; ++trial) {
+    const Vec3 p{rng.uniform() * 4 - 2, rng.uniform() * 4 - 2, rng.uniform() * 4 - 2};
+    const Vec3 n = trial % 3 == 2 ? Vec3(0, 0, 0) : sample_uniform_sphere({rng.uniform(), rng.uniform()});
+    double total = 0;
+    std::vector<double> expected(lights.size()), observed(lights.size(), 0);
+    for (std::size_t i = 0; i < lights.size(); ++i) total += expected[i] = sel.pmf(int(i), p, n);
+    EXPECT_NEAR(total, 1.0, 1e-5);
+    const int n_samples = 200000;
+    for (int k = 0; k < n_samples; ++k) {
+      float pmf;
+      const int li = sel.sample(rng.uniform(), p, n, &pmf);
+      ASSERT_GE(li, 0);
+      EXPECT_FLOAT_EQ(pmf, sel.pmf(li, p, n));
+      ++observed[std::size_t(li)];
+    }
+    for (double& e : expected) e *= n_samples;
+    auto r = chi_square(observed, expected);
+    EXPECT_GT(r.p_value, kChiSquareAlpha) << "trial " << trial << " chi2 " << r.statistic;
+  }
+}
+
+// Zero importance only where no point of the light lies above the tangent plane (or, for
+// a spot, where p is outside its cone): checked against 4096 points on each area light.
+TEST(LightSelection, NoLightThatCanReachThePointIsLeftOut) {
+  const auto lights = mixed_lights();
+  LightSelection sel(lights, 10);
+  Rng rng(9, 2);
+  int culled = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const Vec3 p{rng.uniform() * 8 - 4, rng.uniform() * 8 - 4, rng.uniform() * 8 - 4};
+    const Vec3 n = sample_uniform_sphere({rng.uniform(), rng.uniform()});
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+      if (sel.importance(i, p, n) > 0) continue;
+      ++culled;
+      const Light& l = lights[i];
+      bool reachable = false;
+      if (l.type == Light::Type::Triangle || l.type == Light::Type::Sphere) {
+        for (int k = 0; k < 4096 && !reachable; ++k) {
+          Vec3 q;
+          if (l.type == Light::Type::Triangle) {
+            Vec2 b = sample_uniform_triangle({rng.uniform(), rng.uniform()});
+            q = l.p0 * (1 - b.x - b.y) + l.p1 * b.x + l.p2 * b.y;
+          } else {
+            q = l.center + sample_uniform_sphere({rng.uniform(), rng.uniform()}) * l.radius;
+          }
+          reachable = dot(q - p, n) > 0;
+        }
+      } else if (l.type == Light::Type::Point || l.type == Light::Type::Spot) {
+        const Vec3 d = normalize(l.position - p);
+        reachable = dot(d, n) > 0 && (l.type == Light::Type::Point || dot(-d, l.direction) > l.cos_falloff_end);
+      } else {
+        reachable = true;  // the sky is never culled
+      }
+      EXPECT_FALSE(reachable) << "light " << i << " culled at p (" << p.x << ", " << p.y << ", " << p.z << ")";
+    }
+  }
+  EXPECT_GT(culled, 1000);  // the test saw culling happen
+}
+
+// Above a small bright quad-facing point, the quad outweighs a dim sky (the case the
+// point-wise selection is for); below the quad's plane facing away, the sky takes all.
+TEST(LightSelection, ABrightKeyLightGetsTheSamplesWhereItShines) {
+  std::vector<Light> lights = {triangle({-0.5f, 3, -0.5f}, {0.5f, 3, -0.5f}, {0.5f, 3, 0.5f}, 40),
+                               triangle({-0.5f, 3, -0.5f}, {0.5f, 3, 0.5f}, {-0.5f, 3, 0.5f}, 40), sky(0.1f)};
+  LightSelection sel(lights, 10);
+  const Vec3 p{0, 0, 0};
+  EXPECT_GT(sel.pmf(0, p, {0, 1, 0}) + sel.pmf(1, p, {0, 1, 0}), 0.8f);
+  EXPECT_FLOAT_EQ(sel.pmf(2, p, {0, -1, 0}), 1.0f);
+}
+
+TEST(LightSelection, ManyLightsUseThePowerDistribution) {
+  std::vector<Light> lights;
+  for (int i = 0; i < int(kPointwiseLightLimit) + 1; ++i)
+    lights.push_back(triangle({float(i), 0, 0}, {float(i) + 1, 0, 0}, {float(i), 1, 0}, 1.0f + float(i)));
+  LightSelection sel(lights, 10);
+  EXPECT_FALSE(sel.pointwise());
+  // In proportion to power (area x radiance; all areas equal).
+  double sum = 0;
+  for (int i = 0; i < int(lights.size()); ++i) sum += 1.0 + i;
+  for (int i = 0; i < int(lights.size()); ++i)
+    EXPECT_NEAR(sel.pmf(i, {0, 0, 0}, {0, 0, 1}), (1.0 + i) / sum, 1e-5);
+}
+
+TEST(LightSelection, NoLightsNoChoice) {
+  LightSelection sel(std::vector<Light>{}, 1);
+  float pmf = 1;
+  EXPECT_EQ(sel.sample(0.5f, {0, 0, 0}, {0, 0, 1}, &pmf), -1);
+  EXPECT_EQ(pmf, 0.0f);
+}
+
+}  // namespace
+}  // namespace dermis
