@@ -125,11 +125,11 @@ float LightSelection::importance(std::size_t i, Vec3 p, Vec3 n) const {
   return 0;
 }
 
-int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf) const {
+int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped) const {
   *pmf = 0;
   if (count_ == 0) return -1;
   if (!pointwise_) {
-    const std::size_t i = power_.sample_discrete(u, pmf);
+    const std::size_t i = power_.sample_discrete(u, pmf, u_remapped);
     return *pmf > 0 ? int(i) : -1;
   }
   std::array<float, kPointwiseLightLimit> w;
@@ -145,6 +145,7 @@ int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf) const {
     target -= w[i];
   }
   *pmf = w[chosen] / sum;
+  if (u_remapped) *u_remapped = std::clamp(target / w[chosen], 0.0f, 0x1.fffffep-1f);
   return int(chosen);
 }
 

@@ -36,8 +36,11 @@ class LightSelection {
 
   // Chooses a light for the point p whose scattering sees only the hemisphere about the
   // unit normal n (zero for a point in a medium). Returns -1 (pmf 0) when no light can
-  // reach the point.
-  int sample(float u, Vec3 p, Vec3 n, float* pmf) const;
+  // reach the point. `u_remapped`, when given, receives u rescaled to [0, 1) within the
+  // chosen light's interval: uniform and independent of the choice, so that it can serve
+  // as one coordinate of the light's 2D sample, which then stays stratified within each
+  // light (as Cycles' light_distribution_sample reuses its number).
+  int sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped = nullptr) const;
   // The probability that sample() chooses `light` at (p, n).
   float pmf(int light, Vec3 p, Vec3 n) const;
 

@@ -88,6 +88,30 @@ TEST(LightSelection, ProbabilitiesSumToOneAndMatchTheChoices) {
   }
 }
 
+// The reused number is uniform within each light's share: a 10-bin histogram of it, per
+// chosen light, against uniform.
+TEST(LightSelection, ReusedNumberIsUniformForEachLight) {
+  const auto lights = mixed_lights();
+  LightSelection sel(lights, 10);
+  const Vec3 p{0.2f, 0.1f, -0.3f}, n = normalize(Vec3(0.3f, 1, 0.2f));
+  std::vector<std::vector<double>> hist(lights.size(), std::vector<double>(10, 0));
+  Rng rng(12, 4);
+  for (int k = 0; k < 400000; ++k) {
+    float pmf, u2 = -1;
+    const int li = sel.sample(rng.uniform(), p, n, &pmf, &u2);
+    ASSERT_GE(u2, 0.0f);
+    ASSERT_LT(u2, 1.0f);
+    ++hist[std::size_t(li)][std::min(9, int(u2 * 10))];
+  }
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    double total = 0;
+    for (double h : hist[i]) total += h;
+    if (total < 1000) continue;
+    auto r = chi_square(hist[i], std::vector<double>(10, total / 10));
+    EXPECT_GT(r.p_value, kChiSquareAlpha) << "light " << i;
+  }
+}
+
 // Zero importance only where no point of the light lies above the tangent plane (or, for
 // a spot, where p is outside its cone): checked against 4096 points on each area light.
 TEST(LightSelection, NoLightThatCanReachThePointIsLeftOut) {

@@ -38,17 +38,19 @@ inline Vec3 direction_about(Vec3 axis, float cos_theta, float u) {
 // `scatter(wi)` returns f(wo, wi)|cos| (or the phase function) and its sampling pdf.
 // n: the unit normal of the hemisphere the scattering at p sees (zero in a medium), for
 // the light selection; a path that finds a light by scattering from here weighs itself
-// against this estimate with the same (p, n). Takes three dimensions (light choice, then
-// the position on it as a pair) whether or not it returns early, so that the dimensions
-// after it do not shift.
+// against this estimate with the same (p, n). Takes two dimensions whether or not it
+// returns early, so that the dimensions after it do not shift. The light is chosen with the first number of a pair and the
+// number, rescaled within the chosen light's share, is reused with the second as the
+// light's 2D sample: each light's samples stay stratified (a separate number for the
+// choice would scatter them).
 template <class Scatter>
 RGB estimate_direct(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
                     Scatter&& scatter) {
-  const float u_light = sampler.get1d();
-  const Vec2 u_position = sampler.get2d();
-  float pmf;
-  const int li = sc.light_selection.sample(u_light, p, n, &pmf);
+  const Vec2 u = sampler.get2d();
+  float pmf, u_reused = 0;
+  const int li = sc.light_selection.sample(u.x, p, n, &pmf, &u_reused);
   if (li < 0 || pmf <= 0) return RGB(0);
+  const Vec2 u_position{u_reused, u.y};
   const Light& light = sc.lights[li];
   LightSample ls;
   if (!light_sample(light, sc.shapes, p, u_position, ls) || ls.pdf <= 0) return RGB(0);
