@@ -58,6 +58,14 @@ TEST(Sobol, SecondDimensionMatchesThePublishedSequence) {
   EXPECT_EQ(sobol_sample(8, 1), 15u << 28);  // m_4 / 16
 }
 
+TEST(Sobol, TableLookUpEqualsTheDefinition) {
+  Rng rng(1, 2);
+  for (int k = 0; k < 20000; ++k) {
+    const uint32_t i = rng.next_u32();
+    for (int d = 0; d < kSobolDimensions; ++d) ASSERT_EQ(sobol_sample(i, d), sobol_sample_reference(i, d)) << i << " " << d;
+  }
+}
+
 TEST(Sobol, EveryDimensionIsStratifiedAndTheFirstPairIsA02Net) {
   for (int m = 0; m <= 12; ++m) {
     const uint32_t n = 1u << m;
