@@ -30,7 +30,7 @@ RGB infinite_light_radiance(const Light& l, Vec3 w) {
   return l.environment ? l.environment->eval(w) : l.emission;
 }
 
-bool light_sample(const Light& l, const std::vector<Shape>& shapes, Vec3 ref, Vec2 u, LightSample& s) {
+bool light_sample(const Light& l, const std::vector<Shape>& shapes, Vec3 ref, Vec2 u, LightSample& s, Vec3 ref_n) {
   switch (l.type) {
     case Light::Type::Triangle: {
       Vec2 b = sample_uniform_triangle(u);
@@ -124,6 +124,12 @@ bool light_sample(const Light& l, const std::vector<Shape>& shapes, Vec3 ref, Ve
         s.wi = l.environment->sample(u, &s.pdf);
         if (s.pdf == 0) return false;
         s.L = l.environment->eval(s.wi);
+      } else if (ref_n.x != 0 || ref_n.y != 0 || ref_n.z != 0) {
+        const Vec3 local = sample_cosine_hemisphere(u);
+        s.wi = Frame(ref_n).to_world(local);
+        s.pdf = cosine_hemisphere_pdf(local.z);
+        if (s.pdf <= 0) return false;
+        s.L = l.emission;
       } else {
         s.wi = sample_uniform_sphere(u);
         s.pdf = uniform_sphere_pdf();
@@ -137,7 +143,7 @@ bool light_sample(const Light& l, const std::vector<Shape>& shapes, Vec3 ref, Ve
   return false;
 }
 
-float light_pdf(const Light& l, Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light) {
+float light_pdf(const Light& l, Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light, Vec3 ref_n) {
   switch (l.type) {
     case Light::Type::Triangle: {
       float dist2 = length_squared(p_light - ref);
@@ -154,7 +160,9 @@ float light_pdf(const Light& l, Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light) {
       return cos_l > 0 ? dist2 / (cos_l * 4 * kPi * r2) : 0.0f;
     }
     case Light::Type::Infinite:
-      return l.environment ? l.environment->pdf(wi) : uniform_sphere_pdf();
+      if (l.environment) return l.environment->pdf(wi);
+      if (ref_n.x != 0 || ref_n.y != 0 || ref_n.z != 0) return cosine_hemisphere_pdf(dot(wi, ref_n));
+      return uniform_sphere_pdf();
     default:
       return 0;  // delta lights cannot be hit
   }

@@ -46,11 +46,17 @@ struct LightSample {
 struct Shape;
 
 // Samples a direction toward the light from reference point ref; `shapes` gives the
-// area light's orientation rule. Returns false when nothing can be sampled.
-bool light_sample(const Light& l, const std::vector<Shape>& shapes, Vec3 ref, Vec2 u, LightSample& s);
-// Solid-angle density that light_sample() produces wi from ref, hitting the light at
-// point p_light with normal n_light (area lights) or escaping (infinite lights).
-float light_pdf(const Light& l, Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light);
+// area light's orientation rule. Returns false when nothing can be sampled. `ref_n`: the
+// unit normal of the hemisphere a surface at ref scatters from (zero in a medium); a
+// uniform infinite light is then sampled by the cosine about it (its light arrives
+// weighted by that cosine: a constant sky is estimated without variance), else uniformly
+// over the sphere.
+bool light_sample(const Light& l, const std::vector<Shape>& shapes, Vec3 ref, Vec2 u, LightSample& s,
+                  Vec3 ref_n = Vec3(0, 0, 0));
+// Solid-angle density that light_sample() produces wi from ref (with the same ref_n),
+// hitting the light at point p_light with normal n_light (area lights) or escaping
+// (infinite lights).
+float light_pdf(const Light& l, Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light, Vec3 ref_n = Vec3(0, 0, 0));
 // Radiance emitted by an area light at a point with normal n toward direction w.
 RGB area_light_radiance(const Light& l, Vec3 n, Vec3 w);
 // Radiance of an infinite light arriving from direction w (toward the light).

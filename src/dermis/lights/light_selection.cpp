@@ -41,6 +41,10 @@ LightSelection::LightSelection(const std::vector<Light>& lights, float scene_rad
 
   pointwise_ = lights.size() <= kPointwiseLightLimit;
   if (!pointwise_) return;
+  split_ = group_sum[0] > 0 && group_sum[1] > 0;
+  group_.assign(lights.size(), 0);
+  if (split_)
+    for (std::size_t i = 0; i < lights.size(); ++i) group_[i] = at_infinity(lights[i]) ? 1 : 0;
   bounds_.resize(lights.size());
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const Light& l = lights[i];
@@ -125,7 +129,7 @@ float LightSelection::importance(std::size_t i, Vec3 p, Vec3 n) const {
   return 0;
 }
 
-int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped) const {
+int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped, int group) const {
   *pmf = 0;
   if (count_ == 0) return -1;
   if (!pointwise_) {
@@ -134,7 +138,7 @@ int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remappe
   }
   std::array<float, kPointwiseLightLimit> w;
   float sum = 0;
-  for (std::size_t i = 0; i < count_; ++i) sum += w[i] = importance(i, p, n);
+  for (std::size_t i = 0; i < count_; ++i) sum += w[i] = group_[i] == group ? importance(i, p, n) : 0.0f;
   if (!(sum > 0)) return -1;
   float target = u * sum;
   std::size_t chosen = count_;
@@ -154,6 +158,7 @@ float LightSelection::pmf(int light, Vec3 p, Vec3 n) const {
   if (!pointwise_) return power_.pmf_discrete(std::size_t(light));
   float sum = 0, mine = 0;
   for (std::size_t i = 0; i < count_; ++i) {
+    if (group_[i] != group_[std::size_t(light)]) continue;
     const float w = importance(i, p, n);
     sum += w;
     if (int(i) == light) mine = w;

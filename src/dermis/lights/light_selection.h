@@ -10,6 +10,11 @@
 // unbiased; one that cannot (behind the surface, outside a spot's cone) is never
 // chosen. A small key light near a skin-like object thus gets the samples it deserves
 // instead of half of them going to a dim sky.
+// When a scene has both lights at infinity (sky, sun) and finite lights, the two groups
+// are sampled separately, one light from each (stratification over the groups): a choice
+// between them makes each sample carry one group's light scaled up, and when the sky's
+// light sample is mostly weighted away by MIS (a cosine-like BSDF finds a constant sky by
+// itself) that choice alone multiplied the variance of a Lambertian sphere twenty-fold.
 // With more lights, a point-independent distribution in proportion to power (lights at
 // infinity and finite lights as two groups, each chosen with probability 1/2).
 #pragma once
@@ -33,6 +38,9 @@ class LightSelection {
 
   bool pointwise() const { return pointwise_; }
   std::size_t size() const { return count_; }
+  // 2 when finite lights and lights at infinity are sampled separately (group 0 and 1),
+  // else 1 (group 0: every light).
+  int groups() const { return split_ ? 2 : 1; }
 
   // Chooses a light for the point p whose scattering sees only the hemisphere about the
   // unit normal n (zero for a point in a medium). Returns -1 (pmf 0) when no light can
@@ -40,8 +48,8 @@ class LightSelection {
   // chosen light's interval: uniform and independent of the choice, so that it can serve
   // as one coordinate of the light's 2D sample, which then stays stratified within each
   // light (as Cycles' light_distribution_sample reuses its number).
-  int sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped = nullptr) const;
-  // The probability that sample() chooses `light` at (p, n).
+  int sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped = nullptr, int group = 0) const;
+  // The probability that sample() for the light's group chooses `light` at (p, n).
   float pmf(int light, Vec3 p, Vec3 n) const;
 
   // The unnormalised importance of light i at (p, n); zero only where it cannot
@@ -61,8 +69,10 @@ class LightSelection {
 
   std::vector<Bounds> bounds_;
   Distribution1D power_;
+  std::vector<char> group_;  // per light: 1 for lights at infinity when split_, else 0
   std::size_t count_ = 0;
   bool pointwise_ = false;
+  bool split_ = false;
 };
 
 }  // namespace dermis

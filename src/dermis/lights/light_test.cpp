@@ -119,6 +119,30 @@ TEST(Light, TrianglePdfMatchesSampledDensity) {
   EXPECT_NEAR(est, omega, 1e-3 * omega);
 }
 
+// With a surface normal, a uniform sky is sampled by the cosine about it: the pdf that
+// light_pdf() reports matches, every direction is above the surface, and the estimate
+// of the irradiance pi L has no variance.
+TEST(Light, UniformSkyAtASurfaceIsSampledByTheCosine) {
+  Light l;
+  l.type = Light::Type::Infinite;
+  l.emission = RGB(0.5f);
+  std::vector<Shape> shapes;
+  const Vec3 n = normalize(Vec3(0.3f, -0.2f, 0.9f));
+  Rng rng(3, 3);
+  for (int i = 0; i < 10000; ++i) {
+    LightSample ls;
+    ASSERT_TRUE(light_sample(l, shapes, {0, 0, 0}, {rng.uniform(), rng.uniform()}, ls, n));
+    EXPECT_GT(dot(ls.wi, n), 0.0f);
+    EXPECT_NEAR(ls.pdf, light_pdf(l, {0, 0, 0}, ls.wi, {}, {}, n), 1e-5f * ls.pdf);
+    EXPECT_NEAR(ls.L[0] * dot(ls.wi, n) / ls.pdf, kPi * 0.5f, 1e-3f);  // irradiance, every sample
+  }
+  // Without a normal (a point in a medium): uniform over the sphere.
+  LightSample ls;
+  ASSERT_TRUE(light_sample(l, shapes, {0, 0, 0}, {0.3f, 0.6f}, ls));
+  EXPECT_FLOAT_EQ(ls.pdf, 1 / (4 * kPi));
+  EXPECT_FLOAT_EQ(light_pdf(l, {0, 0, 0}, ls.wi, {}, {}), 1 / (4 * kPi));
+}
+
 TEST(Light, SphereConeSamplingCoversTheSubtendedSolidAngle) {
   Light l;
   l.type = Light::Type::Sphere;

@@ -44,16 +44,16 @@ inline Vec3 direction_about(Vec3 axis, float cos_theta, float u) {
 // light's 2D sample: each light's samples stay stratified (a separate number for the
 // choice would scatter them).
 template <class Scatter>
-RGB estimate_direct(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
-                    Scatter&& scatter) {
+RGB estimate_direct_group(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
+                          Scatter&& scatter, int group) {
   const Vec2 u = sampler.get2d();
   float pmf, u_reused = 0;
-  const int li = sc.light_selection.sample(u.x, p, n, &pmf, &u_reused);
+  const int li = sc.light_selection.sample(u.x, p, n, &pmf, &u_reused, group);
   if (li < 0 || pmf <= 0) return RGB(0);
   const Vec2 u_position{u_reused, u.y};
   const Light& light = sc.lights[li];
   LightSample ls;
-  if (!light_sample(light, sc.shapes, p, u_position, ls) || ls.pdf <= 0) return RGB(0);
+  if (!light_sample(light, sc.shapes, p, u_position, ls, n) || ls.pdf <= 0) return RGB(0);
   auto [f, scatter_pdf] = scatter(ls.wi);
   if (f.is_black()) return RGB(0);
   float dist = ls.delta && std::isinf(ls.distance) ? kInf : ls.distance * (1 - 1e-4f);
@@ -62,6 +62,16 @@ RGB estimate_direct(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& 
   float light_pdf = pmf * ls.pdf;
   float w = ls.delta ? 1.0f : power_heuristic(light_pdf, scatter_pdf);
   return f * tr * ls.L * (w / light_pdf);
+}
+
+// One light sample from each group of the light selection (finite lights, lights at
+// infinity: lights/light_selection.h), two dimensions each.
+template <class Scatter>
+RGB estimate_direct(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
+                    Scatter&& scatter) {
+  RGB L = estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 0);
+  if (sc.light_selection.groups() == 2) L += estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 1);
+  return L;
 }
 
 }  // namespace
@@ -215,7 +225,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         if (Le.is_black()) continue;
         float w = specular ? 1.0f
                            : power_heuristic(prev_pdf, sc.light_selection.pmf(li, prev_p, prev_n) *
-                                                           light_pdf(light, prev_p, ray.d, {}, {}));
+                                                           light_pdf(light, prev_p, ray.d, {}, {}, prev_n));
         L += beta * Le * w;
       }
       break;
