@@ -17,7 +17,7 @@ struct PixelStatistics {
 };
 
 // Renders with pixel-centre rays (no filter) and spp independent samples per pixel.
-inline PixelStatistics pixel_statistics(const RenderScene& sc, int spp, uint64_t seed) {
+inline PixelStatistics pixel_statistics(const RenderScene& sc, int spp, uint64_t seed, const PathStart& start = {}) {
   PixelStatistics st;
   st.width = sc.film.xres;
   st.height = sc.film.yres;
@@ -32,7 +32,7 @@ inline PixelStatistics pixel_statistics(const RenderScene& sc, int spp, uint64_t
         // Independent samples, so that the sample variance gives the standard error.
         Sampler sampler(SamplerKind::Independent, seed, p, uint32_t(i));
         Ray ray = sc.camera.generate_ray({float(x) + 0.5f, float(y) + 0.5f}, {0.5f, 0.5f});
-        RGB L = trace_path(sc, ray, sc.camera_medium, sampler, counters);
+        RGB L = trace_path(sc, ray, sc.camera_medium, sampler, counters, start);
         for (int c = 0; c < 3; ++c) {
           s[c] += L[c];
           s2[c] += double(L[c]) * L[c];

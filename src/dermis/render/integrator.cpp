@@ -272,7 +272,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         continue;
       }
       float F = fresnel_dielectric(cos_o, sm.entry_eta);
-      if (start.from_camera && start.depth == 0 && depth == 1) {
+      if (start.split_first_hit && start.from_camera && start.depth == 0 && depth == 1) {
         // The camera's first hit is split: reflection and transmission are both followed,
         // weighted F and 1 - F (unbiased: one sample of each term of F L_r + (1 - F) L_t).
         // Chosen by Fresnel, a sharp highlight of a small light rests on the few per cent
@@ -360,6 +360,28 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     }
     float u_lobe = sampler.get1d();
     Vec2 u_dir = sampler.get2d();
+    if (bsdf.type == BSDF::Type::Dielectric && start.split_first_hit && start.from_camera && start.depth == 0 &&
+        depth == 1) {
+      // The camera's first hit on glass is split like a subsurface entry: the reflection
+      // is followed with weight F, the transmission below with 1 - F (one sample of each
+      // term; the sampled lobes' weights are F/F and (1 - F)/(1 - F) times 1/eta^2).
+      const float F = fresnel_dielectric(dot(wo, bsdf.n), bsdf.eta);
+      if (F > 0 && F < 1) {
+        auto reflected = bsdf_sample(bsdf, wo, 0.0f, u_dir);
+        if (reflected && !reflected->transmission) {
+          const uint64_t resume = sampler.dimension();
+          PathStart rs;
+          rs.depth = depth;
+          rs.first_dimension = Sampler::region(resume, 0x5e1fu);
+          L += beta * reflected->weight * F *
+               trace_path(sc, Ray{offset_ray_origin(hit.p, hit.ng, reflected->wi), reflected->wi}, medium, sampler,
+                          counters, rs);
+          sampler.set_dimension(resume);
+          beta *= 1 - F;
+          u_lobe = 1.0f;  // the transmission below (u_lobe >= F)
+        }
+      }
+    }
     auto bs = bsdf_sample(bsdf, wo, u_lobe, u_dir);
     if (!bs) break;
     beta *= bs->weight;

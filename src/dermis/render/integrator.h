@@ -48,6 +48,9 @@ struct PathStart {
   Vec3 prev_n;  // and the normal of the hemisphere its light selection saw (zero in a medium)
   int depth = 0;  // scattering events already taken
   uint64_t first_dimension = kCameraDimensions;  // of vertex 0's block
+  // A camera path follows both reflection and transmission at its first smooth
+  // dielectric or subsurface hit (splitting; tests turn it off to compare).
+  bool split_first_hit = true;
 };
 
 // Radiance arriving along `ray` (from the camera), starting in `medium`.

@@ -97,6 +97,29 @@ TEST(SubsurfaceRandomWalk, SobolSamplerGivesTheMeanOfIndependentSampling) {
   EXPECT_EQ(failures, 0);
 }
 
+// Splitting the camera's first subsurface hit (reflection F and transmission 1 - F, both
+// followed) against choosing one by Fresnel: the same mean within 4σ.
+TEST(SubsurfaceRandomWalk, SplittingTheEntryKeepsTheMean) {
+  Diagnostics diag;
+  auto sc = build_render_scene(
+      parse_scene_string(std::string(kHeader) + "Material \"subsurface\" " + kCoefficients +
+                         " \"float eta\" 1.4 \"string method\" \"randomwalk\"\nShape \"sphere\"\n"),
+      diag);
+  PathStart no_split;
+  no_split.split_first_hit = false;
+  Regions split = regions(testing::pixel_statistics(*sc, 192, 70));
+  Regions chosen = regions(testing::pixel_statistics(*sc, 192, 71, no_split));
+  int failures = 0;
+  for (int k = 0; k < 16; ++k)
+    for (int c = 0; c < 3; ++c) {
+      double sigma = std::sqrt(double(split.var[k][c]) + chosen.var[k][c]);
+      if (std::abs(split.mean[k][c] - chosen.mean[k][c]) > 4 * sigma && failures++ < 6)
+        ADD_FAILURE() << "region " << k << " channel " << c << ": " << split.mean[k][c] << " vs " << chosen.mean[k][c]
+                      << " (4 sigma = " << 4 * sigma << ")";
+    }
+  EXPECT_EQ(failures, 0);
+}
+
 // A thin slab (0.8 to 1.7 mean free paths thick) lit from behind: most of what the camera
 // sees has crossed it, the case backward guiding is for. The walk with backward guiding
 // (Dwivedi-only and MIS) against the medium inside a dielectric.
