@@ -161,8 +161,12 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     return true;
   };
 
+  const uint64_t last_stratified = start.first_dimension + kStratifiedVertices * kVertexDimensions;
   for (;; vertex_dimension += kVertexDimensions) {
-    sampler.set_dimension(vertex_dimension);
+    if (vertex_dimension < last_stratified)
+      sampler.set_dimension(vertex_dimension);
+    else
+      sampler.set_dimension(vertex_dimension, 0);  // deep vertices: the sample's PCG32 stream
     SurfaceHit hit;
     ++counters.rays;
     if (counters.recorded_rays) counters.recorded_rays->push_back(ray);
