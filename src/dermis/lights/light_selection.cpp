@@ -138,7 +138,7 @@ int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remappe
   }
   std::array<float, kPointwiseLightLimit> w;
   float sum = 0;
-  for (std::size_t i = 0; i < count_; ++i) sum += w[i] = group_[i] == group ? importance(i, p, n) : 0.0f;
+  for (std::size_t i = 0; i < count_; ++i) sum += w[i] = group_of(i, n) == group ? importance(i, p, n) : 0.0f;
   if (!(sum > 0)) return -1;
   float target = u * sum;
   std::size_t chosen = count_;
@@ -158,7 +158,7 @@ float LightSelection::pmf(int light, Vec3 p, Vec3 n) const {
   if (!pointwise_) return power_.pmf_discrete(std::size_t(light));
   float sum = 0, mine = 0;
   for (std::size_t i = 0; i < count_; ++i) {
-    if (group_[i] != group_[std::size_t(light)]) continue;
+    if (group_of(i, n) != group_of(std::size_t(light), n)) continue;
     const float w = importance(i, p, n);
     sum += w;
     if (int(i) == light) mine = w;

@@ -38,9 +38,12 @@ class LightSelection {
 
   bool pointwise() const { return pointwise_; }
   std::size_t size() const { return count_; }
-  // 2 when finite lights and lights at infinity are sampled separately (group 0 and 1),
-  // else 1 (group 0: every light).
-  int groups() const { return split_ ? 2 : 1; }
+  // 2 when finite lights and lights at infinity are sampled separately (group 0 and 1) at
+  // a point with normal n, else 1 (group 0: every light). Only surface points split: in a
+  // medium (n zero) the sky's light sample is not weighted away by a cosine-like lobe, and
+  // a second shadow ray through the medium cost more than it saved (index-matched
+  // medium: 1.6x the time for 1.7x less variance).
+  int groups(Vec3 n) const { return split_ && surface(n) ? 2 : 1; }
 
   // Chooses a light for the point p whose scattering sees only the hemisphere about the
   // unit normal n (zero for a point in a medium). Returns -1 (pmf 0) when no light can
@@ -57,6 +60,10 @@ class LightSelection {
   float importance(std::size_t i, Vec3 p, Vec3 n) const;
 
  private:
+  static bool surface(Vec3 n) { return n.x != 0 || n.y != 0 || n.z != 0; }
+  // The group light i is sampled in at a point with normal n.
+  int group_of(std::size_t i, Vec3 n) const { return groups(n) == 2 ? group_[i] : 0; }
+
   struct Bounds {
     Light::Type type;
     Vec3 center;            // bounding sphere of an area light; position of point and spot

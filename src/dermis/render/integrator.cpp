@@ -70,7 +70,7 @@ template <class Scatter>
 RGB estimate_direct(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
                     Scatter&& scatter) {
   RGB L = estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 0);
-  if (sc.light_selection.groups() == 2) L += estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 1);
+  if (sc.light_selection.groups(n) == 2) L += estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 1);
   return L;
 }
 
