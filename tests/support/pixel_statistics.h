@@ -2,6 +2,8 @@
 // that state their tolerance in standard errors.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
 
@@ -86,6 +88,30 @@ inline PixelStatistics replicated_pixel_statistics(const RenderScene& sc, Sample
       }
     }
   return st;
+}
+
+// Two estimates of the same picture agree: in every region of rw x rh pixels and every
+// channel, the means differ by at most 4 standard errors (of the difference).
+inline void expect_same_region_means(const PixelStatistics& a, const PixelStatistics& b, int rw, int rh) {
+  int failures = 0;
+  for (int ry = 0; ry + rh <= a.height; ry += rh)
+    for (int rx = 0; rx + rw <= a.width; rx += rw) {
+      const float n = float(rw * rh);
+      RGB ma(0), mb(0), va(0), vb(0);
+      for (int y = ry; y < ry + rh; ++y)
+        for (int x = rx; x < rx + rw; ++x) {
+          const std::size_t p = std::size_t(y) * a.width + x;
+          ma += a.mean[p] / n, mb += b.mean[p] / n;
+          va += a.stderr_[p] * a.stderr_[p] / (n * n), vb += b.stderr_[p] * b.stderr_[p] / (n * n);
+        }
+      for (int c = 0; c < 3; ++c) {
+        const double sigma = std::sqrt(double(va[c]) + vb[c]);
+        if (std::abs(ma[c] - mb[c]) > 4 * sigma && failures++ < 6)
+          ADD_FAILURE() << "region at " << rx << "," << ry << " channel " << c << ": " << ma[c] << " vs " << mb[c]
+                        << " (4 sigma = " << 4 * sigma << ")";
+      }
+    }
+  EXPECT_EQ(failures, 0);
 }
 
 }  // namespace dermis::testing

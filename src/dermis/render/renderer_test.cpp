@@ -64,24 +64,7 @@ TEST(Renderer, SobolSamplerGivesTheMeanOfIndependentSampling) {
   auto sc = build_render_scene(small_scene(), diag);
   auto sobol = testing::replicated_pixel_statistics(*sc, SamplerKind::Sobol, 16, 8, 50);
   auto indep = testing::pixel_statistics(*sc, 128, 51);
-  int failures = 0;
-  for (int ry = 0; ry < 3; ++ry)
-    for (int rx = 0; rx < 4; ++rx) {
-      RGB ms(0), mi(0), vs(0), vi(0);
-      for (int y = ry * 10; y < ry * 10 + 10; ++y)
-        for (int x = rx * 10; x < rx * 10 + 10; ++x) {
-          const std::size_t p = std::size_t(y) * sc->film.xres + x;
-          ms += sobol.mean[p] / 100.0f, mi += indep.mean[p] / 100.0f;
-          vs += sobol.stderr_[p] * sobol.stderr_[p] / 1e4f, vi += indep.stderr_[p] * indep.stderr_[p] / 1e4f;
-        }
-      for (int c = 0; c < 3; ++c) {
-        const double sigma = std::sqrt(double(vs[c]) + vi[c]);
-        if (std::abs(ms[c] - mi[c]) > 4 * sigma && failures++ < 6)
-          ADD_FAILURE() << "region " << rx << "," << ry << " channel " << c << ": " << ms[c] << " vs " << mi[c]
-                        << " (4 sigma = " << 4 * sigma << ")";
-      }
-    }
-  EXPECT_EQ(failures, 0);
+  testing::expect_same_region_means(sobol, indep, 10, 10);
 }
 
 // Splitting the camera's first hit (glass here) changes the noise, not the mean: the
@@ -93,24 +76,7 @@ TEST(Renderer, SplittingTheFirstHitKeepsTheMean) {
   no_split.split_first_hit = false;
   auto split = testing::pixel_statistics(*sc, 128, 60);
   auto chosen = testing::pixel_statistics(*sc, 128, 61, no_split);
-  int failures = 0;
-  for (int ry = 0; ry < 3; ++ry)
-    for (int rx = 0; rx < 4; ++rx) {
-      RGB ma(0), mb(0), va(0), vb(0);
-      for (int y = ry * 10; y < ry * 10 + 10; ++y)
-        for (int x = rx * 10; x < rx * 10 + 10; ++x) {
-          const std::size_t p = std::size_t(y) * sc->film.xres + x;
-          ma += split.mean[p] / 100.0f, mb += chosen.mean[p] / 100.0f;
-          va += split.stderr_[p] * split.stderr_[p] / 1e4f, vb += chosen.stderr_[p] * chosen.stderr_[p] / 1e4f;
-        }
-      for (int c = 0; c < 3; ++c) {
-        const double sigma = std::sqrt(double(va[c]) + vb[c]);
-        if (std::abs(ma[c] - mb[c]) > 4 * sigma && failures++ < 6)
-          ADD_FAILURE() << "region " << rx << "," << ry << " channel " << c << ": " << ma[c] << " vs " << mb[c]
-                        << " (4 sigma = " << 4 * sigma << ")";
-      }
-    }
-  EXPECT_EQ(failures, 0);
+  testing::expect_same_region_means(split, chosen, 10, 10);
 }
 
 TEST(Renderer, SameSeedSameImageWhateverTheThreadCount) {

@@ -27,39 +27,12 @@ AttributeEnd
 )";
 const char* kCoefficients = R"("rgb sigma_a" [0.05 0.15 0.3] "rgb sigma_s" [2 3 4] "float g" 0.3)";
 
-struct Regions {
-  std::vector<RGB> mean, var;  // region means and variances of those means
-};
-
-// 4 x 4 regions of 4 x 4 pixels each.
-Regions regions(const testing::PixelStatistics& st) {
-  Regions r;
-  r.mean.assign(16, RGB(0));
-  r.var.assign(16, RGB(0));
-  for (int y = 0; y < st.height; ++y)
-    for (int x = 0; x < st.width; ++x) {
-      int k = (y / 4) * 4 + x / 4;
-      const std::size_t p = std::size_t(y) * st.width + x;
-      r.mean[k] += st.mean[p] / 16.0f;
-      r.var[k] += st.stderr_[p] * st.stderr_[p] / 256.0f;
-    }
-  return r;
-}
-
 void expect_same_picture(const std::string& a, const std::string& b, int spp) {
   Diagnostics diag;
   auto sa = build_render_scene(parse_scene_string(a), diag);
   auto sb = build_render_scene(parse_scene_string(b), diag);
-  Regions ra = regions(testing::pixel_statistics(*sa, spp, 31)), rb = regions(testing::pixel_statistics(*sb, spp, 32));
-  int failures = 0;
-  for (int k = 0; k < 16; ++k)
-    for (int c = 0; c < 3; ++c) {
-      double sigma = std::sqrt(double(ra.var[k][c]) + rb.var[k][c]);
-      if (std::abs(ra.mean[k][c] - rb.mean[k][c]) > 4 * sigma && failures++ < 6)
-        ADD_FAILURE() << "region " << k << " channel " << c << ": " << ra.mean[k][c] << " vs " << rb.mean[k][c]
-                      << " (4 sigma = " << 4 * sigma << ")";
-    }
-  EXPECT_EQ(failures, 0);
+  testing::expect_same_region_means(testing::pixel_statistics(*sa, spp, 31), testing::pixel_statistics(*sb, spp, 32), 4,
+                                    4);
 }
 
 TEST(SubsurfaceRandomWalk, DielectricBoundaryEqualsAMediumInsideADielectric) {
@@ -84,17 +57,8 @@ TEST(SubsurfaceRandomWalk, SobolSamplerGivesTheMeanOfIndependentSampling) {
                          " \"float eta\" 1.4 \"string method\" \"randomwalk\" \"string boundary\" \"dielectric\"\n"
                          "Shape \"sphere\"\n"),
       diag);
-  Regions sobol = regions(testing::replicated_pixel_statistics(*sc, SamplerKind::Sobol, 32, 12, 40));
-  Regions indep = regions(testing::pixel_statistics(*sc, 256, 41));
-  int failures = 0;
-  for (int k = 0; k < 16; ++k)
-    for (int c = 0; c < 3; ++c) {
-      double sigma = std::sqrt(double(sobol.var[k][c]) + indep.var[k][c]);
-      if (std::abs(sobol.mean[k][c] - indep.mean[k][c]) > 4 * sigma && failures++ < 6)
-        ADD_FAILURE() << "region " << k << " channel " << c << ": " << sobol.mean[k][c] << " vs " << indep.mean[k][c]
-                      << " (4 sigma = " << 4 * sigma << ")";
-    }
-  EXPECT_EQ(failures, 0);
+  testing::expect_same_region_means(testing::replicated_pixel_statistics(*sc, SamplerKind::Sobol, 32, 12, 40),
+                                    testing::pixel_statistics(*sc, 256, 41), 4, 4);
 }
 
 // Splitting the camera's first subsurface hit (reflection F and transmission 1 - F, both
@@ -107,17 +71,8 @@ TEST(SubsurfaceRandomWalk, SplittingTheEntryKeepsTheMean) {
       diag);
   PathStart no_split;
   no_split.split_first_hit = false;
-  Regions split = regions(testing::pixel_statistics(*sc, 192, 70));
-  Regions chosen = regions(testing::pixel_statistics(*sc, 192, 71, no_split));
-  int failures = 0;
-  for (int k = 0; k < 16; ++k)
-    for (int c = 0; c < 3; ++c) {
-      double sigma = std::sqrt(double(split.var[k][c]) + chosen.var[k][c]);
-      if (std::abs(split.mean[k][c] - chosen.mean[k][c]) > 4 * sigma && failures++ < 6)
-        ADD_FAILURE() << "region " << k << " channel " << c << ": " << split.mean[k][c] << " vs " << chosen.mean[k][c]
-                      << " (4 sigma = " << 4 * sigma << ")";
-    }
-  EXPECT_EQ(failures, 0);
+  testing::expect_same_region_means(testing::pixel_statistics(*sc, 192, 70),
+                                    testing::pixel_statistics(*sc, 192, 71, no_split), 4, 4);
 }
 
 // A thin slab (0.8 to 1.7 mean free paths thick) lit from behind: most of what the camera
