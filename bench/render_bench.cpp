@@ -11,7 +11,7 @@
 
 #include "dermis/core/rng.h"
 #include "dermis/render/integrator.h"
-#include "dermis/render/render_scene.h"
+#include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
 
 namespace dermis {

@@ -7,9 +7,9 @@
 
 #include "commands.h"
 #include "dermis/render/image.h"
-#include "dermis/render/point_cloud_prepass.h"
 #include "dermis/render/progress.h"
-#include "dermis/render/render_scene.h"
+#include "dermis/render/scene_assembly.h"
+#include "dermis/render/scene_preparation.h"
 #include "dermis/render/renderer.h"
 #include "dermis/scene/parser.h"
 
@@ -39,6 +39,7 @@ struct RenderArgs {
 int run_render(const RenderArgs& a) {
   SceneDesc desc;
   std::unique_ptr<RenderScene> scene;
+  PreparationReport preparation;
   try {
     desc = parse_scene_file(a.scene);
     if (!a.res.empty()) {
@@ -60,8 +61,19 @@ int run_render(const RenderArgs& a) {
     pco.load_path = a.load_pointcloud;
     pco.seed = a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
     pco.sampler = desc.settings.sampler;
-    scene = build_render_scene(desc, build_diag, pco);
+    scene = assemble_scene(desc, build_diag);
     for (const auto& w : build_diag.warnings) fmt::print(stderr, "{}\n", w);
+    PreparationOptions prep;
+    prep.point_clouds = pco;
+    prep.progress = a.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto;
+    prep.cancel = &g_interrupted;
+    g_interrupted = false;
+    std::signal(SIGINT, on_sigint);
+    preparation = prepare_scene(*scene, prep);
+    std::signal(SIGINT, SIG_DFL);
+  } catch (const Interrupted&) {
+    fmt::print(stderr, "dermis render: interrupted while preparing the scene; nothing written\n");
+    return 130;
   } catch (const std::exception& e) {
     fmt::print(stderr, "dermis render: {}\n", e.what());
     return 2;
@@ -115,7 +127,7 @@ int run_render(const RenderArgs& a) {
   double mrays = r.seconds > 0 ? double(r.rays) / r.seconds * 1e-6 : 0;
   fmt::print(stderr, "dermis: wrote {}{} in {:.1f} s ({:.2f} Mrays/s, {} samples)\n", out,
              ext == ".exr" && !a.no_png ? " and its .png" : "", r.seconds, mrays, r.samples);
-  if (const PointCloudReport& pc = scene->point_cloud_report; pc.clouds > 0 && !a.quiet)
+  if (const PointCloudReport& pc = preparation.point_clouds; pc.clouds > 0 && !a.quiet)
     fmt::print(stderr,
                "dermis: point clouds: {} points in {} object(s), {:.1f} MiB in memory{}, pre-pass {:.1f} s, octree "
                "build {:.2f} s, render {:.1f} s\n",

@@ -4,7 +4,7 @@
 
 #include <cstring>
 
-#include "dermis/render/render_scene.h"
+#include "dermis/render/scene_preparation.h"
 #include "dermis/render/renderer.h"
 #include "dermis/scene/parser.h"
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "dermis/render/render_scene.h"
+#include "dermis/render/scene_preparation.h"
 #include "support/pixel_statistics.h"
 
 namespace dermis {

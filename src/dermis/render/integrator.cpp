@@ -5,8 +5,9 @@
 
 #include "dermis/core/frame.h"
 #include "dermis/core/warp.h"
+#include "dermis/materials/bsdf.h"
+#include "dermis/materials/free_flight.h"
 #include "dermis/materials/fresnel.h"
-#include "dermis/render/subsurface_method.h"
 
 namespace dermis {
 
@@ -107,19 +108,19 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
   RGB tr(1);
   if (!sc.has_interfaces) {
     // No index-matched boundary: any hit blocks, and the medium cannot change.
-    ++counters.rays;
-    if (counters.recorded_rays) counters.recorded_rays->push_back(Ray{origin, dir, distance});
-    if (sc.embree->occluded(Ray{origin, dir, distance})) return RGB(0);
+    const Ray shadow{origin, dir, distance};
+    counters.count(shadow);
+    if (sc.embree->occluded(shadow)) return RGB(0);
     if (medium >= 0) tr = sc.media[medium].transmittance(distance);
     return tr;
   }
   Vec3 o = origin;
   float remaining = distance;
   for (int crossing = 0; crossing < kMaxInterfaceCrossings; ++crossing) {
-    ++counters.rays;
-    if (counters.recorded_rays) counters.recorded_rays->push_back(Ray{o, dir, remaining});
+    const Ray shadow{o, dir, remaining};
+    counters.count(shadow);
     SurfaceHit hit;
-    if (!sc.embree->intersect(Ray{o, dir, remaining}, hit)) {
+    if (!sc.embree->intersect(shadow, hit)) {
       if (medium >= 0) tr *= sc.media[medium].transmittance(remaining);
       return tr;
     }
@@ -168,31 +169,20 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     else
       sampler.set_dimension(vertex_dimension, 0);  // deep vertices: the sample's PCG32 stream
     SurfaceHit hit;
-    ++counters.rays;
-    if (counters.recorded_rays) counters.recorded_rays->push_back(ray);
+    counters.count(ray);
     bool found = sc.embree->intersect(ray, hit);
     float t_hit = found ? hit.t : kInf;
 
     if (medium >= 0) {
       const HomogeneousMedium& m = sc.media[medium];
-      // Choose the channel that drives the free-flight distance in proportion to the
-      // throughput; the balance heuristic over channels keeps every channel unbiased.
-      float q[3], qsum = 0;
-      for (int c = 0; c < 3; ++c) qsum += q[c] = std::abs(beta[c]);
-      if (qsum <= 0) break;
-      for (float& v : q) v /= qsum;
-      float uc = sampler.get1d();
-      int c = uc < q[0] ? 0 : (uc < q[0] + q[1] ? 1 : 2);
-      float st = m.sigma_t[c];
-      float t = st > 0 ? -std::log1p(-sampler.get1d()) / st : kInf;
-      if (t < t_hit) {
+      const float u_channel = sampler.get1d(), u_distance = sampler.get1d();
+      const FreeFlight flight = sample_free_flight(m, beta, t_hit, u_channel, u_distance);
+      if (!flight.valid) break;
+      beta *= flight.weight;
+      if (!beta.is_finite() || beta.is_black()) break;
+      if (flight.scattered) {
         // Scattering event in the medium.
-        RGB tr = m.transmittance(t);
-        float pdf = 0;
-        for (int k = 0; k < 3; ++k) pdf += q[k] * m.sigma_t[k] * tr[k];
-        beta *= m.sigma_s * tr / pdf;
-        if (!beta.is_finite() || beta.is_black()) break;
-        Vec3 p = ray.o + ray.d * t;
+        Vec3 p = ray.o + ray.d * flight.t;
         if (depth++ >= max_depth) break;
         Vec3 wo = -ray.d;
         const float g = m.g;
@@ -214,12 +204,6 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         continue;
       }
       // Passed through to the surface (or to infinity).
-      RGB tr = m.transmittance(t_hit);
-      float pdf = 0;
-      for (int k = 0; k < 3; ++k) pdf += q[k] * tr[k];
-      if (pdf <= 0) break;
-      beta *= tr / pdf;
-      if (!beta.is_finite() || beta.is_black()) break;
     }
 
     if (!found) {
@@ -264,10 +248,10 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     Vec3 wo = -ray.d;
 
     if (mat.type == Material::Type::Subsurface) {
-      // Separable BSSRDF or random walk (render/subsurface_method.h): the boundary is
-      // a smooth dielectric; reflection is sampled by Fresnel, transmitted light leaves
-      // the object where the method says.
-      const SubsurfaceMethod& sm = *sc.subsurface[mat.subsurface];
+      // The boundary is a smooth dielectric: reflection is sampled by Fresnel,
+      // transmitted light leaves the object where the material's method says
+      // (render/subsurface/subsurface_method.h).
+      const SubsurfaceMaterial& sm = *sc.subsurface[mat.subsurface];
       float cos_o = dot(wo, hit.ng);
       if (cos_o <= 0) {
         // Reached from inside (thin or open geometry): let the path pass.
@@ -300,29 +284,27 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         ray = Ray{offset_ray_origin(hit.p, hit.ng, wi), wi};
         continue;
       }
-      if (sm.params.method == SubsurfaceParams::Method::PointCloud) {
-        // Light leaving here is Sw-weighted M(x) from the cloud (Jensen & Buehler 2002;
-        // the local disk needs the irradiance at x itself: one estimate per sample).
-        const auto* cloud = sc.point_clouds.empty() ? nullptr : sc.point_clouds[hit.shape].get();
-        if (!cloud) break;  // during the pre-pass: the object's own cloud does not exist yet
-        RGB Ex = sm.params.local_disk ? transmitted_irradiance(sc, hit.p, hit.ng, sm.params.eta, medium, sampler, counters)
-                                      : RGB(0);
-        L += beta * cloud->radiant_exitance(hit.p, Ex) / (sm.sw_norm * kPi);
-        break;
-      }
       // The exit sampler draws from its own region; the exit's light and lobe from this block.
       const uint64_t after_exit = sampler.dimension();
       sampler.set_dimension(Sampler::region(after_exit, 0x55e1u), kStratifiedExitDimensions);
+      const ObjectTracer tracer(*sc.embree, sc.object_of_shape, hit, counters);
+      auto irradiance = [&](Vec3 p, Vec3 n, float eta, Sampler& smp) {
+        return transmitted_irradiance(sc, p, n, eta, medium, smp, counters);
+      };
       SubsurfaceExit ex;
-      const bool exited = sample_subsurface_exit(sc, sm, hit, wo, sampler, counters, ex);
+      const bool exited = sample_subsurface_exit(sm, {hit, wo, tracer, irradiance}, sampler, ex);
       sampler.set_dimension(after_exit);
       if (!exited) {
         if (ex.truncated) ++counters.truncated;
         break;
       }
+      if (ex.kind == SubsurfaceExit::Kind::Emitted) {
+        L += beta * ex.radiance;
+        break;
+      }
       beta *= ex.weight;
       if (!beta.is_finite() || beta.is_black()) break;
-      if (!ex.diffuse_exit) {
+      if (ex.kind == SubsurfaceExit::Kind::Along) {
         specular = true;
         prev_p = ex.hit.p;
         ray = Ray{offset_ray_origin(ex.hit.p, ex.hit.ng, ex.direction), ex.direction};
@@ -332,7 +314,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       BSDF sw;
       sw.type = BSDF::Type::SubsurfaceExit;
       sw.n = ex.hit.ng;
-      sw.eta = sm.params.eta;
+      sw.eta = sm.exit_eta;
       sw.sw_norm = sm.sw_norm;
       Vec3 p_out = offset_ray_origin(ex.hit.p, ex.hit.ng, ex.hit.ng);
       L += beta * estimate_direct(sc, p_out, ex.hit.ng, medium, sampler, counters, [&](Vec3 wi) {

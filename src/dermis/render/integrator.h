@@ -6,22 +6,14 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
 
 #include "dermis/core/rgb.h"
 #include "dermis/core/sampler.h"
 #include "dermis/geometry/ray.h"
+#include "dermis/render/path_counters.h"
 #include "dermis/render/render_scene.h"
 
 namespace dermis {
-
-struct PathCounters {
-  uint64_t rays = 0;       // closest-hit and shadow rays traced
-  uint64_t truncated = 0;  // paths stopped by the interface-crossing guard
-  // When set, every ray traced (closest-hit, shadow, probe and walk rays) is appended
-  // here; benchmarks replay them.
-  std::vector<Ray>* recorded_rays = nullptr;
-};
 
 // How a path begins: from the camera (emission seen at full weight), or as the
 // continuation of a scattering at `prev_p` sampled with solid-angle density `prev_pdf`

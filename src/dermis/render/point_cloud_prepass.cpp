@@ -5,11 +5,12 @@
 
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 
 #include "dermis/core/rng.h"
+#include "dermis/geometry/sphere_tessellation.h"
 #include "dermis/render/integrator.h"
-#include "dermis/render/render_scene.h"
 #include "dermis/sss/pointcloud/point_cloud_io.h"
 #include "dermis/sss/pointcloud/point_distribution.h"
 
@@ -17,21 +18,48 @@ namespace dermis {
 
 namespace pc = sss::pointcloud;
 
-PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& options) {
+namespace {
+
+// The object's surface as one triangle list (spheres tessellated), in world space.
+void object_triangles(const RenderScene& sc, const std::vector<int>& shapes, std::vector<Vec3>& positions,
+                      std::vector<uint32_t>& indices, bool& flip) {
+  for (int i : shapes) {
+    const Shape& shape = sc.shapes[i];
+    std::vector<Vec3> p = shape.positions;
+    std::vector<uint32_t> t = shape.indices;
+    if (shape.type == Shape::Type::Sphere) {
+      tessellate_sphere(shape.radius, 96, p, t);
+      for (Vec3& v : p) v += shape.center;
+    }
+    const uint32_t base = uint32_t(positions.size());
+    positions.insert(positions.end(), p.begin(), p.end());
+    for (uint32_t v : t) indices.push_back(base + v);
+    flip = shape.flip_normals;
+  }
+}
+
+}  // namespace
+
+PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& options, Progress::Style style,
+                                    const std::atomic<bool>* cancel) {
   using Clock = std::chrono::steady_clock;
   PointCloudReport report;
-  sc.point_clouds.clear();
-  sc.point_clouds.resize(sc.shapes.size());
-  int k = 0;
+  // The point-cloud objects, in order of their first shape.
+  std::map<int, std::vector<int>> objects;
   for (std::size_t i = 0; i < sc.shapes.size(); ++i) {
-    const Shape& shape = sc.shapes[i];
-    const Material& mat = sc.materials[shape.material];
+    const Material& mat = sc.materials[sc.shapes[i].material];
     if (mat.type != Material::Type::Subsurface) continue;
-    const SubsurfaceMethod& m = *sc.subsurface[mat.subsurface];
-    if (m.params.method != SubsurfaceParams::Method::PointCloud) continue;
-    if (shape.instance >= 0)
+    if (!std::holds_alternative<PointCloudMethod>(sc.subsurface[mat.subsurface]->method)) continue;
+    if (sc.shapes[i].instance >= 0)
       throw std::runtime_error("subsurface method \"pointcloud\": objects inside ObjectBegin/ObjectInstance are not "
                                "supported; use another method for instanced objects");
+    objects[sc.object_of_shape[i]].push_back(int(i));
+  }
+  int k = 0;
+  for (const auto& [object, shapes] : objects) {
+    const Material& mat = sc.materials[sc.shapes[shapes[0]].material];
+    auto& m = std::get<PointCloudMethod>(sc.subsurface[mat.subsurface]->method);
+    const SubsurfaceParams& params = m.params();
     const std::string suffix = k == 0 ? "" : fmt::format(".{}", k);
     ++k;
     auto t0 = Clock::now();
@@ -39,35 +67,40 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
     if (!options.load_path.empty()) {
       cloud = pc::load_point_cloud(options.load_path + suffix);
     } else {
-      std::vector<Vec3> positions = shape.positions;
-      std::vector<uint32_t> indices = shape.indices;
-      if (shape.type == Shape::Type::Sphere) {
-        tessellate_sphere(shape.radius, 96, positions, indices);
-        for (Vec3& p : positions) p += shape.center;
-      }
+      std::vector<Vec3> positions;
+      std::vector<uint32_t> indices;
+      bool flip = false;
+      object_triangles(sc, shapes, positions, indices, flip);
       double area = pc::mesh_area(positions, indices);
-      double mfp = std::min({m.mean_free_path[0], m.mean_free_path[1], m.mean_free_path[2]});
-      std::size_t count = options.points > 0 ? options.points
-                                             : pc::point_count_for_density(area, mfp, m.params.point_density);
+      std::size_t count = options.points > 0
+                              ? options.points
+                              : pc::point_count_for_density(area, m.min_mean_free_path(), params.point_density);
       count = std::max<std::size_t>(count, 16);
-      cloud.points = pc::distribute_points(positions, indices, count, mix64(options.seed ^ (0x9e37 + i)));
-      if (shape.flip_normals)
+      cloud.points = pc::distribute_points(positions, indices, count, mix64(options.seed ^ (0x9e37 + object)));
+      if (flip)
         for (auto& p : cloud.points) p.normal = -p.normal;
       cloud.irradiance.resize(cloud.points.size());
-      const int samples = m.params.irradiance_samples;
+      const int samples = params.irradiance_samples;
+      const int outside_medium = sc.shapes[shapes[0]].outside_medium;
+      Progress progress(fmt::format("Point cloud {} ({} points)", k, cloud.points.size()),
+                        int64_t(cloud.points.size()), style);
       tbb::parallel_for(std::size_t(0), cloud.points.size(), [&](std::size_t j) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return;
         PathCounters counters;
         const pc::SurfacePoint& p = cloud.points[j];
         RGB sum(0);
         for (int s = 0; s < samples; ++s) {
           // Each point is a "pixel" of the sampler: its irradiance samples are stratified.
-          Sampler sampler(options.sampler, options.seed, 0x70c10d00000000ull + (uint64_t(i) << 32) + j, uint32_t(s));
-          RGB e = transmitted_irradiance(sc, p.position, p.normal, m.params.eta, shape.outside_medium, sampler,
-                                         counters);
+          Sampler sampler(options.sampler, options.seed, 0x70c10d00000000ull + (uint64_t(object) << 32) + j,
+                          uint32_t(s));
+          RGB e = transmitted_irradiance(sc, p.position, p.normal, params.eta, outside_medium, sampler, counters);
           if (e.is_finite()) sum += e;
         }
         cloud.irradiance[j] = sum / float(samples);
+        progress.advance();
       });
+      if (cancel && cancel->load()) throw Interrupted();
+      progress.finish();
     }
     report.prepass_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     if (!options.save_path.empty()) {
@@ -75,14 +108,15 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
       report.file_bytes += std::filesystem::file_size(options.save_path + suffix);
     }
     pc::DiffusionOptions d;
-    d.epsilon = m.params.epsilon;
-    d.local_disk = m.params.local_disk;
-    sc.point_clouds[i] = std::make_unique<pc::PointCloudDiffusion>(cloud.points, cloud.irradiance, *m.profile, d);
-    const auto& st = sc.point_clouds[i]->stats();
+    d.epsilon = params.epsilon;
+    d.local_disk = params.local_disk;
+    auto diffusion = std::make_shared<pc::PointCloudDiffusion>(cloud.points, cloud.irradiance, m.profile(), d);
+    const auto& st = diffusion->stats();
     report.clouds += 1;
     report.points += st.point_count;
     report.memory_bytes += st.memory_bytes;
     report.build_seconds += st.build_seconds;
+    m.set_cloud(object, std::move(diffusion));
   }
   return report;
 }

@@ -1,17 +1,18 @@
 // The point-cloud pre-pass (Jensen & Buehler 2002; Langlands & Mertens, seed 001):
-// points over every object whose subsurface method is `pointcloud`, their transmitted
+// points over every subsurface object whose method is `pointcloud`, their transmitted
 // irradiance computed with the renderer's own light transport, and the octree with
-// its local disk tables (src/dermis/sss/pointcloud/).
+// its local disk tables (src/dermis/sss/pointcloud/), handed to the object's method.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
-
-#include "dermis/core/sampler.h"
 #include <string>
 
-namespace dermis {
+#include "dermis/core/sampler.h"
+#include "dermis/render/progress.h"
+#include "dermis/render/render_scene.h"
 
-struct RenderScene;
+namespace dermis {
 
 struct PointCloudOptions {
   std::size_t points = 0;   // points per object; 0: from the material's "pointdensity"
@@ -27,7 +28,17 @@ struct PointCloudReport {
   double build_seconds = 0;    // octrees and local disk tables
 };
 
-// Builds scene.point_clouds; throws std::runtime_error with a message a user can act on.
-PointCloudReport build_point_clouds(RenderScene& scene, const PointCloudOptions& options);
+// Computes the clouds of the scene's point-cloud objects (the scene's other subsurface
+// methods must be made already: the irradiance paths may meet them). Throws
+// std::runtime_error with a message a user can act on; stops early (throwing
+// Interrupted) when `cancel` becomes true.
+PointCloudReport build_point_clouds(RenderScene& scene, const PointCloudOptions& options,
+                                    Progress::Style progress = Progress::Style::kQuiet,
+                                    const std::atomic<bool>* cancel = nullptr);
+
+// Thrown by a preparation stage stopped by its cancel flag.
+struct Interrupted : std::runtime_error {
+  Interrupted() : std::runtime_error("interrupted") {}
+};
 
 }  // namespace dermis

@@ -9,7 +9,8 @@
 #include <filesystem>
 
 #include "dermis/materials/fresnel.h"
-#include "dermis/render/render_scene.h"
+#include "dermis/render/scene_assembly.h"
+#include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
 #include "support/pixel_statistics.h"
 
@@ -38,13 +39,15 @@ TEST(PointCloudRender, FlatSlabReturnsFresnelPlusAlbedo) {
     Diagnostics diag;
     PointCloudOptions o;
     o.points = 30000;  // ~0.8 mfp spacing on the top face
-    auto sc = build_render_scene(parse_scene_string(slab(local_disk)), diag, o);
-    ASSERT_EQ(sc->point_cloud_report.clouds, 1u);
-    const SubsurfaceMethod& m = *sc->subsurface[0];
+    auto sc = assemble_scene(parse_scene_string(slab(local_disk)), diag);
+    PreparationOptions prep;
+    prep.point_clouds = o;
+    ASSERT_EQ(prepare_scene(*sc, prep).point_clouds.clouds, 1u);
+    const sss::ProfileRGB& profile = std::get<PointCloudMethod>(sc->subsurface[0]->method).profile();
     const float F = fresnel_dielectric(1.0f, 1.33f);
     auto st = testing::pixel_statistics(*sc, 64, 5);
     for (int c = 0; c < 3; ++c) {
-      double expected = F + (1 - F) * m.albedo[c];
+      double expected = F + (1 - F) * profile.channel[c].albedo();
       double mean = 0, var = 0;
       for (std::size_t p = 0; p < st.mean.size(); ++p) {
         mean += st.mean[p][c] / st.mean.size();
@@ -53,7 +56,7 @@ TEST(PointCloudRender, FlatSlabReturnsFresnelPlusAlbedo) {
       std::printf("channel %d: %.5f vs %.5f (%+.2f%%)\n", c, mean, expected, 100 * (mean / expected - 1));
       // Stated tolerance: 3% of the albedo term (the library measured a -1% bias of the
       // equal-area shares on planes) plus 4 standard errors of the render.
-      EXPECT_NEAR(mean, expected, 0.03 * (1 - F) * m.albedo[c] + 4 * std::sqrt(var)) << "channel " << c;
+      EXPECT_NEAR(mean, expected, 0.03 * (1 - F) * profile.channel[c].albedo() + 4 * std::sqrt(var)) << "channel " << c;
     }
   }
 }
@@ -64,8 +67,10 @@ TEST(PointCloudRender, SavedCloudLoadsAndRendersTheSame) {
   PointCloudOptions save;
   save.points = 2000;
   save.save_path = path;
-  auto a = build_render_scene(parse_scene_string(slab(true)), diag, save);
-  EXPECT_GT(a->point_cloud_report.file_bytes, 0u);
+  auto a = assemble_scene(parse_scene_string(slab(true)), diag);
+  PreparationOptions prep;
+  prep.point_clouds = save;
+  EXPECT_GT(prepare_scene(*a, prep).point_clouds.file_bytes, 0u);
   PointCloudOptions load;
   load.load_path = path;
   auto b = build_render_scene(parse_scene_string(slab(true)), diag, load);

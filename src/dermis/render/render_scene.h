@@ -1,23 +1,24 @@
-// Everything the integrator reads, built once from a parsed SceneDesc: shapes in
-// Embree, materials, textures, media, lights with their selection distribution,
-// and the camera.
+// Everything the integrator reads: shapes in Embree, materials, textures, media,
+// lights with their selection distribution, the camera, and the subsurface methods.
+// Made in two steps: assembly (scene_assembly.h: from the parsed SceneDesc, no
+// computation beyond building the BVH) and preparation (scene_preparation.h: albedo
+// tables, profile tables, point clouds; may take a while, with progress).
 #pragma once
 
 #include <memory>
+#include <utility>
 #include <vector>
 
-#include "dermis/core/distribution.h"
 #include "dermis/geometry/embree_scene.h"
 #include "dermis/geometry/shape.h"
 #include "dermis/lights/light.h"
 #include "dermis/lights/light_selection.h"
 #include "dermis/materials/material.h"
 #include "dermis/materials/medium.h"
+#include "dermis/materials/subsurface_params.h"
 #include "dermis/materials/texture.h"
 #include "dermis/render/camera.h"
-#include "dermis/render/point_cloud_prepass.h"
-#include "dermis/sss/pointcloud/point_cloud_diffusion.h"
-#include "dermis/render/subsurface_method.h"
+#include "dermis/render/subsurface/subsurface_method.h"
 #include "dermis/scene/scene_desc.h"
 
 namespace dermis {
@@ -28,10 +29,19 @@ struct RenderScene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<HomogeneousMedium> media;
-  std::vector<std::unique_ptr<SubsurfaceMethod>> subsurface;  // per Subsurface material
-  // Per shape: the point cloud of a `pointcloud` subsurface object (else null).
-  std::vector<std::unique_ptr<sss::pointcloud::PointCloudDiffusion>> point_clouds;
-  PointCloudReport point_cloud_report;
+  // Subsurface materials (Material::subsurface indexes both): the parameters as parsed,
+  // and the methods made from them by preparation.
+  std::vector<SubsurfaceParams> subsurface_params;
+  std::vector<std::unique_ptr<SubsurfaceMaterial>> subsurface;
+  // The `volumetric` references: a medium filled in by preparation from the parameters.
+  struct VolumetricMedium {
+    SubsurfaceParams params;
+    int medium = -1;
+  };
+  std::vector<VolumetricMedium> volumetric_media;
+  // The subsurface object of each shape (subsurface/object_tracer.h): walks and probes
+  // stay within the shapes of the object they entered.
+  std::vector<int> object_of_shape;
   std::vector<Light> lights;
   LightSelection light_selection;     // which light next-event estimation samples
   std::vector<int> infinite_lights;
@@ -44,15 +54,7 @@ struct RenderScene {
   PerspectiveCamera camera;
   FilmDesc film;
   RenderSettingsDesc settings;
+  bool prepared = false;  // scene_preparation.h has run
 };
-
-// Throws SceneError for problems found while building (e.g. an unreadable texture),
-// and adds warnings to `diagnostics`.
-// Also runs the point-cloud pre-pass when a material asks for it.
-std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnostics& diagnostics,
-                                                const PointCloudOptions& point_clouds = {});
-
-// A triangulated unit sphere: (2n x n) quads in latitude/longitude, outward winding.
-void tessellate_sphere(float radius, int n, std::vector<Vec3>& positions, std::vector<uint32_t>& indices);
 
 }  // namespace dermis

@@ -1,4 +1,5 @@
 #include "dermis/render/renderer.h"
+#include "dermis/render/scene_preparation.h"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 
 #include <cstdio>
 
-#include "dermis/render/render_scene.h"
+#include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
 #include "support/pixel_statistics.h"
 

@@ -6,8 +6,7 @@
 #include <cmath>
 
 #include "dermis/materials/fresnel.h"
-#include "dermis/render/render_scene.h"
-#include "dermis/render/subsurface_method.h"
+#include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
 #include "dermis/sss/profiles/quadrature.h"
 #include "support/pixel_statistics.h"
@@ -53,15 +52,14 @@ TEST_P(FlatSlab, ReturnsFresnelPlusTransmittedAlbedo) {
   Diagnostics diag;
   auto probe = build_render_scene(parse_scene_string(slab_scene(material, 1)), diag);
   ASSERT_EQ(probe->subsurface.size(), 1u);
-  double radius = probe->subsurface[0]->disk ? probe->subsurface[0]->disk->max_radius()
-                                              : probe->subsurface[0]->lines->max_radius();
+  const double radius = std::get<ProbeMethod>(probe->subsurface[0]->method).max_radius();
   auto sc = build_render_scene(parse_scene_string(slab_scene(material, std::max(100.0, 20 * radius))), diag);
-  const SubsurfaceMethod& m = *sc->subsurface[0];
+  const ProbeMethod& m = std::get<ProbeMethod>(sc->subsurface[0]->method);
   const float F = fresnel_dielectric(1.0f, 1.33f);
   RGB expected;
   for (int ch = 0; ch < 3; ++ch) {
-    double e = std::string(c.method) == "sphere-lines-retry" ? m.lines->fallback_weight(ch)
-                                                              : energy_within(m.profile->channel[ch], radius);
+    double e = std::string(c.method) == "sphere-lines-retry" ? m.lines()->fallback_weight(ch)
+                                                              : energy_within(m.profile().channel[ch], radius);
     expected[ch] = float(F + (1 - F) * e);
   }
   auto st = testing::pixel_statistics(*sc, 4000, 17);

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "dermis/render/render_scene.h"
+#include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
 #include "support/pixel_statistics.h"
 
@@ -125,7 +125,7 @@ TEST(SubsurfaceRandomWalk, MatchedBoundaryEqualsAMediumInsideAnInterface) {
 #include "dermis/core/warp.h"
 #include "dermis/materials/fresnel.h"
 #include "dermis/render/integrator.h"
-#include "dermis/render/subsurface_method.h"
+#include "dermis/render/subsurface/coefficients.h"
 
 #include <cstdio>
 
@@ -194,10 +194,8 @@ TEST(SubsurfaceRandomWalk, VanDeHulstFitMissesTheReflectanceBehindADielectric) {
   exact.eta = fit.eta = 1.4f;
   exact.boundary = fit.boundary = SubsurfaceParams::Boundary::Dielectric;
   fit.albedo_inversion_fit = true;
-  RGB sa_e, ss_e, sa_f, ss_f;
-  resolve_coefficients(exact, sa_e, ss_e);
-  resolve_coefficients(fit, sa_f, ss_f);
-  double alpha_exact = ss_e[0] / (sa_e[0] + ss_e[0]), alpha_fit = ss_f[0] / (sa_f[0] + ss_f[0]);
+  const Coefficients e = resolve_coefficients(exact), f = resolve_coefficients(fit);
+  double alpha_exact = e.sigma_s[0] / (e.sigma_a[0] + e.sigma_s[0]), alpha_fit = f.sigma_s[0] / (f.sigma_a[0] + f.sigma_s[0]);
   std::printf("A = 0.6 behind eta 1.4: alpha exact %.5f, van de Hulst %.5f\n", alpha_exact, alpha_fit);
   EXPECT_GT(alpha_exact - alpha_fit, 0.01);
 }

@@ -1,4 +1,4 @@
-#include "dermis/render/object_tracing.h"
+#include "dermis/render/subsurface/object_tracer.h"
 
 #include <limits>
 
@@ -12,17 +12,15 @@ inline float skip_distance(Vec3 p) { return 1e-4f * std::max(1.0f, max_component
 
 }  // namespace
 
-void collect_object_hits(const RenderScene& sc, const SurfaceHit& object, Vec3 o, Vec3 d, float length, int max_hits,
-                         std::vector<SurfaceHit>& hits, PathCounters& counters) {
+void ObjectTracer::collect_hits(Vec3 o, Vec3 d, float length, int max_hits, std::vector<SurfaceHit>& hits) const {
   float t0 = 0;
   for (int guard = 0; guard < 4 * max_hits + 16 && t0 < length; ++guard) {
     Ray r{o + d * t0, d, length - t0};
     SurfaceHit h;
-    ++counters.rays;
-    if (counters.recorded_rays) counters.recorded_rays->push_back(r);
-    if (!sc.embree->intersect(r, h)) return;
+    counters_.count(r);
+    if (!scene_.intersect(r, h)) return;
     float t = t0 + h.t;
-    if (h.same_object(object)) {
+    if (contains(h)) {
       h.t = t;
       hits.push_back(h);
       if (int(hits.size()) >= max_hits) return;
@@ -31,13 +29,11 @@ void collect_object_hits(const RenderScene& sc, const SurfaceHit& object, Vec3 o
   }
 }
 
-bool first_object_hit(const RenderScene& sc, const SurfaceHit& object, Ray ray, SurfaceHit& hit,
-                      PathCounters& counters) {
+bool ObjectTracer::first_hit(Ray ray, SurfaceHit& hit) const {
   for (int guard = 0; guard < 64; ++guard) {
-    ++counters.rays;
-    if (counters.recorded_rays) counters.recorded_rays->push_back(ray);
-    if (!sc.embree->intersect(ray, hit)) return false;
-    if (hit.same_object(object)) return true;
+    counters_.count(ray);
+    if (!scene_.intersect(ray, hit)) return false;
+    if (contains(hit)) return true;
     float skip = hit.t + skip_distance(hit.p);
     ray.o = ray.o + ray.d * skip;
     if (ray.tmax != std::numeric_limits<float>::infinity()) ray.tmax -= skip;

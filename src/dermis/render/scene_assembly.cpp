@@ -1,9 +1,10 @@
-#include "dermis/render/render_scene.h"
+#include "dermis/render/scene_assembly.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
+#include "dermis/geometry/sphere_tessellation.h"
 #include "dermis/materials/subsurface_params.h"
 #include "dermis/render/image.h"
 
@@ -55,7 +56,7 @@ Material make_material(const MaterialDesc& d, Diagnostics& diag) {
       m.type = Material::Type::Diffuse;
       break;
     case MaterialDesc::Type::Subsurface:
-      // Completed by build_render_scene(), which needs the scene's media.
+      // Completed by assemble_scene(), which needs the scene's media.
       m.type = Material::Type::Dielectric;
       break;
   }
@@ -101,27 +102,6 @@ Texture make_texture(const TextureDesc& d) {
 
 }  // namespace
 
-void tessellate_sphere(float radius, int n, std::vector<Vec3>& positions, std::vector<uint32_t>& indices) {
-  int nu = 2 * n, nv = n;
-  positions.clear();
-  indices.clear();
-  for (int j = 0; j <= nv; ++j) {
-    float theta = kPi * float(j) / float(nv);
-    for (int i = 0; i <= nu; ++i) {
-      float phi = 2 * kPi * float(i) / float(nu);
-      positions.push_back(Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)) *
-                          radius);
-    }
-  }
-  auto id = [nu](int i, int j) { return uint32_t(j * (nu + 1) + i); };
-  for (int j = 0; j < nv; ++j)
-    for (int i = 0; i < nu; ++i) {
-      // Winding chosen so that cross(p0 - p2, p1 - p2) points outward.
-      if (j != 0) indices.insert(indices.end(), {id(i, j), id(i, j + 1), id(i + 1, j)});
-      if (j != nv - 1) indices.insert(indices.end(), {id(i + 1, j), id(i, j + 1), id(i + 1, j + 1)});
-    }
-}
-
 namespace {
 
 // Converts a shape description into the renderer's shape, positioned by `xf`.
@@ -162,8 +142,7 @@ Shape make_shape(const ShapeDesc& d, const Transform& xf, int default_material) 
 
 }  // namespace
 
-std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnostics& diag,
-                                                const PointCloudOptions& point_cloud_options) {
+std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& diag) {
   auto sc = std::make_unique<RenderScene>();
   sc->film = desc.film;
   sc->settings = desc.settings;
@@ -182,9 +161,10 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnosti
     sc->media.push_back(HomogeneousMedium::from_coefficients(m.sigma_a, m.sigma_s, m.scale, m.g));
   }
 
-  // Subsurface materials. The `volumetric` method is the brute-force reference: the
-  // material becomes a smooth dielectric filled with the homogeneous medium it
-  // describes, rendered by the volumetric path tracer itself.
+  // Subsurface materials: the parameters now, the methods at preparation. The
+  // `volumetric` method is the brute-force reference: the material becomes a smooth
+  // dielectric filled with the homogeneous medium it describes, rendered by the
+  // volumetric path tracer itself (its coefficients too are resolved at preparation).
   std::vector<int> subsurface_medium(sc->materials.size(), -1);
   for (std::size_t i = 0; i < desc.materials.size(); ++i) {
     const MaterialDesc& md = desc.materials[i];
@@ -192,24 +172,15 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnosti
     SubsurfaceParams sp = read_subsurface_params(md, diag);
     if (sp.method != SubsurfaceParams::Method::Volumetric) {
       sc->materials[i].type = Material::Type::Subsurface;
-      sc->materials[i].subsurface = int(sc->subsurface.size());
-      try {
-        sc->subsurface.push_back(make_subsurface_method(sp));
-      } catch (const std::invalid_argument& e) {
-        throw SceneError(md.loc, fmt::format("subsurface: {}", e.what()));
-      }
+      sc->materials[i].subsurface = int(sc->subsurface_params.size());
+      sc->subsurface_params.push_back(sp);
       continue;
     }
-    RGB sigma_a, sigma_s;
-    // The volumetric reference has a dielectric boundary: its (reflectance, mfp)
-    // inversion uses the dielectric table.
-    SubsurfaceParams as_dielectric = sp;
-    as_dielectric.boundary = SubsurfaceParams::Boundary::Dielectric;
-    resolve_coefficients(as_dielectric, sigma_a, sigma_s);
     sc->materials[i].type = Material::Type::Dielectric;
     sc->materials[i].eta = sp.eta;
     subsurface_medium[i] = int(sc->media.size());
-    sc->media.push_back(HomogeneousMedium::from_coefficients(sigma_a, sigma_s, 1, sp.g));
+    sc->volumetric_media.push_back({sp, subsurface_medium[i]});
+    sc->media.push_back(HomogeneousMedium{});
   }
   auto fill_subsurface = [&](Shape& s, const ShapeDesc& d) {
     if (s.material < int(subsurface_medium.size()) && subsurface_medium[s.material] >= 0) {
@@ -346,7 +317,10 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnosti
   // Light selection (lights/light_selection.h): by each light's importance at the
   // shading point with few lights, by power with many.
   sc->light_selection = LightSelection(sc->lights, sc->embree->bounds_radius());
-  sc->point_cloud_report = build_point_clouds(*sc, point_cloud_options);
+
+  // Subsurface objects: each shape its own.
+  sc->object_of_shape.resize(sc->shapes.size());
+  for (std::size_t i = 0; i < sc->shapes.size(); ++i) sc->object_of_shape[i] = int(i);
   return sc;
 }
 

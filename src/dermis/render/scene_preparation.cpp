@@ -1,0 +1,59 @@
+#include "dermis/render/scene_preparation.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <stdexcept>
+
+#include "dermis/render/scene_assembly.h"
+
+namespace dermis {
+
+PreparationReport prepare_scene(RenderScene& sc, const PreparationOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  PreparationReport report;
+  const auto t0 = Clock::now();
+  const std::size_t stages = sc.subsurface_params.size() + sc.volumetric_media.size();
+  {
+    Progress progress("Subsurface methods", int64_t(stages), stages > 0 ? options.progress : Progress::Style::kQuiet);
+    auto check_cancel = [&] {
+      if (options.cancel && options.cancel->load()) throw Interrupted();
+    };
+    sc.subsurface.clear();
+    for (const SubsurfaceParams& p : sc.subsurface_params) {
+      check_cancel();
+      try {
+        sc.subsurface.push_back(std::make_unique<SubsurfaceMaterial>(make_subsurface_material(p)));
+      } catch (const std::invalid_argument& e) {
+        throw SceneError(p.loc, fmt::format("subsurface: {}", e.what()));
+      }
+      progress.advance();
+    }
+    // The volumetric reference has a dielectric boundary: its (reflectance, mfp)
+    // inversion uses the dielectric table.
+    for (const RenderScene::VolumetricMedium& v : sc.volumetric_media) {
+      check_cancel();
+      SubsurfaceParams as_dielectric = v.params;
+      as_dielectric.boundary = SubsurfaceParams::Boundary::Dielectric;
+      const Coefficients k = resolve_coefficients(as_dielectric);
+      sc.media[v.medium] = HomogeneousMedium::from_coefficients(k.sigma_a, k.sigma_s, 1, v.params.g);
+      progress.advance();
+    }
+    progress.finish();
+  }
+  report.subsurface_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  report.point_clouds = build_point_clouds(sc, options.point_clouds, options.progress, options.cancel);
+  sc.prepared = true;
+  return report;
+}
+
+std::unique_ptr<RenderScene> build_render_scene(const SceneDesc& desc, Diagnostics& diagnostics,
+                                                const PointCloudOptions& point_clouds) {
+  auto sc = assemble_scene(desc, diagnostics);
+  PreparationOptions options;
+  options.point_clouds = point_clouds;
+  prepare_scene(*sc, options);
+  return sc;
+}
+
+}  // namespace dermis

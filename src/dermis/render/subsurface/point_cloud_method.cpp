@@ -1,0 +1,34 @@
+#include "dermis/render/subsurface/point_cloud_method.h"
+
+#include <algorithm>
+
+#include "dermis/core/vec.h"
+#include "dermis/materials/bsdf.h"
+#include "dermis/render/subsurface/coefficients.h"
+#include "dermis/render/subsurface/profile_from_params.h"
+
+namespace dermis {
+
+PointCloudMethod::PointCloudMethod(const SubsurfaceParams& params)
+    : params_(params), sw_norm_(subsurface_exit_normalization(params.eta)),
+      profile_(std::make_unique<sss::ProfileRGB>(make_profile(params))) {
+  const RGB l = albedo_and_mfp(params).mfp;
+  min_mfp_ = std::min({l[0], l[1], l[2]});
+}
+
+void PointCloudMethod::set_cloud(int object, std::shared_ptr<const sss::pointcloud::PointCloudDiffusion> cloud) {
+  if (object >= int(clouds_.size())) clouds_.resize(object + 1);
+  clouds_[object] = std::move(cloud);
+}
+
+bool PointCloudMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
+  const sss::pointcloud::PointCloudDiffusion* c = cloud(entry.tracer.object());
+  if (!c) return false;  // during the pre-pass: the object's own cloud does not exist yet
+  // The local disk needs the irradiance at x itself: one estimate per sample.
+  const RGB Ex = params_.local_disk ? entry.irradiance(entry.hit.p, entry.hit.ng, params_.eta, sampler) : RGB(0);
+  out.kind = SubsurfaceExit::Kind::Emitted;
+  out.radiance = c->radiant_exitance(entry.hit.p, Ex) / (sw_norm_ * kPi);  // L = Sw M (METHODS.md sec. 0)
+  return true;
+}
+
+}  // namespace dermis

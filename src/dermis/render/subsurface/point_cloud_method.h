@@ -1,0 +1,43 @@
+// Point-cloud diffusion (Jensen & Buehler 2002; the local disk integral of Langlands &
+// Mertens, seed 001): the light leaving a point is Sw-weighted radiant exitance M(x)
+// from a cloud of surface points holding the irradiance that entered there. The cloud
+// of each object is computed while the scene is prepared (render/point_cloud_prepass.h);
+// until then the method finds no exit.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "dermis/materials/subsurface_params.h"
+#include "dermis/render/subsurface/subsurface_exit.h"
+#include "dermis/sss/pointcloud/point_cloud_diffusion.h"
+#include "dermis/sss/profiles/profile.h"
+
+namespace dermis {
+
+class PointCloudMethod {
+ public:
+  explicit PointCloudMethod(const SubsurfaceParams& params);
+
+  bool sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const;
+
+  const sss::ProfileRGB& profile() const { return *profile_; }
+  const SubsurfaceParams& params() const { return params_; }
+  // The smallest mean free path of the three channels: the cloud's point spacing.
+  float min_mean_free_path() const { return min_mfp_; }
+
+  // The cloud of object `object` (ObjectTracer::object()).
+  void set_cloud(int object, std::shared_ptr<const sss::pointcloud::PointCloudDiffusion> cloud);
+  const sss::pointcloud::PointCloudDiffusion* cloud(int object) const {
+    return object < int(clouds_.size()) ? clouds_[object].get() : nullptr;
+  }
+
+ private:
+  SubsurfaceParams params_;
+  float sw_norm_;
+  float min_mfp_;
+  std::unique_ptr<sss::ProfileRGB> profile_;
+  std::vector<std::shared_ptr<const sss::pointcloud::PointCloudDiffusion>> clouds_;  // per object
+};
+
+}  // namespace dermis

@@ -1,0 +1,104 @@
+#include "dermis/render/subsurface/probe_method.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "dermis/render/subsurface/profile_from_params.h"
+
+namespace dermis {
+
+namespace {
+
+constexpr int kMaxProbeHits = 16;
+
+inline Vec3d to_d(Vec3 v) { return Vec3d(v); }
+
+RGB profile_values(const sss::ProfileRGB& p, double r) {
+  return {float(p.channel[0].eval(r)), float(p.channel[1].eval(r)), float(p.channel[2].eval(r))};
+}
+
+// The hits of a probe segment on the object (a per-thread buffer: no allocation per sample).
+std::vector<SurfaceHit>& probe_hits(const SubsurfaceEntry& entry, const sss::ProbeSegment& seg) {
+  thread_local std::vector<SurfaceHit> hits;
+  hits.clear();
+  entry.tracer.collect_hits(Vec3(seg.origin), Vec3(seg.direction), float(seg.length), kMaxProbeHits, hits);
+  return hits;
+}
+
+// One probe: candidates on the segment, one chosen uniformly, weight k R / pdf.
+template <class Pdf>
+bool pick_probe_hit(const sss::ProfileRGB& profile, const SubsurfaceEntry& entry, const sss::ProbeSegment& seg,
+                    Sampler& sampler, Pdf&& pdf_area, SubsurfaceExit& out) {
+  const std::vector<SurfaceHit>& hits = probe_hits(entry, seg);
+  if (hits.empty()) return false;
+  int k = int(hits.size());
+  const SurfaceHit& h = hits[std::min(int(sampler.uniform() * k), k - 1)];
+  double pdf = pdf_area(h);
+  if (!(pdf > 0)) return false;
+  double r = length(to_d(h.p) - to_d(entry.hit.p));
+  out.kind = SubsurfaceExit::Kind::ThroughLobe;
+  out.hit = h;
+  out.weight = profile_values(profile, r) * float(k / pdf);
+  return true;
+}
+
+}  // namespace
+
+ProbeMethod::ProbeMethod(const SubsurfaceParams& params)
+    : method_(params.method), profile_(std::make_unique<sss::ProfileRGB>(make_profile(params))) {
+  // Channels are chosen in proportion to their albedo (never zero, so that every
+  // channel's hits can be found).
+  RGB weights;
+  for (int c = 0; c < 3; ++c) weights[c] = std::max(float(profile_->channel[c].albedo()), 1e-3f);
+  if (method_ == Method::Disk || method_ == Method::DiskSingleAxis) {
+    disk_ = std::make_unique<sss::DiskProbeSampler>(
+        *profile_, weights,
+        method_ == Method::Disk ? sss::ProbeAxisProbabilities{} : sss::ProbeAxisProbabilities::single_axis());
+  } else {
+    line_tables_ = std::make_unique<sss::SphereLineTablesRGB>(*profile_);
+    lines_ = std::make_unique<sss::SphereLineSampler>(*line_tables_, weights);
+  }
+}
+
+double ProbeMethod::max_radius() const { return disk_ ? disk_->max_radius() : lines_->max_radius(); }
+
+bool ProbeMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
+  const Vec3d p = to_d(entry.hit.p);
+  if (disk_) {
+    sss::ProbeFrame frame = sss::ProbeFrame::around(p, to_d(entry.hit.ng));
+    const float u_axis = sampler.get1d(), u_strategy = sampler.get1d();
+    const Vec2 u_disk = sampler.get2d();  // radius and angle on the disk, stratified together
+    sss::DiskProbeSample s = disk_->sample(frame, u_axis, u_strategy, u_disk.x, u_disk.y);
+    return pick_probe_hit(*profile_, entry, s.segment, sampler,
+                          [&](const SurfaceHit& h) { return disk_->pdf_area(frame, to_d(h.p), to_d(h.ng)); }, out);
+  }
+  if (method_ == Method::SphereLines) {
+    const float u_channel = sampler.get1d(), u_radius = sampler.get1d();
+    const Vec2 u_first = sampler.get2d(), u_second = sampler.get2d();
+    sss::SphereLineSample s = lines_->sample(p, u_channel, u_radius, {u_first.x, u_first.y}, {u_second.x, u_second.y});
+    return pick_probe_hit(*profile_, entry, s.segment, sampler,
+                          [&](const SurfaceHit& h) { return lines_->pdf_area(p, to_d(h.p)); }, out);
+  }
+  // The Cycles page's scheme: retry up to 8 lines until one hits, else stay at P.
+  const std::vector<SurfaceHit>* hits = nullptr;
+  auto count_hits = [&](const sss::ProbeSegment& seg) {
+    hits = &probe_hits(entry, seg);
+    return int(hits->size());
+  };
+  sss::SphereLineRetry r = lines_->sample_retry(p, sampler, count_hits);
+  out.kind = SubsurfaceExit::Kind::ThroughLobe;
+  if (r.hits == 0) {
+    out.hit = entry.hit;
+    for (int c = 0; c < 3; ++c) out.weight[c] = float(lines_->fallback_weight(c));
+    return true;
+  }
+  const SurfaceHit& h = (*hits)[r.chosen];
+  double d = length(to_d(h.p) - p);
+  double pdf = lines_->pdf_area(p, to_d(h.p));
+  out.hit = h;
+  for (int c = 0; c < 3; ++c)
+    out.weight[c] = float(sss::SphereLineSampler::retry_weight(profile_->channel[c].eval(d), r.hits, pdf));
+  return true;
+}
+
+}  // namespace dermis

@@ -1,0 +1,41 @@
+// What an exit sampler returns: where and how light that entered a subsurface object
+// at one point leaves it. The integrator acts on the kind and never asks which method
+// produced it.
+#pragma once
+
+#include "dermis/core/function_ref.h"
+#include "dermis/core/rgb.h"
+#include "dermis/core/sampler.h"
+#include "dermis/geometry/ray.h"
+#include "dermis/render/subsurface/object_tracer.h"
+
+namespace dermis {
+
+struct SubsurfaceExit {
+  enum class Kind {
+    ThroughLobe,  // leaves at `hit` through the normalised-Fresnel exit lobe Sw (bsdf.h)
+    Along,        // leaves at `hit` along `direction` (a walk through a smooth boundary)
+    Emitted,      // the method returns the radiance leaving the entry point itself (point cloud)
+  };
+  Kind kind = Kind::ThroughLobe;
+  SurfaceHit hit;    // ThroughLobe, Along: the exit point; hit.ng points out of the object
+  RGB weight{1};     // ThroughLobe, Along: multiplies the path throughput (estimate / pdf)
+  Vec3 direction;    // Along
+  RGB radiance{0};   // Emitted: radiance toward the viewer, per unit transmitted throughput
+  bool truncated = false;  // no exit: the random walk hit its step cap
+};
+
+// The irradiance transmitted into the smooth dielectric surface (index eta) at p with
+// outward normal n (integrator.h transmitted_irradiance): a method whose estimate needs
+// the light arriving at the entry point (the point cloud's local disk) calls it.
+using TransmittedIrradiance = FunctionRef<RGB(Vec3 p, Vec3 n, float eta, Sampler& sampler)>;
+
+// Everything an exit sampler may use besides its own parameters.
+struct SubsurfaceEntry {
+  const SurfaceHit& hit;  // where the path entered; hit.ng points out of the object
+  Vec3 wo;                // toward where the path came from, on the side of hit.ng
+  const ObjectTracer& tracer;
+  TransmittedIrradiance irradiance;
+};
+
+}  // namespace dermis

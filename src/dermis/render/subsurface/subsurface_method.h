@@ -1,0 +1,45 @@
+// The `subsurface` material in the path tracer: one method per material, a closed
+// variant of one type per family. Each family lives in its own file and has one entry
+// point, sample_exit(entry, sampler, out): where light that entered at a point leaves
+// the object (subsurface_exit.h). The integrator calls it through std::visit and does
+// not know which paper a method came from.
+//
+// Adding a family: a class with that sample_exit in its own file, an entry in the
+// variant below, its name in the parameter table (materials/subsurface_params.cpp)
+// and a case in make_subsurface_material().
+//
+// The `volumetric` reference is not an exit sampler: the scene turns the material
+// into a smooth dielectric filled with the medium it describes (scene_assembly.h),
+// and the volumetric path tracer renders it.
+#pragma once
+
+#include <variant>
+
+#include "dermis/materials/subsurface_params.h"
+#include "dermis/render/subsurface/point_cloud_method.h"
+#include "dermis/render/subsurface/probe_method.h"
+#include "dermis/render/subsurface/walk_method.h"
+
+namespace dermis {
+
+using SubsurfaceMethod = std::variant<ProbeMethod, WalkMethod, PointCloudMethod>;
+
+struct SubsurfaceMaterial {
+  SubsurfaceParams params;
+  float entry_eta = 1.33f;  // index the entry's Fresnel reflection sees (1 for a matched walk)
+  float exit_eta = 1.33f;   // index of the exit lobe Sw
+  float sw_norm = 1;        // c of the exit lobe Sw (bsdf.h)
+  SubsurfaceMethod method;
+};
+
+// Builds the method of a material (profiles, probe tables; for the walk, the albedo
+// inversion when the user gave reflectance + mfp, which may take seconds the first
+// time). Throws std::invalid_argument for parameters a method cannot use.
+SubsurfaceMaterial make_subsurface_material(const SubsurfaceParams& params);
+
+inline bool sample_subsurface_exit(const SubsurfaceMaterial& m, const SubsurfaceEntry& entry, Sampler& sampler,
+                                   SubsurfaceExit& out) {
+  return std::visit([&](const auto& method) { return method.sample_exit(entry, sampler, out); }, m.method);
+}
+
+}  // namespace dermis
