@@ -1,0 +1,136 @@
+// Exit sampling without a RenderScene: an Embree scene of spheres, an ObjectTracer,
+// and the methods' sample_exit.
+#include "dermis/render/subsurface/object_tracer.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "dermis/render/subsurface/subsurface_method.h"
+
+namespace dermis {
+namespace {
+
+Shape sphere(Vec3 c, float r) {
+  Shape s;
+  s.type = Shape::Type::Sphere;
+  s.center = c;
+  s.radius = r;
+  s.material = 0;
+  return s;
+}
+
+struct Spheres {
+  std::vector<Shape> shapes;
+  EmbreeScene embree;
+  explicit Spheres(std::vector<Shape> s) : shapes(std::move(s)) {
+    std::vector<int> top;
+    for (std::size_t i = 0; i < shapes.size(); ++i) top.push_back(int(i));
+    embree.build(shapes, top, {}, {});
+  }
+};
+
+SurfaceHit hit_from(const EmbreeScene& scene, Vec3 o, Vec3 d) {
+  SurfaceHit h;
+  EXPECT_TRUE(scene.intersect(Ray{o, d}, h));
+  return h;
+}
+
+TEST(ObjectTracer, SeesOnlyTheShapesOfItsObject) {
+  // Three spheres on the x axis; shapes 0 and 2 form object 0, shape 1 is object 1.
+  Spheres s({sphere({0, 0, 0}, 1), sphere({3, 0, 0}, 1), sphere({6, 0, 0}, 1)});
+  PathCounters counters;
+  const SurfaceHit entry = hit_from(s.embree, {-5, 0, 0}, {1, 0, 0});
+  ASSERT_EQ(entry.shape, 0);
+  {
+    const std::vector<int> objects{0, 1, 0};
+    ObjectTracer tracer(s.embree, objects, entry, counters);
+    std::vector<SurfaceHit> hits;
+    tracer.collect_hits({-2, 0, 0}, {1, 0, 0}, 10, 16, hits);
+    ASSERT_EQ(hits.size(), 4u);  // both walls of spheres 0 and 2, none of sphere 1
+    EXPECT_EQ(hits[1].shape, 0);
+    EXPECT_EQ(hits[2].shape, 2);
+    EXPECT_NEAR(hits[2].t, 7.0f, 1e-3f);
+    SurfaceHit first;
+    ASSERT_TRUE(tracer.first_hit(Ray{{1.5f, 0, 0}, {1, 0, 0}}, first));  // starts between 0 and 1
+    EXPECT_EQ(first.shape, 2);
+  }
+  {
+    const std::vector<int> objects{0, 1, 2};  // every shape its own object
+    ObjectTracer tracer(s.embree, objects, entry, counters);
+    std::vector<SurfaceHit> hits;
+    tracer.collect_hits({-2, 0, 0}, {1, 0, 0}, 10, 16, hits);
+    EXPECT_EQ(hits.size(), 2u);
+    SurfaceHit first;
+    EXPECT_FALSE(tracer.first_hit(Ray{{1.5f, 0, 0}, {1, 0, 0}}, first));
+  }
+  EXPECT_GT(counters.rays, 0u);
+}
+
+// A walk in a medium that does not absorb always leaves the object, on its surface,
+// and carries all the energy out: the mean exit weight is 1 in every channel (within 4
+// standard errors), whatever the sampling strategy's per-path weights.
+TEST(WalkMethodOnItsOwn, ConservesEnergyInANonAbsorbingSphere) {
+  Spheres s({sphere({0, 0, 0}, 1)});
+  const std::vector<int> objects{0};
+  SubsurfaceParams p;
+  p.method = SubsurfaceParams::Method::RandomWalk;
+  p.sigma_a = RGB(0);
+  p.sigma_s = RGB(2, 5, 10);
+  p.g = 0.3f;
+  const SubsurfaceMaterial m = make_subsurface_material(p);
+  PathCounters counters;
+  const SurfaceHit entry = hit_from(s.embree, {0, 0, 5}, {0, 0, -1});
+  const ObjectTracer tracer(s.embree, objects, entry, counters);
+  auto no_irradiance = [](Vec3, Vec3, float, Sampler&) { return RGB(0); };
+  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance};
+  const int n = 20000;
+  double sum[3] = {}, sum2[3] = {};
+  for (int i = 0; i < n; ++i) {
+    Sampler sampler(SamplerKind::Independent, 3, uint64_t(i), 0);
+    SubsurfaceExit ex;
+    ASSERT_TRUE(sample_subsurface_exit(m, e, sampler, ex));
+    EXPECT_EQ(ex.kind, SubsurfaceExit::Kind::ThroughLobe);
+    EXPECT_NEAR(length(ex.hit.p), 1.0f, 1e-3f);
+    for (int c = 0; c < 3; ++c) {
+      sum[c] += ex.weight[c];
+      sum2[c] += double(ex.weight[c]) * ex.weight[c];
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double mean = sum[c] / n, se = std::sqrt((sum2[c] / n - mean * mean) / n);
+    EXPECT_NEAR(mean, 1.0, 4 * se + 1e-6) << "channel " << c;
+  }
+}
+
+// A probe exit on a sphere lies on the sphere, with a finite, non-negative weight.
+TEST(ProbeMethodOnItsOwn, ExitsLieOnTheObject) {
+  Spheres s({sphere({0, 0, 0}, 1), sphere({0, 0, -1.5f}, 0.3f)});
+  const std::vector<int> objects{0, 1};
+  SubsurfaceParams p;
+  p.method = SubsurfaceParams::Method::Disk;
+  p.reflectance = RGB(0.8f, 0.5f, 0.3f);
+  p.mfp = RGB(0.5f, 0.3f, 0.2f);
+  const SubsurfaceMaterial m = make_subsurface_material(p);
+  PathCounters counters;
+  const SurfaceHit entry = hit_from(s.embree, {0, 0, 5}, {0, 0, -1});
+  const ObjectTracer tracer(s.embree, objects, entry, counters);
+  auto no_irradiance = [](Vec3, Vec3, float, Sampler&) { return RGB(0); };
+  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance};
+  int exits = 0;
+  for (int i = 0; i < 2000; ++i) {
+    Sampler sampler(SamplerKind::Independent, 5, uint64_t(i), 0);
+    SubsurfaceExit ex;
+    if (!sample_subsurface_exit(m, e, sampler, ex)) continue;
+    ++exits;
+    EXPECT_EQ(ex.hit.shape, 0);
+    EXPECT_NEAR(length(ex.hit.p), 1.0f, 1e-3f);
+    EXPECT_TRUE(ex.weight.is_finite());
+    EXPECT_GE(std::min({ex.weight[0], ex.weight[1], ex.weight[2]}), 0.0f);
+  }
+  EXPECT_GT(exits, 1000);
+}
+
+}  // namespace
+}  // namespace dermis
