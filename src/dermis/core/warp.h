@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "dermis/core/henyey_greenstein.h"  // HG sampling, for the callers of this header
 #include "dermis/core/vec.h"
 
 namespace dermis {
@@ -61,21 +62,6 @@ inline Vec2 sample_uniform_triangle(Vec2 u) {
     b0 = u.x - b1;
   }
   return {b0, b1};
-}
-
-// Henyey-Greenstein phase function (Henyey & Greenstein 1941), as a density over
-// the sphere of directions: p(cos) = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos)^{3/2}),
-// where cos is the cosine between the propagation directions before and after scattering.
-inline float henyey_greenstein(float cos_theta, float g) {
-  float denom = 1 + g * g - 2 * g * cos_theta;
-  return kInv4Pi * (1 - g * g) / (denom * safe_sqrt(denom));
-}
-
-// Samples the cosine to the incoming propagation direction by inverting the HG CDF.
-inline float sample_henyey_greenstein_cos(float u, float g) {
-  if (std::abs(g) < 1e-3f) return 1 - 2 * u;
-  float s = (1 - g * g) / (1 - g + 2 * g * u);
-  return std::clamp((1 + g * g - s * s) / (2 * g), -1.0f, 1.0f);
 }
 
 }  // namespace dermis

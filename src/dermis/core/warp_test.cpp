@@ -36,10 +36,10 @@ double integrate_directions(const std::function<double(Vec3)>& f, double theta0,
   return sum * dt * dp;
 }
 
-// The midpoint rule's error is O(h^2): with 2048 theta steps it is below 1e-5 even for
-// the sharpest integrand here (HG with g = 0.9, peak width ~ 1 - g; measured: 9e-6,
-// falling 4x per halving of h). The integrands do not depend on phi, so the phi rule
-// is exact. 1e-3 therefore only leaves room for float evaluation of the pdfs.
+// The midpoint rule's error is O(h^2): with 2048 theta steps it is far below 1e-5 for
+// these smooth integrands (the sharper HG lobe is tested in henyey_greenstein_test.cpp).
+// The integrands do not depend on phi, so the phi rule is exact. 1e-3 therefore only
+// leaves room for float evaluation of the pdfs.
 constexpr int kThetaSteps = 2048, kPhiSteps = 8;
 constexpr double kIntegralTolerance = 1e-3;
 
@@ -48,7 +48,6 @@ double integrate_over_cap(const std::function<double(Vec3)>& f, double theta_max
 }
 
 const float kConeCosines[] = {-0.5f, 0.0f, 0.5f, 0.9f, 0.999f};
-const float kHgAsymmetries[] = {-0.7f, 0.0f, 0.3f, 0.9f};
 
 TEST(WarpPdf, CosineHemisphereIntegratesToOne) {
   auto pdf = [](Vec3 w) { return double(cosine_hemisphere_pdf(w.z)); };
@@ -66,16 +65,6 @@ TEST(WarpPdf, UniformConeIntegratesToOne) {
     EXPECT_NEAR(integrate_over_cap([pdf](Vec3) { return pdf; }, std::acos(double(cos_max))), 1.0,
                 kIntegralTolerance)
         << "cos_max " << cos_max;
-  }
-}
-
-TEST(WarpPdf, HenyeyGreensteinIntegratesToOneWithMeanCosineG) {
-  for (float g : kHgAsymmetries) {
-    auto pdf = [g](Vec3 w) { return double(henyey_greenstein(w.z, g)); };
-    EXPECT_NEAR(integrate_over_cap(pdf, kPiD), 1.0, kIntegralTolerance) << "g " << g;
-    // The defining property of HG: the mean cosine of the scattering angle is g.
-    auto cos_pdf = [g](Vec3 w) { return double(w.z) * henyey_greenstein(w.z, g); };
-    EXPECT_NEAR(integrate_over_cap(cos_pdf, kPiD), g, kIntegralTolerance) << "g " << g;
   }
 }
 
@@ -187,41 +176,6 @@ TEST(WarpSampler, TriangleIsUniformInBarycentricArea) {
     for (int j = n - i; j < n; ++j) EXPECT_EQ(observed[i * n + j], 0) << "cell " << i << ", " << j;
   auto r = chi_square(observed, expected);
   EXPECT_GT(r.p_value, kChiSquareAlpha) << "chi2 = " << r.statistic << " dof " << r.dof;
-}
-
-TEST(WarpSampler, HenyeyGreensteinCosineMatchesPdf) {
-  // 1D in cos(theta): the density of the cosine is 2 pi p(cos). Expected counts by the
-  // midpoint rule with 256 points per bin (the g = 0.9 peak spans ~50 of them).
-  constexpr int kBins = 100, kSub = 256;
-  uint64_t seed = 20;
-  for (float g : kHgAsymmetries) {
-    SCOPED_TRACE(g);
-    std::vector<double> observed(kBins, 0.0), expected(kBins, 0.0);
-    Rng rng(seed++, 0);
-    double sum_cos = 0, sum_cos2 = 0;
-    for (int s = 0; s < kSamples; ++s) {
-      const float c = sample_henyey_greenstein_cos(rng.uniform(), g);
-      ASSERT_GE(c, -1.0f);
-      ASSERT_LE(c, 1.0f);
-      observed[std::min(kBins - 1, int((c + 1) / 2 * kBins))] += 1;
-      sum_cos += c;
-      sum_cos2 += double(c) * c;
-    }
-    double total = 0;
-    for (int b = 0; b < kBins; ++b) {
-      const double c0 = -1 + 2.0 * b / kBins, h = 2.0 / kBins / kSub;
-      double p = 0;
-      for (int k = 0; k < kSub; ++k) p += kTwoPi * henyey_greenstein(float(c0 + (k + 0.5) * h), g) * h;
-      expected[b] = p * kSamples;
-      total += p;
-    }
-    ASSERT_NEAR(total, 1.0, kIntegralTolerance);
-    auto r = chi_square(observed, expected);
-    EXPECT_GT(r.p_value, kChiSquareAlpha) << "chi2 = " << r.statistic << " dof " << r.dof;
-    // Sign convention: the sample mean of the cosine is g, within 4 standard errors.
-    const double mean = sum_cos / kSamples, sigma = std::sqrt((sum_cos2 / kSamples - mean * mean) / kSamples);
-    EXPECT_NEAR(mean, g, 4 * sigma);
-  }
 }
 
 }  // namespace

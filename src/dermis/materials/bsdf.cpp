@@ -1,21 +1,13 @@
 #include "dermis/materials/bsdf.h"
 
 #include "dermis/core/frame.h"
+#include "dermis/core/fresnel.h"
 #include "dermis/core/warp.h"
-#include "dermis/materials/fresnel.h"
 
 namespace dermis {
 
 float subsurface_exit_normalization(float eta) {
-  const int n = 2048;
-  double sum = 0;
-  for (int i = 0; i <= n; ++i) {
-    double mu = double(i) / n;
-    double w = (i == 0 || i == n) ? 1 : (i % 2 ? 4 : 2);
-    sum += w * fresnel_dielectric(float(mu), eta) * mu;
-  }
-  double fm1 = sum / (3.0 * n);
-  return float(1 - 2 * fm1);
+  return float(1 - fresnel_diffuse_reflectance(eta));  // c = 1 - 2 FM1(eta), METHODS.md sec. 0
 }
 
 RGB bsdf_eval(const BSDF& b, Vec3 wo, Vec3 wi) {

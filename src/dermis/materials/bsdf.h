@@ -26,8 +26,8 @@ struct BSDF {
 // The normalised-Fresnel exit lobe of separable BSSRDFs (Jensen et al. 2001; METHODS.md
 // sec. 0): Sw(wi) = (1 - Fr(cos theta_i, eta)) / (c pi) on the outside hemisphere of n,
 // c = 1 - 2 FM1 with FM1 = integral_0^1 Fr(mu, eta) mu dmu (the first Fresnel moment), so
-// that Sw integrates to one against cos theta. Computed by quadrature (Simpson, 2048
-// intervals), not by a polynomial fit.
+// that Sw integrates to one against cos theta. FM1 by the Gauss-Legendre quadrature of
+// core/fresnel.h (fresnel_moment1), not by a polynomial fit.
 float subsurface_exit_normalization(float eta);
 
 struct BSDFSample {

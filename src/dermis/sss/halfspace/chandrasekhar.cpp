@@ -5,7 +5,7 @@
 #include <string>
 #include <utility>
 
-#include "dermis/sss/halfspace/gauss_legendre.h"
+#include "dermis/core/gauss_legendre.h"
 
 namespace dermis::sss {
 

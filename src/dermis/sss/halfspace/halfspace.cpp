@@ -8,7 +8,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "dermis/sss/halfspace/fresnel.h"
+#include "dermis/core/fresnel.h"
+#include "dermis/sss/halfspace/refraction.h"
 
 namespace dermis::sss {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "dermis/sss/halfspace/chandrasekhar.h"
-#include "dermis/sss/halfspace/gauss_legendre.h"
+#include "dermis/core/gauss_legendre.h"
 
 namespace dermis::sss {
 namespace {

@@ -21,7 +21,6 @@
 
 #include "dermis/core/rng.h"
 #include "dermis/core/vec.h"
-#include "dermis/sss/halfspace/hg_phase.h"
 #include "dermis/sss/walk/walk_step.h"
 
 namespace dermis::sss {
@@ -66,7 +65,7 @@ class ClassicalSampling {
   }
 
   Flight scatter(const Vec3d& direction_in, double depth, Rng& rng) const {
-    const double cos_theta = sample_hg_cos(rng.uniform_double(), medium_.g);
+    const double cos_theta = sample_henyey_greenstein_cos(rng.uniform_double(), medium_.g);
     const double phi = 2 * kPiD * rng.uniform_double();
     Flight flight = fly(direction_about(direction_in, cos_theta, phi), depth, rng);
     flight.weight *= medium_.albedo;  // implicit capture: the absorbed fraction is tallied, not sampled

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "dermis/core/rng.h"
-#include "dermis/sss/halfspace/gauss_legendre.h"
+#include "dermis/core/gauss_legendre.h"
 #include "support/chi_square.h"
 
 namespace dermis::sss {

@@ -55,9 +55,9 @@
 #include <string>
 
 #include "dermis/core/frame.h"
+#include "dermis/core/henyey_greenstein.h"
 #include "dermis/core/rng.h"
 #include "dermis/core/vec.h"
-#include "dermis/sss/halfspace/hg_phase.h"
 #include "dermis/sss/walk/dwivedi.h"
 
 namespace dermis::sss {
@@ -84,6 +84,12 @@ struct FlightProposal {
   double distance = 0;  // may be +infinity (a guided flight straight out with sigma' = 0)
   bool scattered = false;
 };
+
+// A new propagation direction at cosine cos_theta to `axis` (unit) and azimuth phi about it.
+inline Vec3d direction_about(const Vec3d& axis, double cos_theta, double phi) {
+  const double sin_theta = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
+  return Framed(axis).to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
+}
 
 // The principal axes of guided flights, outward normals of the planes whose Dwivedi
 // importance exp(-kappa sigma_t D) (D the depth below the plane) is followed: `front`, the
@@ -187,7 +193,7 @@ class MixtureWalkStep {
       // Krivanek & d'Eon 2014: cosine from p(u) about the principal axis, azimuth uniform.
       const double u = guide_[c].sample_cos(rng.uniform_double());
       f.direction = (back ? axes.back : axes.front).to_world(local_direction(u, phi));
-      f.phase = hg_phase(dot(direction_in, f.direction), g_);
+      f.phase = henyey_greenstein(dot(direction_in, f.direction), g_);
       if (back) {
         f.cos_back = u;
         f.cos_axis = dot(f.direction, axes.front.n);
@@ -197,11 +203,11 @@ class MixtureWalkStep {
       }
     } else {
       // Henyey & Greenstein 1941: the phase function about the propagation direction.
-      const double cos_theta = sample_hg_cos(rng.uniform_double(), g_);
+      const double cos_theta = sample_henyey_greenstein_cos(rng.uniform_double(), g_);
       f.direction = direction_about(direction_in, cos_theta, phi);
       f.cos_axis = dot(f.direction, axes.front.n);
       if (axes.has_back) f.cos_back = dot(f.direction, axes.back.n);
-      f.phase = hg_phase(cos_theta, g_);
+      f.phase = henyey_greenstein(cos_theta, g_);
     }
     f.distance = free_path(c, guided, back ? f.cos_back : f.cos_axis, rng);
     return f;

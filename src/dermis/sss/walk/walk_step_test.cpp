@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "dermis/sss/halfspace/gauss_legendre.h"
+#include "dermis/core/gauss_legendre.h"
 #include "support/chi_square.h"
 
 namespace dermis::sss {
@@ -160,7 +160,7 @@ TEST(WalkStep, ScatterPassageWeightsMatchQuadrature) {
       double reference = 0;
       for (size_t j = 0; j < rule.nodes.size(); ++j) {
         const double u = rule.nodes[j];
-        reference += rule.weights[j] * 2 * kPiD * hg_phase(u, g) * std::exp(-sigma_t[c] * depth / u);
+        reference += rule.weights[j] * 2 * kPiD * henyey_greenstein(u, g) * std::exp(-sigma_t[c] * depth / u);
       }
       EXPECT_WITHIN_4_SIGMA(passed[c], albedo[c] * reference, "P_g=" << p_guided << " c=" << c << " back=" << axis.has_back);
     }

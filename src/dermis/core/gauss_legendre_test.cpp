@@ -1,10 +1,10 @@
-#include "dermis/sss/halfspace/gauss_legendre.h"
+#include "dermis/core/gauss_legendre.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace dermis::sss {
+namespace dermis {
 namespace {
 
 TEST(GaussLegendre, TwoPointRuleIsPlusMinusOneOverSqrt3) {
@@ -37,4 +37,4 @@ TEST(GaussLegendre, RejectsBadArguments) {
 }
 
 }  // namespace
-}  // namespace dermis::sss
+}  // namespace dermis

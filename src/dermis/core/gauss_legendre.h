@@ -4,7 +4,7 @@
 
 #include <vector>
 
-namespace dermis::sss {
+namespace dermis {
 
 struct QuadratureRule {
   std::vector<double> nodes;    // ascending
@@ -15,4 +15,4 @@ struct QuadratureRule {
 // std::invalid_argument for n < 1 or an empty interval.
 QuadratureRule gauss_legendre(int n, double a = -1.0, double b = 1.0);
 
-}  // namespace dermis::sss
+}  // namespace dermis

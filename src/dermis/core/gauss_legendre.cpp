@@ -1,14 +1,14 @@
-#include "dermis/sss/halfspace/gauss_legendre.h"
+#include "dermis/core/gauss_legendre.h"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-namespace dermis::sss {
+#include "dermis/core/vec.h"
+
+namespace dermis {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // P_n(x) and P_n'(x) by the three-term recurrence
 // (k+1) P_{k+1} = (2k+1) x P_k - k P_{k-1} (Abramowitz & Stegun 22.7.10),
@@ -35,7 +35,7 @@ QuadratureRule gauss_legendre(int n, double a, double b) {
   const double half = 0.5 * (b - a), mid = 0.5 * (a + b);
   for (int i = 0; i < (n + 1) / 2; ++i) {
     // Initial guess for the i-th largest root (A&S 22.16.6, Tricomi's leading term).
-    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
+    double x = std::cos(kPiD * (i + 0.75) / (n + 0.5));
     double p = 0, dp = 1;
     for (int iter = 0; iter < 100; ++iter) {
       legendre(n, x, p, dp);
@@ -53,4 +53,4 @@ QuadratureRule gauss_legendre(int n, double a, double b) {
   return rule;
 }
 
-}  // namespace dermis::sss
+}  // namespace dermis

@@ -1,66 +1,16 @@
-#include "dermis/materials/fresnel.h"
+// Tests of the surface scattering functions: sampling against eval and pdf, and the
+// normalised-Fresnel exit lobe.
+#include "dermis/materials/bsdf.h"
 
 #include <gtest/gtest.h>
 
 #include "dermis/core/frame.h"
+#include "dermis/core/fresnel.h"
 #include "dermis/core/rng.h"
 #include "dermis/core/warp.h"
-#include "dermis/materials/bsdf.h"
 
 namespace dermis {
 namespace {
-
-TEST(Fresnel, NormalIncidenceMatchesClosedForm) {
-  for (float eta : {1.0f, 1.33f, 1.5f, 2.4f}) {
-    float r0 = sqr((eta - 1) / (eta + 1));
-    EXPECT_NEAR(fresnel_dielectric(1, eta), r0, 1e-6);
-    EXPECT_NEAR(fresnel_dielectric(-1, eta), r0, 1e-6);  // same from the other side
-  }
-}
-
-TEST(Fresnel, GrazingIncidenceReflectsEverything) {
-  EXPECT_NEAR(fresnel_dielectric(1e-6f, 1.5f), 1, 1e-4);
-}
-
-TEST(Fresnel, TotalInternalReflectionBeyondCriticalAngle) {
-  float eta = 1.5f;
-  float cos_critical = std::sqrt(1 - 1 / (eta * eta));
-  EXPECT_EQ(fresnel_dielectric(-(cos_critical - 0.01f), eta), 1.0f);
-  EXPECT_LT(fresnel_dielectric(-(cos_critical + 0.01f), eta), 1.0f);
-}
-
-TEST(Fresnel, TransmittanceIsReciprocalAcrossTheInterface) {
-  // T(theta_i, eta) from outside equals T(theta_t, 1/eta) from inside (Stokes relations).
-  float eta = 1.4f;
-  for (float cos_i : {0.2f, 0.5f, 0.9f}) {
-    float sin_t = std::sqrt(1 - cos_i * cos_i) / eta;
-    float cos_t = std::sqrt(1 - sin_t * sin_t);
-    EXPECT_NEAR(fresnel_dielectric(cos_i, eta), fresnel_dielectric(-cos_t, eta), 1e-5);
-  }
-}
-
-TEST(Fresnel, ConductorWithoutAbsorptionIsADielectric) {
-  for (float c : {0.1f, 0.5f, 1.0f}) EXPECT_NEAR(fresnel_conductor(c, 1.5f, 0.0f), fresnel_dielectric(c, 1.5f), 1e-5);
-}
-
-TEST(Fresnel, ConductorNormalIncidenceMatchesClosedForm) {
-  float n = 0.2f, k = 3.9f;  // ((n-1)^2 + k^2) / ((n+1)^2 + k^2)
-  EXPECT_NEAR(fresnel_conductor(1, n, k), (sqr(n - 1) + k * k) / (sqr(n + 1) + k * k), 1e-5);
-}
-
-TEST(Refract, ObeysSnellsLaw) {
-  Vec3 n{0, 0, 1};
-  Vec3 wo = normalize(Vec3(0.6f, 0, 0.8f));
-  auto wt = refract(wo, n, 1.5f);
-  ASSERT_TRUE(wt);
-  EXPECT_NEAR(length(*wt), 1, 1e-5);
-  float sin_i = 0.6f, sin_t = std::sqrt(1 - sqr(wt->z));
-  EXPECT_NEAR(sin_i, 1.5f * sin_t, 1e-5);
-  EXPECT_LT(wt->z, 0);
-  EXPECT_LT(wt->x, 0);  // continues to the other side of the normal
-  // From inside beyond the critical angle: nothing.
-  EXPECT_FALSE(refract(normalize(Vec3(0.9f, 0, -0.436f)), n, 1.5f));
-}
 
 TEST(Bsdf, DielectricSamplingSplitsEnergyByFresnel) {
   BSDF b;
@@ -104,12 +54,6 @@ TEST(Bsdf, LambertPdfMatchesSampledDirections) {
   EXPECT_EQ(bsdf_eval(b, wo, -wo)[0], 0.0f);
 }
 
-}  // namespace
-}  // namespace dermis
-
-namespace dermis {
-namespace {
-
 TEST(SubsurfaceExitLobe, IntegratesToOneAgainstCosine) {
   for (float eta : {1.0f, 1.2f, 1.33f, 1.5f, 2.0f}) {
     BSDF b;
@@ -118,7 +62,7 @@ TEST(SubsurfaceExitLobe, IntegratesToOneAgainstCosine) {
     b.eta = eta;
     b.sw_norm = subsurface_exit_normalization(eta);
     // Midpoint rule in (theta, phi) over the hemisphere of n, independent of the
-    // Simpson rule inside subsurface_exit_normalization.
+    // Gauss-Legendre rule inside subsurface_exit_normalization.
     Frame f(b.n);
     const int nt = 1024, np = 64;
     double sum = 0;
@@ -154,6 +98,12 @@ TEST(SubsurfaceExitLobe, SampleWeightsAreFOverPdf) {
   // E[weight] = integral of Sw cos = 1; the weight lies in [0, 1/c], so its standard
   // deviation is below 1/c and 4 standard errors are below 4/(c sqrt(n)).
   EXPECT_NEAR(mean / n, 1.0, 4.0 / (b.sw_norm * std::sqrt(double(n))));
+}
+
+// c = 1 - 2 FM1(eta): the one Fresnel-moment quadrature of core/fresnel.h.
+TEST(SubsurfaceExitLobe, NormalizationIsOneMinusDiffuseReflectance) {
+  for (float eta : {0.8f, 1.0f, 1.33f, 1.5f})
+    EXPECT_EQ(subsurface_exit_normalization(eta), float(1 - fresnel_diffuse_reflectance(eta)));
 }
 
 }  // namespace
