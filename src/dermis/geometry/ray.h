@@ -22,9 +22,6 @@ struct SurfaceHit {
   int shape = -1;  // index into RenderScene::shapes
   int prim = -1;   // triangle index within the shape
   int instance = -1;  // object instance the shape was hit through, -1 for top-level shapes
-
-  // The same surface object: subsurface scattering stays within it.
-  bool same_object(const SurfaceHit& o) const { return shape == o.shape && instance == o.instance; }
 };
 
 // Offsets a ray origin off a surface, to the side of direction w, so that the

@@ -20,9 +20,10 @@ namespace pc = sss::pointcloud;
 
 namespace {
 
-// The object's surface as one triangle list (spheres tessellated), in world space.
+// The object's surface as one triangle list (spheres tessellated), in world space,
+// wound so that cross(p1 - p0, p2 - p0) points out of the object.
 void object_triangles(const RenderScene& sc, const std::vector<int>& shapes, std::vector<Vec3>& positions,
-                      std::vector<uint32_t>& indices, bool& flip) {
+                      std::vector<uint32_t>& indices) {
   for (int i : shapes) {
     const Shape& shape = sc.shapes[i];
     std::vector<Vec3> p = shape.positions;
@@ -33,8 +34,10 @@ void object_triangles(const RenderScene& sc, const std::vector<int>& shapes, std
     }
     const uint32_t base = uint32_t(positions.size());
     positions.insert(positions.end(), p.begin(), p.end());
-    for (uint32_t v : t) indices.push_back(base + v);
-    flip = shape.flip_normals;
+    for (std::size_t j = 0; j + 2 < t.size(); j += 3) {
+      const bool flip = shape.flip_normals;
+      indices.insert(indices.end(), {base + t[j], base + t[flip ? j + 2 : j + 1], base + t[flip ? j + 1 : j + 2]});
+    }
   }
 }
 
@@ -69,16 +72,13 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
     } else {
       std::vector<Vec3> positions;
       std::vector<uint32_t> indices;
-      bool flip = false;
-      object_triangles(sc, shapes, positions, indices, flip);
+      object_triangles(sc, shapes, positions, indices);
       double area = pc::mesh_area(positions, indices);
       std::size_t count = options.points > 0
                               ? options.points
                               : pc::point_count_for_density(area, m.min_mean_free_path(), params.point_density);
       count = std::max<std::size_t>(count, 16);
       cloud.points = pc::distribute_points(positions, indices, count, mix64(options.seed ^ (0x9e37 + object)));
-      if (flip)
-        for (auto& p : cloud.points) p.normal = -p.normal;
       cloud.irradiance.resize(cloud.points.size());
       const int samples = params.irradiance_samples;
       const int outside_medium = sc.shapes[shapes[0]].outside_medium;

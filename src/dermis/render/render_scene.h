@@ -15,7 +15,7 @@
 #include "dermis/lights/light_selection.h"
 #include "dermis/materials/material.h"
 #include "dermis/materials/medium.h"
-#include "dermis/materials/subsurface_params.h"
+#include "dermis/scene/subsurface_params.h"
 #include "dermis/materials/texture.h"
 #include "dermis/render/camera.h"
 #include "dermis/render/subsurface/subsurface_method.h"

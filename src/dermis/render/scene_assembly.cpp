@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <map>
+#include <string>
 
 #include "dermis/geometry/sphere_tessellation.h"
-#include "dermis/materials/subsurface_params.h"
+#include "dermis/scene/subsurface_params.h"
 #include "dermis/render/image.h"
 
 namespace dermis {
@@ -169,7 +171,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
   for (std::size_t i = 0; i < desc.materials.size(); ++i) {
     const MaterialDesc& md = desc.materials[i];
     if (md.type != MaterialDesc::Type::Subsurface) continue;
-    SubsurfaceParams sp = read_subsurface_params(md, diag);
+    const SubsurfaceParams& sp = md.subsurface;
     if (sp.method != SubsurfaceParams::Method::Volumetric) {
       sc->materials[i].type = Material::Type::Subsurface;
       sc->materials[i].subsurface = int(sc->subsurface_params.size());
@@ -318,9 +320,22 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
   // shading point with few lights, by power with many.
   sc->light_selection = LightSelection(sc->lights, sc->embree->bounds_radius());
 
-  // Subsurface objects: each shape its own.
+  // Subsurface objects (render_scene.h): the shapes sharing a subsurface material form
+  // one object (pbrt-v4's rule), and so do all shapes of the materials that name the
+  // same "sssgroup"; every other shape is an object of its own. Shapes reached through
+  // an instance are told apart by the instance (subsurface/object_tracer.h).
+  std::map<std::string, int> object_of_key;
   sc->object_of_shape.resize(sc->shapes.size());
-  for (std::size_t i = 0; i < sc->shapes.size(); ++i) sc->object_of_shape[i] = int(i);
+  for (std::size_t i = 0; i < sc->shapes.size(); ++i) {
+    const Material& m = sc->materials[sc->shapes[i].material];
+    std::string key = fmt::format("shape {}", i);
+    if (m.type == Material::Type::Subsurface) {
+      const std::string& group = sc->subsurface_params[m.subsurface].group;
+      key = group.empty() ? fmt::format("material {}", sc->shapes[i].material) : "group " + group;
+    }
+    auto [it, added] = object_of_key.try_emplace(key, int(object_of_key.size()));
+    sc->object_of_shape[i] = it->second;
+  }
   return sc;
 }
 

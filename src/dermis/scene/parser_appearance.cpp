@@ -7,6 +7,7 @@
 #include "dermis/scene/medium_presets.h"
 #include "dermis/scene/scene_parser.h"
 #include "dermis/scene/spectra.h"
+#include "dermis/scene/subsurface_params.h"
 
 namespace dermis {
 
@@ -59,7 +60,6 @@ RGBTexture SceneParser::spectrum_or_texture(const ParamList& pl, const std::stri
 MaterialDesc SceneParser::build_material(const std::string& type, const ParamList& pl, const SourceLoc& loc) {
   MaterialDesc m;
   m.loc = loc;
-  m.params = pl.as_written();
   auto roughness = [&](const char* what) {
     float r = 0;
     for (const char* name : {"roughness", "uroughness", "vroughness"}) {
@@ -111,10 +111,10 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
     roughness("coateddiffuse");
   } else if (type == "subsurface") {
     m.type = MaterialDesc::Type::Subsurface;
-    m.eta = pl.get_float("eta", 1.33f);
-    if (pl.has("reflectance")) m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(1.0f));
-    roughness("subsurface");
-    pl.mark_all_used();  // the subsurface methods read MaterialDesc::params
+    m.subsurface = read_subsurface_params(pl, loc, s_.diagnostics, [&](const ParsedParam& p) {
+      return spectrum_or_texture(pl, p.param.name, RGB(1.0f)).texture;
+    });
+    m.eta = m.subsurface.eta;
   } else {
     s_.diagnostics.warn(loc, fmt::format("unsupported material \"{}\"; using diffuse", type));
     m.type = MaterialDesc::Type::Diffuse;

@@ -25,9 +25,6 @@ TEST(ParserMaterials, DiffuseAndDefaults) {
   expect_rgb(s.materials[1].reflectance.value, RGB(0.5f));
   EXPECT_EQ(s.shapes[0].material, 0);
   EXPECT_EQ(s.shapes[1].material, 1);
-  ASSERT_EQ(s.materials[0].params.size(), 1u);
-  EXPECT_EQ(s.materials[0].params[0].name, "reflectance");
-  EXPECT_EQ(s.materials[0].params[0].numbers.size(), 3u);
 }
 
 TEST(ParserMaterials, DielectricEtaFloatNamedAndRoughWarning) {
@@ -66,7 +63,7 @@ TEST(ParserMaterials, InterfaceCoatedSubsurfaceAndUnknown) {
   SceneDesc s = parse_world(
       "Material \"interface\"\nMaterial \"\"\nMaterial \"none\"\n"
       "Material \"coateddiffuse\" \"rgb reflectance\" [0.4 0.4 0.4] \"float roughness\" 0 \"float eta\" 1.4\n"
-      "Material \"subsurface\" \"float eta\" 1.4 \"string name\" \"Skin1\" \"float scale\" 10 \"rgb mfp\" [1 2 3]\n"
+      "Material \"subsurface\" \"float eta\" 1.4 \"string name\" \"Skin1\" \"float scale\" 10 \"string method\" \"disk\"\n"
       "Material \"hair\" \"float beta_m\" 0.3\n");
   for (int i = 0; i < 3; ++i) EXPECT_EQ(s.materials[i].type, MaterialDesc::Type::Interface);
   EXPECT_EQ(s.materials[3].type, MaterialDesc::Type::CoatedDiffuse);
@@ -75,11 +72,13 @@ TEST(ParserMaterials, InterfaceCoatedSubsurfaceAndUnknown) {
   const MaterialDesc& ss = s.materials[4];
   EXPECT_EQ(ss.type, MaterialDesc::Type::Subsurface);
   EXPECT_FLOAT_EQ(ss.eta, 1.4f);
-  ASSERT_EQ(ss.params.size(), 4u);
-  EXPECT_EQ(ss.params[1].strings.at(0), "Skin1");
-  EXPECT_EQ(ss.params[3].name, "mfp");
-  EXPECT_EQ(ss.params[3].loc.line, 6);
-  EXPECT_FALSE(has_warning(s, "unused parameter \"float scale\""));  // kept for the subsurface methods
+  // Read once, by the parser (scene/subsurface_params.h): Skin1 per mm, times the scale.
+  EXPECT_FLOAT_EQ(ss.subsurface.eta, 1.4f);
+  ASSERT_TRUE(ss.subsurface.sigma_a.has_value());
+  EXPECT_NEAR((*ss.subsurface.sigma_a)[0], 0.32f, 1e-5f);
+  EXPECT_EQ(ss.subsurface.method, SubsurfaceParams::Method::Disk);
+  EXPECT_EQ(ss.subsurface.loc.line, 6);
+  EXPECT_FALSE(has_warning(s, "unused parameter"));
   EXPECT_EQ(s.materials[5].type, MaterialDesc::Type::Diffuse);
   EXPECT_TRUE(has_warning(s, "test.pbrt:7:1: warning: unsupported material \"hair\""));
 }

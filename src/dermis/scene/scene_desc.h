@@ -14,6 +14,7 @@
 #include "dermis/core/transform.h"
 #include "dermis/core/vec.h"
 #include "dermis/scene/diagnostics.h"
+#include "dermis/scene/subsurface_params.h"
 
 namespace dermis {
 
@@ -92,7 +93,7 @@ struct MaterialDesc {
   RGB conductor_k{3.9f, 2.45f, 2.14f};   // conductor, RGB approximation (default: metal-Cu-k)
   bool has_reflectance = false;          // conductor given "reflectance" instead of eta/k
   float roughness = 0;         // only smooth surfaces are rendered; warned if > 0
-  std::vector<Param> params;   // all parameters as written (subsurface reads these)
+  SubsurfaceParams subsurface;  // subsurface: every parameter, read once (subsurface_params.h)
   SourceLoc loc;
 };
 

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "dermis/core/rgb.h"
-#include "dermis/materials/subsurface_params.h"
+#include "dermis/scene/subsurface_params.h"
 
 namespace dermis {
 

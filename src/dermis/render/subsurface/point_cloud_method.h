@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "dermis/materials/subsurface_params.h"
+#include "dermis/scene/subsurface_params.h"
 #include "dermis/render/subsurface/subsurface_exit.h"
 #include "dermis/sss/pointcloud/point_cloud_diffusion.h"
 #include "dermis/sss/profiles/profile.h"

@@ -8,7 +8,7 @@
 
 #include <memory>
 
-#include "dermis/materials/subsurface_params.h"
+#include "dermis/scene/subsurface_params.h"
 #include "dermis/render/subsurface/subsurface_exit.h"
 #include "dermis/sss/probe/disk_probe.h"
 #include "dermis/sss/probe/sphere_lines.h"

@@ -2,7 +2,7 @@
 // the methods built on profiles (probes, the point cloud).
 #pragma once
 
-#include "dermis/materials/subsurface_params.h"
+#include "dermis/scene/subsurface_params.h"
 #include "dermis/sss/profiles/profile.h"
 
 namespace dermis {

@@ -15,7 +15,7 @@
 
 #include <variant>
 
-#include "dermis/materials/subsurface_params.h"
+#include "dermis/scene/subsurface_params.h"
 #include "dermis/render/subsurface/point_cloud_method.h"
 #include "dermis/render/subsurface/probe_method.h"
 #include "dermis/render/subsurface/walk_method.h"

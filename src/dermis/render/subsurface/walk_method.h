@@ -7,7 +7,7 @@
 
 #include <memory>
 
-#include "dermis/materials/subsurface_params.h"
+#include "dermis/scene/subsurface_params.h"
 #include "dermis/render/subsurface/coefficients.h"
 #include "dermis/render/subsurface/subsurface_exit.h"
 #include "dermis/sss/walk/random_walk.h"

@@ -1,4 +1,4 @@
-#include "dermis/materials/subsurface_params.h"
+#include "dermis/scene/subsurface_params.h"
 
 #include <gtest/gtest.h>
 
@@ -22,8 +22,7 @@ LightSource "point" "rgb I" [3 3 3] "point3 from" [1 2 -3]
 
 SubsurfaceParams params_of(const std::string& material_line) {
   SceneDesc d = parse_scene_string(std::string(kHeader) + material_line + "\nShape \"sphere\"\n");
-  Diagnostics diag;
-  return read_subsurface_params(d.materials.at(0), diag);
+  return d.materials.at(0).subsurface;
 }
 
 TEST(SubsurfaceParams, ReadsCoefficientsScaleAndDermisOptions) {
@@ -136,6 +135,42 @@ TEST(SubsurfaceDocs, EveryExampleInMaterialsMdBuilds) {
     Diagnostics diag;
     auto sc = build_render_scene(parse_scene_string(std::string(kHeader) + m + "Shape \"sphere\"\n"), diag);
     EXPECT_TRUE(diag.warnings.empty()) << diag.warnings.front();
+  }
+}
+
+}  // namespace
+}  // namespace dermis
+
+namespace dermis {
+namespace {
+
+// docs/materials.md documents every parameter the reader knows (the table is the one
+// place they are listed), and every name in the table is one the reader accepts.
+TEST(SubsurfaceDocs, MaterialsMdDocumentsEveryParameter) {
+  std::ifstream in(std::string(DERMIS_SOURCE_DIR) + "/docs/materials.md");
+  ASSERT_TRUE(in) << "docs/materials.md";
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string docs = text.str();
+  for (const SubsurfaceParameter& p : subsurface_parameters()) {
+    EXPECT_NE(docs.find(std::string(" ") + p.name + "\""), std::string::npos)
+        << "docs/materials.md does not mention \"" << p.type << " " << p.name << "\"";
+    // Accepted without an "unused parameter" warning.
+    // The documented default as the value (rgb: a valid albedo).
+    const std::string t(p.type);
+    const std::string value = t.rfind("rgb", 0) == 0                                   ? "[0.5 0.5 0.5]"
+                              : t == "float" || t == "integer" || t == "bool" ? std::string(p.default_value)
+                                                                              : "";
+    if (value.empty()) continue;  // strings need a valid name: read by the tests above
+    const std::string type = std::string(p.type).substr(0, std::string(p.type).find(' '));
+    // reflectance and mfp come together.
+    const std::string partner = std::string(p.name) == "reflectance" ? " \"rgb mfp\" [1 1 1]"
+                                : std::string(p.name) == "mfp"       ? " \"rgb reflectance\" [0.5 0.5 0.5]"
+                                                                      : "";
+    SceneDesc d = parse_scene_string(std::string(kHeader) + "Material \"subsurface\" \"" + type + " " + p.name +
+                                     "\" " + value + partner + "\nShape \"sphere\"\n");
+    for (const std::string& w : d.diagnostics.warnings)
+      EXPECT_EQ(w.find("unused parameter"), std::string::npos) << p.name << ": " << w;
   }
 }
 

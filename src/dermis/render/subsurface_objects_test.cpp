@@ -1,0 +1,91 @@
+// Subsurface objects made of several shapes (render_scene.h object_of_shape): walks and
+// probes cross between the shapes of one object, which are the shapes sharing a
+// subsurface material (pbrt-v4's rule) or the materials naming one "sssgroup".
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+
+#include "dermis/geometry/sphere_tessellation.h"
+#include "dermis/render/scene_preparation.h"
+#include "dermis/scene/parser.h"
+#include "support/pixel_statistics.h"
+
+namespace dermis {
+namespace {
+
+const char* kHeader = R"(LookAt 0 -4 1.5  0 0 0  0 0 1
+Camera "perspective" "float fov" 34
+Film "rgb" "integer xresolution" 12 "integer yresolution" 12
+Integrator "volpath" "integer maxdepth" 100000
+WorldBegin
+LightSource "infinite" "rgb L" [0.6 0.7 0.8]
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [6 6 6]
+  Translate 2 -2 3
+  Shape "sphere" "float radius" 0.5
+AttributeEnd
+)";
+
+// A unit sphere as triangle meshes: whole, or its triangles with centroid z > 0 and
+// z <= 0 as two shapes (the lit top and the bottom: light must cross between them).
+std::string sphere_meshes(bool split, const std::string& material_top, const std::string& material_bottom) {
+  std::vector<Vec3> p;
+  std::vector<uint32_t> idx;
+  tessellate_sphere(1, 16, p, idx);
+  std::string points;
+  for (const Vec3& v : p) points += fmt::format("{} {} {} ", v.x, v.y, v.z);
+  std::string top, bottom;
+  for (std::size_t t = 0; t < idx.size(); t += 3) {
+    const float z = p[idx[t]].z + p[idx[t + 1]].z + p[idx[t + 2]].z;
+    (split && z <= 0 ? bottom : top) += fmt::format("{} {} {} ", idx[t], idx[t + 1], idx[t + 2]);
+  }
+  auto mesh = [&](const std::string& material, const std::string& indices) {
+    return material + "\nShape \"trianglemesh\" \"point3 P\" [" + points + "] \"integer indices\" [" + indices + "]\n";
+  };
+  return split ? mesh(material_top, top) + mesh(material_bottom, bottom) : mesh(material_top, top);
+}
+
+testing::PixelStatistics render(const std::string& scene, uint64_t seed) {
+  Diagnostics diag;
+  auto sc = build_render_scene(parse_scene_string(std::string(kHeader) + scene), diag);
+  return testing::pixel_statistics(*sc, 64, seed);
+}
+
+// The split sphere renders like the whole one, for the walk and for probe rays, when
+// its halves share the material or name one group: region means within 4 standard
+// errors of their difference.
+TEST(SubsurfaceObjects, ASphereSplitInTwoShapesRendersLikeTheWholeSphere) {
+  for (const char* method : {"randomwalk", "disk"}) {
+    SCOPED_TRACE(method);
+    const std::string params = fmt::format(
+        "\"rgb reflectance\" [0.8 0.6 0.4] \"rgb mfp\" [0.6 0.4 0.25] \"string method\" \"{}\"", method);
+    const std::string shared = "Material \"subsurface\" " + params;
+    const testing::PixelStatistics whole = render(sphere_meshes(false, shared, ""), 11);
+    testing::expect_same_region_means(whole, render(sphere_meshes(true, shared, ""), 12), 4, 4);
+    const std::string grouped = "Material \"subsurface\" \"string sssgroup\" \"ball\" " + params;
+    testing::expect_same_region_means(whole, render(sphere_meshes(true, grouped, grouped), 13), 4, 4);
+  }
+}
+
+// Without a shared material or group the halves are two objects and light does not
+// cross between them: the unlit bottom half is darker than in the whole sphere (the
+// check that the test above can fail).
+TEST(SubsurfaceObjects, HalvesOfDifferentMaterialsAreSeparateObjects) {
+  const std::string params = "\"rgb reflectance\" [0.8 0.6 0.4] \"rgb mfp\" [0.6 0.4 0.25]";
+  const std::string a = "Material \"subsurface\" " + params, b = "Material \"subsurface\" \"float g\" 0 " + params;
+  const testing::PixelStatistics whole = render(sphere_meshes(false, a, ""), 21);
+  const testing::PixelStatistics apart = render(sphere_meshes(true, a, b), 22);
+  double d = 0, v = 0;
+  for (std::size_t i = 0; i < whole.mean.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      d += whole.mean[i][c] - apart.mean[i][c];
+      v += whole.stderr_[i][c] * whole.stderr_[i][c] + apart.stderr_[i][c] * apart.stderr_[i][c];
+    }
+  EXPECT_GT(d, 4 * std::sqrt(v));
+}
+
+}  // namespace
+}  // namespace dermis

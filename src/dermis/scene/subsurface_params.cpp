@@ -1,0 +1,249 @@
+#include "dermis/scene/subsurface_params.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "dermis/scene/medium_presets.h"
+#include "dermis/scene/params.h"
+#include "dermis/scene/spectra.h"
+
+namespace dermis {
+
+namespace {
+
+template <class E>
+struct Named {
+  const char* name;
+  E value;
+};
+
+constexpr Named<SubsurfaceParams::Method> kMethods[] = {
+    {"volumetric", SubsurfaceParams::Method::Volumetric},
+    {"disk", SubsurfaceParams::Method::Disk},
+    {"disk-single-axis", SubsurfaceParams::Method::DiskSingleAxis},
+    {"sphere-lines", SubsurfaceParams::Method::SphereLines},
+    {"sphere-lines-retry", SubsurfaceParams::Method::SphereLinesRetry},
+    {"randomwalk", SubsurfaceParams::Method::RandomWalk},
+    {"pointcloud", SubsurfaceParams::Method::PointCloud},
+};
+constexpr Named<SubsurfaceParams::Profile> kProfiles[] = {
+    {"gaussian", SubsurfaceParams::Profile::Gaussian}, {"skin6", SubsurfaceParams::Profile::Skin6},
+    {"cubic", SubsurfaceParams::Profile::Cubic},       {"dipole", SubsurfaceParams::Profile::Dipole},
+    {"burley", SubsurfaceParams::Profile::Burley},     {"burley-dmfp", SubsurfaceParams::Profile::BurleyDiffuseMfp},
+    {"tabulated", SubsurfaceParams::Profile::Tabulated},
+};
+constexpr Named<SubsurfaceParams::Boundary> kBoundaries[] = {
+    {"diffuse", SubsurfaceParams::Boundary::Diffuse},
+    {"dielectric", SubsurfaceParams::Boundary::Dielectric},
+    {"matched", SubsurfaceParams::Boundary::Matched},
+};
+constexpr Named<SubsurfaceParams::WalkSampling> kWalkSamplings[] = {
+    {"classical", SubsurfaceParams::WalkSampling::Classical},
+    {"dwivedi", SubsurfaceParams::WalkSampling::Dwivedi},
+    {"mis", SubsurfaceParams::WalkSampling::Mis},
+};
+
+template <class E, std::size_t N>
+E lookup(const Named<E> (&table)[N], const ParsedParam& pp, const char* what) {
+  const Param& p = pp.param;
+  if (pp.type != "string" || p.strings.size() != 1)
+    throw SceneError(pp.value_loc, fmt::format("\"{}\" needs exactly one string", p.name));
+  for (const auto& n : table)
+    if (p.strings[0] == n.name) return n.value;
+  std::string valid;
+  for (const auto& n : table) valid += fmt::format("{}\"{}\"", valid.empty() ? "" : ", ", n.name);
+  throw SceneError(pp.value_loc, fmt::format("unknown {} \"{}\" (valid: {})", what, p.strings[0], valid));
+}
+
+constexpr SubsurfaceParameter kParameters[] = {
+    {"reflectance", "rgb | texture", "none", "surface albedo A in [0, 1] per channel, with mfp"},
+    {"mfp", "rgb | texture", "none", "mean free path 1/sigma_t per channel (scene units), with reflectance"},
+    {"sigma_a", "rgb | texture", "0.0011 0.0024 0.014", "absorption coefficient per scene unit"},
+    {"sigma_s", "rgb | texture", "2.55 3.21 3.77", "scattering coefficient per scene unit"},
+    {"name", "string", "none", "a measured medium of Jensen et al. 2001, Table 2 (per mm)"},
+    {"scale", "float", "1", "multiplies the coefficients, divides mfp"},
+    {"eta", "float", "1.33", "index of refraction of the boundary, in [1, 3]"},
+    {"g", "float", "0", "Henyey-Greenstein anisotropy, in (-1, 1)"},
+    {"roughness", "float", "0", "rough boundaries are not rendered yet: warned, rendered smooth"},
+    {"uroughness", "float", "0", "as roughness"},
+    {"vroughness", "float", "0", "as roughness"},
+    {"remaproughness", "bool", "true", "as roughness"},
+    {"method", "string", "randomwalk", "how light is carried from entry to exit"},
+    {"profile", "string", "burley (dipole for pointcloud)", "the diffusion profile of the profile methods"},
+    {"boundary", "string", "diffuse", "random walk: how light leaves (diffuse, dielectric, matched)"},
+    {"walksampling", "string", "mis", "random walk: classical, dwivedi or mis"},
+    {"backwardguiding", "bool", "false", "random walk: also guide toward the object's far side"},
+    {"albedoinversion", "string", "exact", "(reflectance, mfp) to coefficients: exact or fit"},
+    {"pointdensity", "float", "1", "point cloud: points per mean free path squared"},
+    {"irradiancesamples", "integer", "64", "point cloud: irradiance samples per point"},
+    {"epsilon", "float", "0.05", "point cloud: the octree's solid-angle criterion"},
+    {"localdisk", "bool", "true", "point cloud: the local disk integral"},
+    {"sssgroup", "string", "none", "materials with the same group form one subsurface object"},
+    {"normalmap", "string", "none", "ignored, with a warning"},
+    {"displacement", "texture", "none", "ignored, with a warning"},
+};
+
+RGB checked(RGB v, const ParsedParam& p) {
+  for (int c = 0; c < 3; ++c)
+    if (!std::isfinite(v[c]) || v[c] < 0)
+      throw SceneError(p.value_loc, fmt::format("\"{}\" must be finite and non-negative", p.param.name));
+  return v;
+}
+
+// An rgb, float, spectrum or blackbody value.
+RGB read_rgb(const ParsedParam& p, Diagnostics& diag) {
+  if (p.type == "float") {
+    if (p.param.numbers.size() != 1)
+      throw SceneError(p.value_loc, fmt::format("\"{}\" needs 3 values (r g b) or 1, got {}", p.param.name,
+                                                p.param.numbers.size()));
+    return checked(RGB(float(p.param.numbers[0])), p);
+  }
+  if (p.type == "rgb" && p.param.numbers.size() != 3)
+    throw SceneError(p.value_loc, fmt::format("\"{}\" needs 3 values (r g b) or 1, got {}", p.param.name,
+                                              p.param.numbers.size()));
+  if (p.type != "rgb" && p.type != "spectrum" && p.type != "blackbody")
+    throw SceneError(p.value_loc, fmt::format("\"{}\" must be an rgb, spectrum, float or texture value, not \"{}\"",
+                                              p.param.name, p.param.type));
+  return checked(spectrum_param_rgb(p, diag), p);
+}
+
+float read_float(const ParsedParam& p) {
+  if (p.type != "float" || p.param.numbers.size() != 1)
+    throw SceneError(p.value_loc, fmt::format("\"{}\" must be one float", p.param.name));
+  if (!std::isfinite(p.param.numbers[0])) throw SceneError(p.value_loc, fmt::format("\"{}\" must be finite", p.param.name));
+  return float(p.param.numbers[0]);
+}
+
+bool read_bool(const ParsedParam& p) {
+  if (p.type != "bool" || p.param.bools.size() != 1)
+    throw SceneError(p.value_loc, fmt::format("\"{}\" must be one bool", p.param.name));
+  return p.param.bools[0];
+}
+
+}  // namespace
+
+const char* to_string(SubsurfaceParams::Method m) {
+  for (const auto& n : kMethods)
+    if (n.value == m) return n.name;
+  return "?";
+}
+const char* to_string(SubsurfaceParams::Profile p) {
+  for (const auto& n : kProfiles)
+    if (n.value == p) return n.name;
+  return "?";
+}
+
+std::span<const SubsurfaceParameter> subsurface_parameters() { return kParameters; }
+
+SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& loc, Diagnostics& diag,
+                                        const TextureIndexOf& texture_index_of) {
+  SubsurfaceParams s;
+  s.loc = loc;
+  float scale = 1;
+  const ParsedParam *sigma_a = nullptr, *sigma_s = nullptr, *reflectance = nullptr, *mfp = nullptr, *name = nullptr;
+  bool profile_given = false;
+  for (const ParsedParam& item : pl.items()) {
+    const ParsedParam& p = item;
+    const std::string& n = p.param.name;
+    bool known = false;
+    for (const SubsurfaceParameter& row : kParameters) known = known || n == row.name;
+    if (!known) continue;  // reported by the parser as unused
+    p.used = true;
+    if (n == "sigma_a") sigma_a = &p;
+    else if (n == "sigma_s") sigma_s = &p;
+    else if (n == "reflectance") reflectance = &p;
+    else if (n == "mfp") mfp = &p;
+    else if (n == "name") name = &p;
+    else if (n == "scale") scale = read_float(p);
+    else if (n == "eta") s.eta = read_float(p);
+    else if (n == "g") s.g = read_float(p);
+    else if (n == "profile") {
+      s.profile = lookup(kProfiles, p, "profile");
+      profile_given = true;
+    }
+    else if (n == "method") s.method = lookup(kMethods, p, "subsurface method");
+    else if (n == "boundary") s.boundary = lookup(kBoundaries, p, "boundary");
+    else if (n == "walksampling") s.walk_sampling = lookup(kWalkSamplings, p, "walk sampling");
+    else if (n == "epsilon") s.epsilon = read_float(p);
+    else if (n == "albedoinversion") {
+      if (p.param.strings.size() != 1 || (p.param.strings[0] != "exact" && p.param.strings[0] != "fit"))
+        throw SceneError(p.value_loc, "\"albedoinversion\" must be \"exact\" or \"fit\"");
+      s.albedo_inversion_fit = p.param.strings[0] == "fit";
+    }
+    else if (n == "pointdensity") s.point_density = read_float(p);
+    else if (n == "backwardguiding") s.backward_guiding = read_bool(p);
+    else if (n == "localdisk") s.local_disk = read_bool(p);
+    else if (n == "irradiancesamples") {
+      const auto& v = p.param.numbers;
+      if (v.size() != 1 || !(v[0] >= 1) || v[0] != std::floor(v[0]) || v[0] > (1 << 20))
+        throw SceneError(p.value_loc, "\"irradiancesamples\" must be one integer in [1, 1048576]");
+      s.irradiance_samples = int(v[0]);
+    }
+    else if (n == "sssgroup") {
+      if (p.type != "string" || p.param.strings.size() != 1)
+        throw SceneError(p.value_loc, "\"sssgroup\" needs exactly one string");
+      s.group = p.param.strings[0];
+    }
+    else if (n == "roughness" || n == "uroughness" || n == "vroughness") {
+      if (p.type == "texture" || (!p.param.numbers.empty() && p.param.numbers[0] > 0))
+        diag.warn(p.param.loc, "subsurface: rough boundaries are not supported yet; rendered smooth");
+    } else {  // remaproughness, normalmap, displacement
+      if (n != "remaproughness") diag.warn(p.param.loc, fmt::format("subsurface: \"{}\" ignored", n));
+    }
+  }
+  // A spectrum parameter: its value, or its texture (the value is then a stand-in).
+  auto spectrum = [&](const ParsedParam& p, int& texture, RGB stand_in) {
+    if (p.type != "texture") return read_rgb(p, diag);
+    texture = texture_index_of(p);
+    return stand_in;
+  };
+  if (scale <= 0) throw SceneError(loc, "subsurface: \"scale\" must be positive");
+  s.scale = scale;
+  if (s.eta < 1.0f || s.eta > 3.0f)
+    throw SceneError(loc, fmt::format("subsurface: \"eta\" {} is outside [1, 3]", s.eta));
+  if (s.g <= -1 || s.g >= 1) throw SceneError(loc, "subsurface: \"g\" must be in (-1, 1)");
+  if (!(s.epsilon > 0)) throw SceneError(loc, "subsurface: \"epsilon\" must be positive");
+  if (!(s.point_density > 0)) throw SceneError(loc, "subsurface: \"pointdensity\" must be positive");
+  // The point cloud's profile is the dipole by default, as in Jensen & Buehler 2002.
+  if (s.method == SubsurfaceParams::Method::PointCloud && !profile_given) s.profile = SubsurfaceParams::Profile::Dipole;
+
+  int ways = (name != nullptr) + (sigma_a || sigma_s) + (reflectance || mfp);
+  if (ways > 1)
+    throw SceneError(loc,
+                     "subsurface: give either \"name\", or \"sigma_a\" + \"sigma_s\", or \"reflectance\" + \"mfp\", not several");
+  if (name) {
+    if (name->param.strings.size() != 1) throw SceneError(name->value_loc, "\"name\" needs one string");
+    auto preset = find_medium_preset(name->param.strings[0]);
+    if (!preset)
+      throw SceneError(name->value_loc, fmt::format("unknown subsurface preset \"{}\" (valid: {})",
+                                                    name->param.strings[0], medium_preset_names()));
+    // Jensen et al. 2001 values are per mm, used per scene unit as pbrt does; scale converts.
+    s.sigma_a = preset->sigma_a * scale;
+    s.sigma_s = preset->sigma_s_prime * scale;
+    s.g = 0;
+  } else if (reflectance || mfp) {
+    if (!reflectance || !mfp) throw SceneError(loc, "subsurface: \"reflectance\" needs \"mfp\" and vice versa");
+    RGB a = spectrum(*reflectance, s.reflectance_texture, RGB(0.5f));
+    RGB l = spectrum(*mfp, s.mfp_texture, RGB(1.0f));
+    for (int c = 0; c < 3; ++c) {
+      if (a[c] > 1) throw SceneError(reflectance->value_loc, "subsurface: \"reflectance\" must be in [0, 1]");
+      if (l[c] <= 0) throw SceneError(mfp->value_loc, "subsurface: \"mfp\" must be positive");
+    }
+    s.reflectance = a;
+    s.mfp = l / scale;  // pbrt-v4: scale multiplies coefficients, so it divides lengths
+  } else {
+    // pbrt-v4's defaults when nothing is given: whole milk, per scene unit.
+    RGB sa(0.0011f, 0.0024f, 0.014f), ss(2.55f, 3.21f, 3.77f);
+    if (sigma_a) sa = spectrum(*sigma_a, s.sigma_a_texture, sa);
+    if (sigma_s) ss = spectrum(*sigma_s, s.sigma_s_texture, ss);
+    s.sigma_a = sa * scale;
+    s.sigma_s = ss * scale;
+    for (int c = 0; c < 3; ++c)
+      if ((*s.sigma_a)[c] + (*s.sigma_s)[c] <= 0)
+        throw SceneError(loc, "subsurface: sigma_a + sigma_s must be positive in every channel");
+  }
+  return s;
+}
+
+}  // namespace dermis

@@ -1,0 +1,85 @@
+// The `subsurface` material's parameters, read once by the scene parser from what the
+// user wrote: pbrt-v4's (reflectance + mfp, or sigma_a + sigma_s, or a preset name;
+// scale, eta, g, roughness) and Dermis' own (profile, method, boundary, walksampling,
+// ...). The table subsurface_parameters() lists every one; docs/materials.md is
+// checked against it.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "dermis/core/rgb.h"
+#include "dermis/scene/diagnostics.h"
+
+namespace dermis {
+
+class ParamList;
+struct ParsedParam;
+
+struct SubsurfaceParams {
+  enum class Method { Volumetric, Disk, DiskSingleAxis, SphereLines, SphereLinesRetry, RandomWalk, PointCloud };
+  enum class Profile { Gaussian, Skin6, Cubic, Dipole, Burley, BurleyDiffuseMfp, Tabulated };
+  enum class Boundary { Diffuse, Dielectric, Matched };
+  enum class WalkSampling { Classical, Dwivedi, Mis };
+
+  // Coefficients per scene unit (scale applied) when given directly or by preset.
+  std::optional<RGB> sigma_a, sigma_s;
+  // Surface albedo and mean free path (scene units, scale applied) when given that way.
+  std::optional<RGB> reflectance, mfp;
+  // Spectrum textures (SceneDesc::textures) replacing the values above at each entry
+  // point, -1 for none; the value above is then the texture's mean, for what needs one
+  // number per material (e.g. the point spacing of a point cloud).
+  int sigma_a_texture = -1, sigma_s_texture = -1, reflectance_texture = -1, mfp_texture = -1;
+  float eta = 1.33f;
+  float g = 0;
+  float scale = 1;  // as written (already applied to the coefficients and lengths above)
+  Method method = Method::RandomWalk;
+  Profile profile = Profile::Burley;
+  Boundary boundary = Boundary::Diffuse;
+  WalkSampling walk_sampling = WalkSampling::Mis;
+  // Random walk: also guide toward the object's far side (sss/walk/random_walk.h).
+  bool backward_guiding = false;
+  // (reflectance, mfp) -> coefficients: the exact half-space table, or the van de Hulst
+  // fit (g = 0, index-matched) for comparison.
+  bool albedo_inversion_fit = false;
+  // Point cloud (Jensen & Buehler 2002; Langlands & Mertens): octree criterion, the
+  // local disk on/off, points per mean free path squared, irradiance samples per point.
+  float epsilon = 0.05f;
+  bool local_disk = true;
+  float point_density = 1.0f;
+  int irradiance_samples = 64;
+  // Materials with the same non-empty group form one subsurface object with every shape
+  // that uses them; otherwise the object is the shapes sharing this material (pbrt-v4).
+  std::string group;
+  SourceLoc loc;
+
+  bool textured() const {
+    return sigma_a_texture >= 0 || sigma_s_texture >= 0 || reflectance_texture >= 0 || mfp_texture >= 0;
+  }
+};
+
+// One row of the parameter table.
+struct SubsurfaceParameter {
+  const char* name;
+  const char* type;           // as written in a scene ("rgb", "float", "string", ...)
+  const char* default_value;  // as the docs state it
+  const char* meaning;
+};
+std::span<const SubsurfaceParameter> subsurface_parameters();
+
+// The spectrum texture a "texture NAME" parameter names (its index in
+// SceneDesc::textures); throws SceneError when there is none.
+using TextureIndexOf = std::function<int(const ParsedParam&)>;
+
+// Reads every parameter of a `subsurface` material (marking them used). Throws
+// SceneError (file:line:col) for wrong types, unknown names or invalid values; warns
+// about parameters it ignores.
+SubsurfaceParams read_subsurface_params(const ParamList& params, const SourceLoc& loc, Diagnostics& diag,
+                                        const TextureIndexOf& texture_index_of);
+
+const char* to_string(SubsurfaceParams::Method m);
+const char* to_string(SubsurfaceParams::Profile p);
+
+}  // namespace dermis
