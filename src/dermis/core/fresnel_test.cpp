@@ -53,7 +53,8 @@ TYPED_TEST(FresnelDielectric, TotalInternalReflectionBeyondCriticalAngle) {
 TYPED_TEST(FresnelDielectric, NegativeCosineMeansInverseIndex) {
   using T = TypeParam;
   for (double eta : {0.7, 1.33, 2.0})
-    for (double c : {0.05, 0.4, 0.9}) EXPECT_EQ(fresnel_dielectric<T>(T(-c), T(eta)), fresnel_dielectric<T>(T(c), T(1 / T(eta))));
+    for (double c : {0.05, 0.4, 0.9})
+      EXPECT_EQ(fresnel_dielectric<T>(T(-c), T(eta)), fresnel_dielectric<T>(T(c), T(1 / T(eta))));
 }
 
 TYPED_TEST(FresnelDielectric, TransmittanceIsReciprocalAcrossTheInterface) {
@@ -71,7 +72,8 @@ TYPED_TEST(FresnelDielectric, TransmittanceIsReciprocalAcrossTheInterface) {
 
 TEST(FresnelDielectricFloat, RendererSignatureIsTheFloatTemplate) {
   for (float eta : {1.0f, 1.33f, 1.5f})
-    for (float c : {-0.8f, -0.1f, 0.0f, 0.3f, 1.0f}) EXPECT_EQ(fresnel_dielectric(c, eta), fresnel_dielectric<float>(c, eta));
+    for (float c : {-0.8f, -0.1f, 0.0f, 0.3f, 1.0f})
+      EXPECT_EQ(fresnel_dielectric(c, eta), fresnel_dielectric<float>(c, eta));
   EXPECT_EQ(fresnel_dielectric(1, 1.5f), fresnel_dielectric<float>(1.0f, 1.5f));  // mixed int / float arguments
 }
 
@@ -81,7 +83,8 @@ TEST(FresnelDielectricPrecision, FloatAgreesWithDouble) {
       // Near the critical cosine F has a square-root branch: compare away from it.
       const double cos_c = eta < 1 ? std::sqrt(1 - eta * eta) : (eta > 1 ? -std::sqrt(1 - 1 / (eta * eta)) : 2.0);
       if (std::abs(c - cos_c) < 1e-2) continue;
-      EXPECT_NEAR(fresnel_dielectric(float(c), float(eta)), fresnel_dielectric<double>(c, eta), 2e-6) << eta << " " << c;
+      EXPECT_NEAR(fresnel_dielectric(float(c), float(eta)), fresnel_dielectric<double>(c, eta), 2e-6)
+          << eta << " " << c;
     }
 }
 

@@ -3,6 +3,7 @@
 #include "dermis/core/frame.h"
 #include "dermis/core/fresnel.h"
 #include "dermis/core/warp.h"
+#include "dermis/materials/microfacet_bsdf.h"
 
 namespace dermis {
 
@@ -10,7 +11,45 @@ float subsurface_exit_normalization(float eta) {
   return float(1 - fresnel_diffuse_reflectance(eta));  // c = 1 - 2 FM1(eta), METHODS.md sec. 0
 }
 
+namespace {
+
+// The rough lobes in the local frame of n (anisotropy axes: Frame(n).s and .t).
+RGB rough_eval(const BSDF& b, Vec3 wo, Vec3 wi) {
+  const Frame f(b.n);
+  const TrowbridgeReitz d(b.alpha_x, b.alpha_y);
+  if (b.type == BSDF::Type::Dielectric) return RGB(rough_dielectric_eval(d, b.eta, f.to_local(wo), f.to_local(wi)));
+  return rough_conductor_eval(d, b.cond_eta, b.cond_k, f.to_local(wo), f.to_local(wi));
+}
+
+float rough_pdf(const BSDF& b, Vec3 wo, Vec3 wi) {
+  const Frame f(b.n);
+  const TrowbridgeReitz d(b.alpha_x, b.alpha_y);
+  if (b.type == BSDF::Type::Dielectric) return rough_dielectric_pdf(d, b.eta, f.to_local(wo), f.to_local(wi));
+  return rough_conductor_pdf(d, f.to_local(wo), f.to_local(wi));
+}
+
+std::optional<BSDFSample> rough_sample(const BSDF& b, Vec3 wo, float u_lobe, Vec2 u) {
+  const Frame f(b.n);
+  const TrowbridgeReitz d(b.alpha_x, b.alpha_y);
+  const Vec3 wo_local = f.to_local(wo);
+  const auto m = b.type == BSDF::Type::Dielectric ? rough_dielectric_sample(d, b.eta, wo_local, u_lobe, u)
+                                                  : rough_conductor_sample(d, wo_local, u);
+  if (!m) return std::nullopt;
+  BSDFSample s;
+  s.wi = f.to_world(m->wi);
+  // Weight and pdf from eval and pdf themselves, so that they agree exactly.
+  s.pdf = rough_pdf(b, wo, s.wi);
+  if (!(s.pdf > 0)) return std::nullopt;
+  s.weight = rough_eval(b, wo, s.wi) / s.pdf;
+  s.transmission = m->transmission;
+  s.eta_scale = m->transmission ? m->etap * m->etap : 1;  // as the smooth dielectric (pbrt-v4 14.1)
+  return s;
+}
+
+}  // namespace
+
 RGB bsdf_eval(const BSDF& b, Vec3 wo, Vec3 wi) {
+  if (b.is_rough()) return rough_eval(b, wo, wi);
   if (b.type == BSDF::Type::SubsurfaceExit) {
     float ci = dot(wi, b.n);
     if (ci <= 0) return RGB(0);
@@ -23,6 +62,7 @@ RGB bsdf_eval(const BSDF& b, Vec3 wo, Vec3 wi) {
 }
 
 float bsdf_pdf(const BSDF& b, Vec3 wo, Vec3 wi) {
+  if (b.is_rough()) return rough_pdf(b, wo, wi);
   if (b.type == BSDF::Type::SubsurfaceExit) return cosine_hemisphere_pdf(dot(wi, b.n));
   if (b.type != BSDF::Type::Diffuse) return 0;
   float co = dot(wo, b.n), ci = dot(wi, b.n);
@@ -31,6 +71,7 @@ float bsdf_pdf(const BSDF& b, Vec3 wo, Vec3 wi) {
 }
 
 std::optional<BSDFSample> bsdf_sample(const BSDF& b, Vec3 wo, float u_lobe, Vec2 u) {
+  if (b.is_rough()) return rough_sample(b, wo, u_lobe, u);
   BSDFSample s;
   if (b.type == BSDF::Type::SubsurfaceExit) {
     // Cosine-weighted about the outward normal; weight (1 - Fr) / c.

@@ -1,13 +1,15 @@
-// The surface scattering functions of the smooth materials: Lambertian
-// reflection, a smooth dielectric and a smooth conductor. Evaluated in world
-// space about the geometric normal. A tagged struct with switches: no virtual
-// call per ray.
+// The surface scattering functions: Lambertian reflection, the dielectric and the
+// conductor, smooth or rough (Trowbridge-Reitz microfacets, materials/microfacet_bsdf.h),
+// and the normalised-Fresnel exit lobe of the subsurface methods. Evaluated in world
+// space about the geometric normal; the rough lobes in the local frame Frame(n). A
+// tagged struct with switches: no virtual call per ray.
 #pragma once
 
 #include <optional>
 
 #include "dermis/core/rgb.h"
 #include "dermis/core/vec.h"
+#include "dermis/materials/microfacet.h"
 
 namespace dermis {
 
@@ -19,8 +21,16 @@ struct BSDF {
   float eta = 1.5f; // dielectric: index inside over outside (the side n points away from)
   RGB cond_eta, cond_k;
   float sw_norm = 1;  // SubsurfaceExit: c = 1 - 2 FM1(eta), see subsurface_exit_normalization()
+  // Dielectric, Conductor: Trowbridge-Reitz roughness; below kSmoothAlpha (both) the
+  // surface is smooth, exactly as before roughness existed. There are no uv tangents
+  // yet, so alpha_x runs along Frame(n).s and alpha_y along Frame(n).t (core/frame.h).
+  float alpha_x = 0, alpha_y = 0;
 
-  bool is_specular() const { return type == Type::Dielectric || type == Type::Conductor; }
+  bool is_rough() const {
+    return (type == Type::Dielectric || type == Type::Conductor) && std::max(alpha_x, alpha_y) >= kSmoothAlpha;
+  }
+  // Smooth dielectric or conductor: a delta lobe that bsdf_eval and bsdf_pdf do not see.
+  bool is_specular() const { return (type == Type::Dielectric || type == Type::Conductor) && !is_rough(); }
 };
 
 // The normalised-Fresnel exit lobe of separable BSSRDFs (Jensen et al. 2001; METHODS.md
@@ -40,9 +50,14 @@ struct BSDFSample {
 };
 
 // f(wo, wi) |cos wi|; zero for specular lobes. wo and wi point away from the surface.
+// Transmission through a dielectric carries the radiance scaling 1/etap^2.
 RGB bsdf_eval(const BSDF& b, Vec3 wo, Vec3 wi);
-// Solid-angle density of bsdf_sample choosing wi; zero for specular lobes.
+// Solid-angle density of bsdf_sample choosing wi; zero for specular lobes. For the rough
+// lobes it integrates to one minus the probability that bsdf_sample returns nothing (a
+// microfacet reflection below the surface, a refraction back to wo's side).
 float bsdf_pdf(const BSDF& b, Vec3 wo, Vec3 wi);
+// u_lobe chooses reflection (u_lobe < F) or transmission of a dielectric: the smooth
+// one's F(wo.n), the rough one's F(wo.m) for the sampled microfacet m.
 std::optional<BSDFSample> bsdf_sample(const BSDF& b, Vec3 wo, float u_lobe, Vec2 u);
 
 }  // namespace dermis

@@ -17,6 +17,9 @@ struct Material {
   int reflectance_texture = -1;
   float eta = 1.5f;
   RGB cond_eta, cond_k;
+  // Dielectric, Conductor: Trowbridge-Reitz alpha along the two tangent axes (after
+  // pbrt-v4's remaproughness); 0 (below kSmoothAlpha): smooth.
+  float alpha_x = 0, alpha_y = 0;
   int subsurface = -1;  // Subsurface: index into RenderScene::subsurface
 
   // Interfaces only mark a change of medium; rays pass straight through them.
@@ -37,11 +40,15 @@ inline BSDF bsdf_at(const Material& m, const std::vector<Texture>& textures, con
     case Material::Type::Dielectric:
       b.type = BSDF::Type::Dielectric;
       b.eta = m.eta;
+      b.alpha_x = m.alpha_x;
+      b.alpha_y = m.alpha_y;
       break;
     case Material::Type::Conductor:
       b.type = BSDF::Type::Conductor;
       b.cond_eta = m.cond_eta;
       b.cond_k = m.cond_k;
+      b.alpha_x = m.alpha_x;
+      b.alpha_y = m.alpha_y;
       break;
   }
   return b;

@@ -78,6 +78,28 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
                                            what, r));
     m.roughness = r;
   };
+  // dielectric, conductor: pbrt-v4's microfacet roughness. "roughness" sets both axes,
+  // "uroughness" / "vroughness" override one each; textured values are not supported
+  // (warned; the constant fallback is used). The renderer maps roughness to alpha.
+  auto microfacet_roughness = [&](const char* what) {
+    auto constant = [&](const char* name, float fallback) {
+      const ParsedParam* p = pl.find(name);
+      if (!p) return fallback;
+      if (p->type == "texture") {
+        p->used = true;
+        s_.diagnostics.warn(p->param.loc, fmt::format("textured {} ignored: {} uses {} instead", name, what, fallback));
+        return fallback;
+      }
+      const float r = pl.get_float(name, fallback);
+      if (!(r >= 0)) throw SceneError(p->value_loc, fmt::format("{} must be >= 0, got {}", name, r));
+      return r;
+    };
+    const float r = constant("roughness", 0);
+    m.uroughness = constant("uroughness", r);
+    m.vroughness = constant("vroughness", r);
+    m.remap_roughness = pl.get_bool("remaproughness", true);
+    m.roughness = std::max(m.uroughness, m.vroughness);
+  };
   if (type == "diffuse") {
     m.type = MaterialDesc::Type::Diffuse;
     m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));
@@ -85,7 +107,7 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
     if (type == "thindielectric") s_.diagnostics.warn(loc, "thindielectric is rendered as dielectric");
     m.type = MaterialDesc::Type::Dielectric;
     if (const ParsedParam* p = pl.find("eta")) m.eta = ior_param(*p, s_.diagnostics);
-    roughness("dielectric");
+    microfacet_roughness("dielectric");
   } else if (type == "conductor") {
     m.type = MaterialDesc::Type::Conductor;
     if (pl.has("reflectance")) {
@@ -101,7 +123,7 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
       m.conductor_eta = rgb_param(pl, "eta", m.conductor_eta, s_.diagnostics);
       m.conductor_k = rgb_param(pl, "k", m.conductor_k, s_.diagnostics);
     }
-    roughness("conductor");
+    microfacet_roughness("conductor");
   } else if (type == "interface" || type == "" || type == "none") {
     m.type = MaterialDesc::Type::Interface;
   } else if (type == "coateddiffuse") {

@@ -27,7 +27,7 @@ TEST(ParserMaterials, DiffuseAndDefaults) {
   EXPECT_EQ(s.shapes[1].material, 1);
 }
 
-TEST(ParserMaterials, DielectricEtaFloatNamedAndRoughWarning) {
+TEST(ParserMaterials, DielectricEtaFloatNamedAndRoughness) {
   SceneDesc s = parse_world("Material \"dielectric\" \"float eta\" 1.33\n"
                             "Material \"dielectric\" \"spectrum eta\" \"glass-BK7\" \"float roughness\" 0.2\n"
                             "Material \"dielectric\"\n");
@@ -35,9 +35,48 @@ TEST(ParserMaterials, DielectricEtaFloatNamedAndRoughWarning) {
   EXPECT_FLOAT_EQ(s.materials[0].eta, 1.33f);
   EXPECT_NEAR(s.materials[1].eta, 1.5196f, 1e-4);  // BK7: n_d = 1.5168; mean over 400-700 nm
   EXPECT_FLOAT_EQ(s.materials[1].roughness, 0.2f);
-  EXPECT_TRUE(has_warning(s, "test.pbrt:3:1: warning: dielectric roughness 0.2 ignored"));
-  EXPECT_TRUE(has_warning(s, "rendered smooth"));
+  EXPECT_FLOAT_EQ(s.materials[1].uroughness, 0.2f);  // rendered rough: no warning
+  EXPECT_FLOAT_EQ(s.materials[1].vroughness, 0.2f);
+  EXPECT_TRUE(s.materials[1].remap_roughness);
+  EXPECT_FALSE(has_warning(s, "roughness"));
+  EXPECT_FLOAT_EQ(s.materials[0].uroughness, 0.0f);  // smooth by default
   EXPECT_FLOAT_EQ(s.materials[2].eta, 1.5f);
+}
+
+// pbrt-v4's DielectricMaterial / ConductorMaterial::Create: "roughness" sets both axes,
+// "uroughness" / "vroughness" override it; "remaproughness" defaults to true.
+TEST(ParserMaterials, MicrofacetRoughness) {
+  SceneDesc s = parse_world(
+      "Material \"dielectric\" \"float roughness\" 0.3 \"float vroughness\" 0.05\n"
+      "Material \"conductor\" \"float uroughness\" 0.1 \"float vroughness\" 0.4 \"bool remaproughness\" false\n"
+      "Material \"thindielectric\" \"float roughness\" 0.2\n"
+      "Texture \"r\" \"float\" \"constant\" \"float value\" 0.5\n"
+      "Material \"conductor\" \"texture roughness\" \"r\" \"float vroughness\" 0.1\n"
+      "Material \"coateddiffuse\" \"float roughness\" 0.3\n");
+  const MaterialDesc& d = s.materials[0];
+  EXPECT_EQ(d.type, MaterialDesc::Type::Dielectric);
+  EXPECT_FLOAT_EQ(d.uroughness, 0.3f);
+  EXPECT_FLOAT_EQ(d.vroughness, 0.05f);
+  EXPECT_TRUE(d.remap_roughness);
+  const MaterialDesc& c = s.materials[1];
+  EXPECT_EQ(c.type, MaterialDesc::Type::Conductor);
+  EXPECT_FLOAT_EQ(c.uroughness, 0.1f);
+  EXPECT_FLOAT_EQ(c.vroughness, 0.4f);
+  EXPECT_FLOAT_EQ(c.roughness, 0.4f);
+  EXPECT_FALSE(c.remap_roughness);
+  EXPECT_EQ(s.materials[2].type, MaterialDesc::Type::Dielectric);  // thindielectric, as dielectric
+  EXPECT_FLOAT_EQ(s.materials[2].uroughness, 0.2f);
+  EXPECT_FLOAT_EQ(s.materials[2].vroughness, 0.2f);
+  // Textured roughness: warned, the constant fallback used (here 0 along u).
+  EXPECT_FLOAT_EQ(s.materials[3].uroughness, 0.0f);
+  EXPECT_FLOAT_EQ(s.materials[3].vroughness, 0.1f);
+  EXPECT_TRUE(has_warning(s, "test.pbrt:6:22: warning: textured roughness ignored: conductor uses 0 instead"));
+  EXPECT_FALSE(has_warning(s, "dielectric roughness"));
+  EXPECT_FALSE(has_warning(s, "conductor roughness"));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:7:1: warning: coateddiffuse roughness 0.3 ignored"));  // no coating yet
+  EXPECT_FALSE(has_warning(s, "unused"));
+  EXPECT_THROW(parse_world("Material \"dielectric\" \"float uroughness\" -0.1\n"), SceneError);
+  EXPECT_THROW(parse_world("Material \"conductor\" \"float remaproughness\" 1\n"), SceneError);
 }
 
 TEST(ParserMaterials, ConductorNamedRgbAndReflectance) {

@@ -92,7 +92,13 @@ struct MaterialDesc {
   RGB conductor_eta{0.2f, 0.92f, 1.1f};  // conductor, RGB approximation (default: metal-Cu-eta)
   RGB conductor_k{3.9f, 2.45f, 2.14f};   // conductor, RGB approximation (default: metal-Cu-k)
   bool has_reflectance = false;          // conductor given "reflectance" instead of eta/k
-  float roughness = 0;         // only smooth surfaces are rendered; warned if > 0
+  float roughness = 0;         // largest of roughness, uroughness, vroughness as written
+                               // (coateddiffuse: rendered smooth, warned if > 0)
+  // dielectric, conductor: pbrt-v4's Trowbridge-Reitz roughness per tangent axis
+  // ("roughness" sets both, "uroughness" / "vroughness" override one each) and
+  // "remaproughness" (alpha = sqrt(roughness) when true; materials/microfacet.h).
+  float uroughness = 0, vroughness = 0;
+  bool remap_roughness = true;
   SubsurfaceParams subsurface;  // subsurface: every parameter, read once (subsurface_params.h)
   SourceLoc loc;
 };
