@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "commands.h"
+#include "dermis/render/film.h"
 #include "dermis/render/image.h"
 #include "dermis/render/progress.h"
 #include "dermis/render/scene_assembly.h"
@@ -37,6 +38,10 @@ struct RenderArgs {
 };
 
 int run_render(const RenderArgs& a) {
+  // One Ctrl-C handler from the start: preparation stops between stages, rendering
+  // between tiles; a second Ctrl-C ends the program at once.
+  g_interrupted = false;
+  std::signal(SIGINT, on_sigint);
   SceneDesc desc;
   std::unique_ptr<RenderScene> scene;
   PreparationReport preparation;
@@ -67,10 +72,7 @@ int run_render(const RenderArgs& a) {
     prep.point_clouds = pco;
     prep.progress = a.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto;
     prep.cancel = &g_interrupted;
-    g_interrupted = false;
-    std::signal(SIGINT, on_sigint);
     preparation = prepare_scene(*scene, prep);
-    std::signal(SIGINT, SIG_DFL);
   } catch (const Interrupted&) {
     fmt::print(stderr, "dermis render: interrupted while preparing the scene; nothing written\n");
     return 130;
@@ -99,16 +101,15 @@ int run_render(const RenderArgs& a) {
   opt.sampler = desc.settings.sampler;
   opt.time_limit = a.time_limit;
   opt.cancel = &g_interrupted;
-  const int64_t total = int64_t(scene->film.xres) * scene->film.yres * opt.spp;
+  const PixelBounds pixels = film_pixel_bounds(scene->film);
+  const int64_t total = int64_t(pixels.width()) * pixels.height() * opt.spp;
   Progress progress("Rendering", total, a.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto);
   opt.progress = [&progress](int64_t n) { progress.advance(n); };
 
   if (!a.quiet)
     fmt::print(stderr, "dermis: {} — {}x{}, {} spp, {} shapes, {} lights\n", a.scene, scene->film.xres, scene->film.yres,
                opt.spp, scene->shapes.size(), scene->lights.size());
-  g_interrupted = false;
-  std::signal(SIGINT, on_sigint);
-  RenderResult r = render_image(*scene, opt);
+  RenderResult r = render_image(*scene, opt);  // stops at once if Ctrl-C came during preparation
   std::signal(SIGINT, SIG_DFL);
   progress.finish();
 

@@ -1,6 +1,7 @@
 #include "dermis/materials/texture.h"
 
 #include <cmath>
+#include <cstdint>
 
 namespace dermis {
 
@@ -28,8 +29,16 @@ RGB evaluate_texture(const std::vector<Texture>& textures, int index, Vec2 uv) {
     case Texture::Type::Constant:
       return t.value;
     case Texture::Type::Scale: {
-      RGB base = t.base >= 0 ? evaluate_texture(textures, t.base, uv) : RGB(1);
+      RGB base = t.base >= 0 ? evaluate_texture(textures, t.base, uv) : t.value;
       return base * t.scale;
+    }
+    case Texture::Type::Checkerboard: {
+      // pbrt-v4: (s, t) = (uscale u + udelta, vscale v + vdelta); tex1 where
+      // floor(s) + floor(t) is even.
+      const double s = double(uv.x) * t.uscale + t.udelta, tt = double(uv.y) * t.vscale + t.vdelta;
+      const bool even = ((int64_t(std::floor(s)) + int64_t(std::floor(tt))) & 1) == 0;
+      const int index = even ? t.tex1 : t.tex2;
+      return index >= 0 ? evaluate_texture(textures, index, uv) : (even ? t.value : t.value2);
     }
     case Texture::Type::Image: {
       const ImageData& img = *t.image;

@@ -1,4 +1,5 @@
-// RGB textures: constants, image maps (bilinear lookup) and scaled textures.
+// RGB textures: constants, image maps (bilinear lookup), scaled textures and the 2D
+// checkerboard.
 #pragma once
 
 #include <memory>
@@ -15,7 +16,7 @@ struct ImageData {
 };
 
 struct Texture {
-  enum class Type { Constant, Image, Scale };
+  enum class Type { Constant, Image, Scale, Checkerboard };
   enum class Wrap { Repeat, Black, Clamp };
   Type type = Type::Constant;
   RGB value{1, 1, 1};
@@ -24,7 +25,9 @@ struct Texture {
   bool invert = false;
   Wrap wrap = Wrap::Repeat;
   float uscale = 1, vscale = 1, udelta = 0, vdelta = 0;
-  int base = -1;  // Scale: the texture scaled
+  int base = -1;  // Scale: the texture scaled, or -1 for `value`
+  RGB value2{0, 0, 0};       // Checkerboard: value = tex1, value2 = tex2
+  int tex1 = -1, tex2 = -1;  // Checkerboard: the squares' textures, or -1 for the values
 };
 
 // Evaluates texture `index` of `textures` at surface coordinates uv.

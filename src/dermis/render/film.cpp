@@ -1,5 +1,6 @@
 #include "dermis/render/film.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dermis {
@@ -43,6 +44,17 @@ std::vector<float> Film::resolve() const {
   for (std::size_t i = 0; i < samples.size(); ++i)
     for (int c = 0; c < 3; ++c) out[3 * i + c] = samples[i] ? float(sum[3 * i + c] / samples[i]) : 0.0f;
   return out;
+}
+
+PixelBounds film_pixel_bounds(const FilmDesc& f) {
+  // In float, as pbrt-v4 computes it (0.3f * 40 rounds to 12, not 12.0000005).
+  auto bound = [](int res, float fraction) { return std::clamp(int(std::ceil(float(res) * fraction)), 0, res); };
+  PixelBounds b{bound(f.xres, f.crop[0]), bound(f.yres, f.crop[2]), bound(f.xres, f.crop[1]), bound(f.yres, f.crop[3])};
+  b.x0 = std::min(b.x0, f.xres - 1);
+  b.y0 = std::min(b.y0, f.yres - 1);
+  b.x1 = std::max(b.x1, b.x0 + 1);
+  b.y1 = std::max(b.y1, b.y0 + 1);
+  return b;
 }
 
 }  // namespace dermis

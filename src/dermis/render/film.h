@@ -24,6 +24,15 @@ class FilterSampler {
   Distribution1D x_, y_;  // gaussian: tabulated marginals (the filter is separable)
 };
 
+// The pixels a render covers: the crop window's (pbrt-v4: ceil of the fractions times
+// the resolution), at least one pixel; x in [x0, x1), y in [y0, y1) of the full image.
+struct PixelBounds {
+  int x0, y0, x1, y1;
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+};
+PixelBounds film_pixel_bounds(const FilmDesc& film);
+
 struct Film {
   int width = 0, height = 0;
   std::vector<double> sum;         // 3 per pixel

@@ -291,8 +291,12 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       auto irradiance = [&](Vec3 p, Vec3 n, float eta, Sampler& smp) {
         return transmitted_irradiance(sc, p, n, eta, medium, smp, counters);
       };
+      auto interior_albedo = [&](const SurfaceHit& h) {
+        const Material& m = sc.materials[sc.shapes[h.shape].material];
+        return m.type == Material::Type::Diffuse ? bsdf_at(m, sc.textures, h).albedo : RGB(0);
+      };
       SubsurfaceExit ex;
-      const bool exited = sample_subsurface_exit(sm, {hit, wo, tracer, irradiance}, sampler, ex);
+      const bool exited = sample_subsurface_exit(sm, {hit, wo, tracer, irradiance, interior_albedo}, sampler, ex);
       sampler.set_dimension(after_exit);
       if (!exited) {
         if (ex.truncated) ++counters.truncated;
@@ -339,15 +343,18 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     // is in, since Lambertian reflection stays on the side of wo.
     const Vec3 p_out = offset_ray_origin(hit.p, hit.ng, wo);
     const Vec3 surface_n = dot(hit.ng, wo) >= 0 ? hit.ng : -hit.ng;
-    if (!bsdf.is_specular()) {
+    // Lights are sampled from the side of wo only: not at rough glass, whose transmitted
+    // light would be missed (its emission is then found by the sampled direction alone).
+    const bool nee = !bsdf.is_specular() && bsdf.type != BSDF::Type::Dielectric;
+    if (nee) {
       L += beta * estimate_direct(sc, p_out, surface_n, medium, sampler, counters, [&](Vec3 wi) {
              return std::pair{bsdf_eval(bsdf, wo, wi), bsdf_pdf(bsdf, wo, wi)};
            });
     }
     float u_lobe = sampler.get1d();
     Vec2 u_dir = sampler.get2d();
-    if (bsdf.type == BSDF::Type::Dielectric && start.split_first_hit && start.from_camera && start.depth == 0 &&
-        depth == 1) {
+    if (bsdf.type == BSDF::Type::Dielectric && bsdf.is_specular() && start.split_first_hit && start.from_camera &&
+        start.depth == 0 && depth == 1) {
       // The camera's first hit on glass is split like a subsurface entry: the reflection
       // is followed with weight F, the transmission below with 1 - F (one sample of each
       // term; the sampled lobes' weights are F/F and (1 - F)/(1 - F) times 1/eta^2).
@@ -372,7 +379,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     if (!bs) break;
     beta *= bs->weight;
     eta_scale *= bs->eta_scale;
-    specular = bs->specular;
+    specular = bs->specular || !nee;  // no light sampling here: emission counts in full
     prev_pdf = bs->pdf;
     prev_p = p_out;
     prev_n = surface_n;

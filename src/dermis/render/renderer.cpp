@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "dermis/core/sampler.h"
 #include "dermis/render/film.h"
@@ -26,7 +27,11 @@ struct Tile {
 RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
-  const int w = sc.film.xres, h = sc.film.yres;
+  // The pixels rendered: the crop window's; each keeps its full-image index, so a crop
+  // equals that part of the full image.
+  const int full_w = sc.film.xres;
+  const PixelBounds bounds = film_pixel_bounds(sc.film);
+  const int x_begin = bounds.x0, y_begin = bounds.y0, w = bounds.width(), h = bounds.height();
   Film film(w, h);
   FilterSampler filter(sc.film.filter);
 
@@ -46,12 +51,14 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
     uint64_t bad = 0;
     for (int y = t.y0; y < t.y1; ++y)
       for (int x = t.x0; x < t.x1; ++x) {
-        const std::size_t pixel = std::size_t(y) * w + x;
+        const std::size_t pixel = std::size_t(y) * w + x;  // in the film
+        const int image_x = x_begin + x, image_y = y_begin + y;
+        const std::size_t image_pixel = std::size_t(image_y) * full_w + image_x;
         double sum[3] = {film.sum[3 * pixel], film.sum[3 * pixel + 1], film.sum[3 * pixel + 2]};
         for (int s = first_sample; s < first_sample + n_samples; ++s) {
-          Sampler sampler(opt.sampler, opt.seed, pixel, uint32_t(s));
+          Sampler sampler(opt.sampler, opt.seed, image_pixel, uint32_t(s));
           Vec2 offset = filter.sample(sampler.get2d());  // dimensions 0, 1
-          Vec2 film_pos{float(x) + 0.5f + offset.x, float(y) + 0.5f + offset.y};
+          Vec2 film_pos{float(image_x) + 0.5f + offset.x, float(image_y) + 0.5f + offset.y};
           Ray ray = sc.camera.generate_ray(film_pos, sampler.get2d());  // 2, 3: the lens
           RGB L = trace_path(sc, ray, sc.camera_medium, sampler, counters);
           if (!L.is_finite()) {
@@ -103,6 +110,8 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
   result.width = w;
   result.height = h;
   result.rgb = film.resolve();
+  if (sc.film.exposure_scale != 1)
+    for (float& v : result.rgb) v *= sc.film.exposure_scale;
   result.nonfinite = nonfinite;
   result.rays = rays;
   result.truncated = truncated;

@@ -99,6 +99,27 @@ TEST(Renderer, SameSeedSameImageWhateverTheThreadCount) {
   EXPECT_NE(0, std::memcmp(a.rgb.data(), c.rgb.data(), a.rgb.size() * sizeof(float)));
 }
 
+// pbrt-v4's "cropwindow": only those pixels are rendered and written, each exactly as in
+// the full image; "iso" scales the pixel values by iso / 100.
+TEST(Renderer, CropWindowIsThatPartOfTheFullImageAndIsoScales) {
+  Diagnostics diag;
+  SceneDesc d = small_scene();
+  RenderOptions o;
+  o.spp = 2;
+  o.seed = 3;
+  RenderResult full = render_image(*build_render_scene(d, diag), o);
+  d.film.crop = {0.3f, 0.8f, 0.15f, 0.7f};
+  d.film.exposure_scale = 4;  // iso 400
+  RenderResult crop = render_image(*build_render_scene(d, diag), o);
+  // pbrt-v4's bounds: ceil(40 * 0.3) = 12 .. ceil(40 * 0.8) = 32, ceil(30 * 0.15) = 5 .. ceil(30 * 0.7) = 21.
+  ASSERT_EQ(crop.width, 20);
+  ASSERT_EQ(crop.height, 16);
+  for (int y = 0; y < crop.height; ++y)
+    for (int x = 0; x < crop.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(crop.rgb[3 * (y * crop.width + x) + c], 4 * full.rgb[3 * ((y + 5) * 40 + x + 12) + c]);
+}
+
 TEST(Renderer, NonFiniteSamplesAreCountedAndNeverReachTheFilm) {
   SceneDesc d = small_scene();
   d.lights[0].spectrum = RGB(std::numeric_limits<float>::quiet_NaN());

@@ -62,6 +62,10 @@ Material make_material(const MaterialDesc& d, Diagnostics& diag) {
       m.type = Material::Type::Dielectric;
       break;
   }
+  if (d.type == MaterialDesc::Type::Dielectric || d.type == MaterialDesc::Type::Conductor) {
+    m.alpha_x = roughness_to_alpha(d.uroughness, d.remap_roughness);  // pbrt-v4: alpha = sqrt(r)
+    m.alpha_y = roughness_to_alpha(d.vroughness, d.remap_roughness);
+  }
   return m;
 }
 
@@ -82,6 +86,12 @@ Texture make_texture(const TextureDesc& d) {
       break;
     case TextureDesc::Type::Scale:
       t.type = Texture::Type::Scale;
+      break;
+    case TextureDesc::Type::Checkerboard:
+      t.type = Texture::Type::Checkerboard;
+      t.value2 = d.value2;
+      t.tex1 = d.tex1;
+      t.tex2 = d.tex2;
       break;
     case TextureDesc::Type::ImageMap: {
       t.type = Texture::Type::Image;
@@ -322,8 +332,9 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
 
   // Subsurface objects (render_scene.h): the shapes sharing a subsurface material form
   // one object (pbrt-v4's rule), and so do all shapes of the materials that name the
-  // same "sssgroup"; every other shape is an object of its own. Shapes reached through
-  // an instance are told apart by the instance (subsurface/object_tracer.h).
+  // same "sssgroup"; every other shape is an object of its own (a boundary a walk inside
+  // another object reflects from), except index-matched interfaces (-1: passed through).
+  // Shapes reached through an instance are told apart by the instance (object_tracer.h).
   std::map<std::string, int> object_of_key;
   sc->object_of_shape.resize(sc->shapes.size());
   for (std::size_t i = 0; i < sc->shapes.size(); ++i) {
@@ -334,7 +345,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
       key = group.empty() ? fmt::format("material {}", sc->shapes[i].material) : "group " + group;
     }
     auto [it, added] = object_of_key.try_emplace(key, int(object_of_key.size()));
-    sc->object_of_shape[i] = it->second;
+    sc->object_of_shape[i] = m.is_interface() ? -1 : it->second;  // walks pass through interfaces
   }
   return sc;
 }

@@ -23,7 +23,7 @@ PreparationReport prepare_scene(RenderScene& sc, const PreparationOptions& optio
     for (const SubsurfaceParams& p : sc.subsurface_params) {
       check_cancel();
       try {
-        sc.subsurface.push_back(std::make_unique<SubsurfaceMaterial>(make_subsurface_material(p)));
+        sc.subsurface.push_back(std::make_unique<SubsurfaceMaterial>(make_subsurface_material(p, &sc.textures)));
       } catch (const std::invalid_argument& e) {
         throw SceneError(p.loc, fmt::format("subsurface: {}", e.what()));
       }
@@ -33,6 +33,9 @@ PreparationReport prepare_scene(RenderScene& sc, const PreparationOptions& optio
     // inversion uses the dielectric table.
     for (const RenderScene::VolumetricMedium& v : sc.volumetric_media) {
       check_cancel();
+      if (v.params.textured())
+        throw SceneError(v.params.loc, "subsurface: method \"volumetric\" renders a homogeneous medium and needs "
+                                       "constant parameters; with textured parameters use \"randomwalk\"");
       SubsurfaceParams as_dielectric = v.params;
       as_dielectric.boundary = SubsurfaceParams::Boundary::Dielectric;
       const Coefficients k = resolve_coefficients(as_dielectric);

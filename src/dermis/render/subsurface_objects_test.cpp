@@ -48,10 +48,10 @@ std::string sphere_meshes(bool split, const std::string& material_top, const std
   return split ? mesh(material_top, top) + mesh(material_bottom, bottom) : mesh(material_top, top);
 }
 
-testing::PixelStatistics render(const std::string& scene, uint64_t seed) {
+testing::PixelStatistics render(const std::string& scene, uint64_t seed, int spp = 64) {
   Diagnostics diag;
   auto sc = build_render_scene(parse_scene_string(std::string(kHeader) + scene), diag);
-  return testing::pixel_statistics(*sc, 64, seed);
+  return testing::pixel_statistics(*sc, spp, seed);
 }
 
 // The split sphere renders like the whole one, for the walk and for probe rays, when
@@ -85,6 +85,26 @@ TEST(SubsurfaceObjects, HalvesOfDifferentMaterialsAreSeparateObjects) {
       v += whole.stderr_[i][c] * whole.stderr_[i][c] + apart.stderr_[i][c] * apart.stderr_[i][c];
     }
   EXPECT_GT(d, 4 * std::sqrt(v));
+}
+
+// An opaque core inside a translucent sphere is a boundary the walk respects: light
+// meeting it is reflected diffusely with its albedo (absorbed when black), as in the
+// volumetric path tracer's image of the same medium in glass around the same core.
+TEST(SubsurfaceObjects, AnOpaqueCoreDarkensTheWalkAsItDoesTheVolumetricReference) {
+  const char* coefficients = "\"rgb sigma_a\" [0.05 0.1 0.2] \"rgb sigma_s\" [1.5 2 3] \"float g\" 0.2";
+  for (const char* core : {"0", "0.7"}) {
+    SCOPED_TRACE(core);
+    const std::string core_shape = std::string("AttributeBegin\n  Material \"diffuse\" \"rgb reflectance\" [") + core +
+                                   " " + core + " " + core + "]\n  Translate 0 0 0.3\n  Shape \"sphere\" \"float radius\" 0.5\n"
+                                   "AttributeEnd\n";
+    const std::string walk = std::string("Material \"subsurface\" ") + coefficients +
+                             " \"float eta\" 1.4 \"string boundary\" \"dielectric\"\nShape \"sphere\"\n" + core_shape;
+    const std::string volume = std::string("MakeNamedMedium \"m\" \"string type\" \"homogeneous\" ") + coefficients +
+                               "\nAttributeBegin\n  MediumInterface \"m\" \"\"\n  Material \"dielectric\" \"float eta\" 1.4\n"
+                               "  Shape \"sphere\"\nAttributeEnd\nAttributeBegin\n  MediumInterface \"m\" \"m\"\n" +
+                               core_shape.substr(std::string("AttributeBegin\n").size());
+    testing::expect_same_region_means(render(walk, 41, 128), render(volume, 42, 128), 4, 4);
+  }
 }
 
 }  // namespace

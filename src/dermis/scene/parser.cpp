@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "dermis/scene/scene_parser.h"
 
 namespace dermis {
@@ -373,6 +375,17 @@ void SceneParser::film(const Token& d, TokenStream& ts) {
   f.yres = pl.get_int("yresolution", f.yres);
   if (f.yres <= 0) throw SceneError(pl.find("yresolution")->value_loc, fmt::format("yresolution must be positive, got {}", f.yres));
   f.filename = pl.get_string("filename", f.filename);
+  if (const ParsedParam* p = pl.find("cropwindow")) {
+    // pbrt-v4: [x0 x1 y0 y1] in NDC, rendering and writing only that part of the image.
+    const std::vector<double> c = pl.get_numbers("cropwindow", {"float"}, 4);
+    if (c.size() != 4 || !(c[0] >= 0 && c[0] < c[1] && c[1] <= 1 && c[2] >= 0 && c[2] < c[3] && c[3] <= 1))
+      throw SceneError(p->value_loc, "cropwindow must be [x0 x1 y0 y1] with 0 <= x0 < x1 <= 1 and 0 <= y0 < y1 <= 1");
+    f.crop = {float(c[0]), float(c[1]), float(c[2]), float(c[3])};
+  }
+  // pbrt-v4's default sensor: pixel values are scaled by iso / 100 times the exposure time (1).
+  const float iso = pl.get_float("iso", 100);
+  if (!(iso > 0) || !std::isfinite(iso)) throw SceneError(pl.find("iso")->value_loc, "iso must be positive");
+  f.exposure_scale = iso / 100;
   pl.warn_unused(s_.diagnostics, fmt::format("Film \"{}\"", type));
 }
 

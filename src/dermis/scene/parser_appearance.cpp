@@ -209,6 +209,19 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
     if (p->type == "float") return RGB(pl.get_float(pname, 0));
     return spectrum_param_rgb(*p, s_.diagnostics);
   };
+  // A parameter that is a value or names a texture of the same kind (its index in `index`).
+  auto value_or_texture = [&](const std::string& pname, RGB def, int& index) {
+    const ParsedParam* p = pl.find(pname);
+    if (!p || p->type != "texture") return value_param(pname, def);
+    const std::string other = *pl.get_texture(pname);
+    auto& table = t.is_float ? float_textures_ : spectrum_textures_;
+    auto it = table.find(other);
+    if (it == table.end())
+      throw SceneError(p->value_loc, fmt::format("unknown {} texture \"{}\" (defined: {})", value_type, other,
+                                                 names_of(table)));
+    index = it->second;
+    return def;
+  };
   // pbrt's (u, v) texture mapping, common to all classes.
   const std::string mapping = pl.get_string("mapping", "uv");
   if (mapping != "uv")
@@ -241,19 +254,7 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
     t.value = value_param("value", RGB(1));
   } else if (cls == "scale") {
     t.type = TextureDesc::Type::Scale;
-    if (const ParsedParam* p = pl.find("tex")) {
-      if (p->type == "texture") {
-        std::string base = *pl.get_texture("tex");
-        auto& table = t.is_float ? float_textures_ : spectrum_textures_;
-        auto it = table.find(base);
-        if (it == table.end())
-          throw SceneError(p->value_loc, fmt::format("unknown {} texture \"{}\" (defined: {})", value_type, base,
-                                                     names_of(table)));
-        t.base = it->second;
-      } else {
-        t.value = value_param("tex", RGB(1));
-      }
-    }
+    t.value = value_or_texture("tex", RGB(1), t.base);
     if (const ParsedParam* p = pl.find("scale")) {
       if (p->type == "texture") {
         p->used = true;
@@ -261,6 +262,18 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
       } else {
         t.scale = pl.get_float("scale", 1);
       }
+    }
+  } else if (cls == "checkerboard") {
+    // pbrt-v4's checkerboard: tex1 where floor(s) + floor(t) is even, tex2 where odd.
+    t.type = TextureDesc::Type::Checkerboard;
+    t.value = value_or_texture("tex1", RGB(1), t.tex1);
+    t.value2 = value_or_texture("tex2", RGB(0), t.tex2);
+    if (const ParsedParam* p = pl.find("dimension")) {
+      const int dimension = pl.get_int("dimension", 2);
+      if (dimension != 2 && dimension != 3)
+        throw SceneError(p->value_loc, fmt::format("checkerboard \"dimension\" must be 2 or 3, got {}", dimension));
+      if (dimension == 3)
+        s_.diagnostics.warn(p->param.loc, "3D checkerboard is not supported; rendered as the 2D (u, v) checkerboard");
     }
   } else {
     s_.diagnostics.warn(loc, fmt::format("unsupported texture class \"{}\"; texture \"{}\" is the constant 1", cls, name));

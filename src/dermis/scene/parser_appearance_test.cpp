@@ -143,10 +143,11 @@ TEST(ParserTextures, ImageMapConstantScaleAndReference) {
       "Texture \"k\" \"spectrum\" \"constant\" \"rgb value\" [0.1 0.2 0.3]\n"
       "Texture \"half\" \"spectrum\" \"scale\" \"texture tex\" \"wood\" \"float scale\" 0.5\n"
       "Texture \"f\" \"float\" \"constant\" \"float value\" 0.7\n"
-      "Texture \"odd\" \"spectrum\" \"checkerboard\"\n"
+      "Texture \"odd\" \"spectrum\" \"marble\"\n"
+      "Texture \"check\" \"spectrum\" \"checkerboard\" \"texture tex1\" \"k\" \"float uscale\" 8\n"
       "Material \"diffuse\" \"texture reflectance\" \"half\"\n",
       dir.path());
-  ASSERT_EQ(s.textures.size(), 5u);
+  ASSERT_EQ(s.textures.size(), 6u);
   const TextureDesc& w = s.textures[0];
   EXPECT_EQ(w.type, TextureDesc::Type::ImageMap);
   EXPECT_EQ(w.filename, dir.path() + "/tex/wood.png");
@@ -166,7 +167,13 @@ TEST(ParserTextures, ImageMapConstantScaleAndReference) {
   EXPECT_TRUE(s.textures[3].is_float);
   expect_rgb(s.textures[3].value, RGB(0.7f));
   expect_rgb(s.textures[4].value, RGB(1));
-  EXPECT_TRUE(has_warning(s, "test.pbrt:8:1: warning: unsupported texture class \"checkerboard\""));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:8:1: warning: unsupported texture class \"marble\""));
+  const TextureDesc& c = s.textures[5];
+  EXPECT_EQ(c.type, TextureDesc::Type::Checkerboard);
+  EXPECT_EQ(c.tex1, 1);  // "k"
+  EXPECT_EQ(c.tex2, -1);
+  expect_rgb(c.value2, RGB(0));  // pbrt-v4's default tex2
+  EXPECT_FLOAT_EQ(c.uscale, 8);
   EXPECT_EQ(s.materials[0].reflectance.texture, 2);
 }
 

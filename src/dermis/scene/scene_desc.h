@@ -50,6 +50,8 @@ struct FilterDesc {
 struct FilmDesc {
   int xres = 1280, yres = 720;
   std::string filename = "pbrt.exr";  // as written; resolved relative to the working directory
+  std::array<float, 4> crop{0, 1, 0, 1};  // cropwindow x0 x1 y0 y1 (fractions of the image)
+  float exposure_scale = 1;              // iso / 100 (pbrt-v4's default sensor)
   FilterDesc filter;
 };
 
@@ -62,18 +64,20 @@ struct RenderSettingsDesc {
 };
 
 struct TextureDesc {
-  enum class Type { Constant, ImageMap, Scale };
+  enum class Type { Constant, ImageMap, Scale, Checkerboard };
   std::string name;
   Type type = Type::Constant;
   bool is_float = false;     // declared "float" (value holds the float in all channels), else "spectrum"
-  RGB value{1, 1, 1};        // constant: "value"
+  RGB value{1, 1, 1};        // constant: "value"; scale: "tex" as a value; checkerboard: "tex1"
   std::string filename;      // imagemap: absolute path
   float scale = 1;           // imagemap: "scale"; scale: constant factor
   bool invert = false;
   std::string encoding = "sRGB";  // "sRGB", "linear" or "gamma g" for 8-bit images
   std::string wrap = "repeat";    // repeat, black, clamp
   float uscale = 1, vscale = 1, udelta = 0, vdelta = 0;
-  int base = -1;             // scale: texture being scaled (index), or -1
+  int base = -1;             // scale: texture being scaled (index), or -1 (then `value` is scaled)
+  RGB value2{0, 0, 0};       // checkerboard: tex2 (value holds tex1)
+  int tex1 = -1, tex2 = -1;  // checkerboard: the squares' textures (index), or -1 for the values
   SourceLoc loc;
 };
 

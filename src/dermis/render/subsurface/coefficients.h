@@ -1,22 +1,49 @@
 // A subsurface material's parameters as the methods need them: scattering
 // coefficients per scene unit (the random walk, the volumetric reference), or the
-// surface albedo and mean free path per channel (the diffusion profiles).
+// surface albedo and mean free path per channel (the diffusion profiles) — for the
+// material as a whole, or at one surface point when its parameters are textured.
 #pragma once
 
+#include <optional>
+#include <vector>
+
 #include "dermis/core/rgb.h"
+#include "dermis/core/vec.h"
+#include "dermis/materials/texture.h"
 #include "dermis/scene/subsurface_params.h"
 
+namespace dermis::sss {
+class AlbedoInversion;
+}
+
 namespace dermis {
+
+// The medium's parameters at one point, as the user gave them (scale applied): either
+// coefficients or (reflectance, mfp).
+struct MediumAt {
+  std::optional<RGB> sigma_a, sigma_s, reflectance, mfp;
+};
+
+// The material's textures evaluated at uv (textures: the scene's; reflectance clamped
+// to [0, 1], lengths and coefficients kept positive). Without textures: the constants.
+MediumAt medium_at(const SubsurfaceParams& params, const std::vector<Texture>* textures = nullptr, Vec2 uv = {});
 
 struct Coefficients {
   RGB sigma_a, sigma_s;
 };
 
-// As given, or from (reflectance, mfp) through the random walk's exact albedo inversion:
-// a half-space table for the boundary's eta and g (sss/walk/albedo_inversion.h), built
-// once per process (and cached on disk by the table itself). May take seconds the first
-// time: call it while preparing a scene, not while rendering.
-Coefficients resolve_coefficients(const SubsurfaceParams& params);
+// The exact albedo inversion of the random walk for this material's boundary, eta and
+// g (sss/walk/albedo_inversion.h): a half-space table built once per process (and
+// cached on disk by the table itself; may take seconds the first time: call it while
+// preparing a scene). Null when the material gives coefficients or asks for the fit.
+const sss::AlbedoInversion* albedo_inversion_for(const SubsurfaceParams& params);
+
+// Coefficients per scene unit: as given, or from (reflectance, mfp) through `table`
+// (albedo_inversion_for) or, when null, van de Hulst's fit.
+Coefficients coefficients_from(const MediumAt& medium, const sss::AlbedoInversion* table);
+inline Coefficients resolve_coefficients(const SubsurfaceParams& params) {
+  return coefficients_from(medium_at(params), albedo_inversion_for(params));
+}
 
 struct AlbedoAndMfp {
   RGB albedo, mfp;
@@ -26,6 +53,7 @@ struct AlbedoAndMfp {
 // by l = 1/sigma_t' and A = 1 - H(1) sqrt(1 - alpha') (Chandrasekhar 1950, METHODS.md
 // sec. 6), alpha' the similarity-reduced single-scattering albedo: the searchlight,
 // index-matched configuration the Christensen-Burley fit was made for.
-AlbedoAndMfp albedo_and_mfp(const SubsurfaceParams& params);
+AlbedoAndMfp albedo_and_mfp(const MediumAt& medium, float g);
+inline AlbedoAndMfp albedo_and_mfp(const SubsurfaceParams& params) { return albedo_and_mfp(medium_at(params), params.g); }
 
 }  // namespace dermis

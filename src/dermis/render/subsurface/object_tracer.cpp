@@ -29,11 +29,15 @@ void ObjectTracer::collect_hits(Vec3 o, Vec3 d, float length, int max_hits, std:
   }
 }
 
-bool ObjectTracer::first_hit(Ray ray, SurfaceHit& hit) const {
+bool ObjectTracer::first_hit(Ray ray, SurfaceHit& hit) const { return first_where(ray, hit, false); }
+
+bool ObjectTracer::first_boundary(Ray ray, SurfaceHit& hit) const { return first_where(ray, hit, true); }
+
+bool ObjectTracer::first_where(Ray ray, SurfaceHit& hit, bool other_objects) const {
   for (int guard = 0; guard < 64; ++guard) {
     counters_.count(ray);
     if (!scene_.intersect(ray, hit)) return false;
-    if (contains(hit)) return true;
+    if (contains(hit) || (other_objects && object_of_shape_[hit.shape] >= 0)) return true;
     float skip = hit.t + skip_distance(hit.p);
     ray.o = ray.o + ray.d * skip;
     if (ray.tmax != std::numeric_limits<float>::infinity()) ray.tmax -= skip;

@@ -15,6 +15,7 @@ namespace dermis {
 
 class ObjectTracer {
  public:
+  // object_of_shape: -1 for shapes every ray passes through.
   // The object of `entry` (the hit where the path entered): the shapes s with
   // object_of_shape[s] == object_of_shape[entry.shape], hit through entry.instance.
   ObjectTracer(const EmbreeScene& scene, const std::vector<int>& object_of_shape, const SurfaceHit& entry,
@@ -32,7 +33,14 @@ class ObjectTracer {
   // The first intersection of the ray with the object, skipping other shapes.
   bool first_hit(Ray ray, SurfaceHit& hit) const;
 
+  // The first intersection with the object or with another object inside it (an
+  // interior boundary: a stone in jade, teeth in a head); shapes whose object is -1
+  // (index-matched interfaces) are passed through.
+  bool first_boundary(Ray ray, SurfaceHit& hit) const;
+
  private:
+  bool first_where(Ray ray, SurfaceHit& hit, bool other_objects) const;
+
   const EmbreeScene& scene_;
   const std::vector<int>& object_of_shape_;
   int object_, instance_;

@@ -84,7 +84,8 @@ TEST(WalkMethodOnItsOwn, ConservesEnergyInANonAbsorbingSphere) {
   const SurfaceHit entry = hit_from(s.embree, {0, 0, 5}, {0, 0, -1});
   const ObjectTracer tracer(s.embree, objects, entry, counters);
   auto no_irradiance = [](Vec3, Vec3, float, Sampler&) { return RGB(0); };
-  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance};
+  auto black = [](const SurfaceHit&) { return RGB(0); };
+  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance, black};
   const int n = 20000;
   double sum[3] = {}, sum2[3] = {};
   for (int i = 0; i < n; ++i) {
@@ -117,7 +118,8 @@ TEST(ProbeMethodOnItsOwn, ExitsLieOnTheObject) {
   const SurfaceHit entry = hit_from(s.embree, {0, 0, 5}, {0, 0, -1});
   const ObjectTracer tracer(s.embree, objects, entry, counters);
   auto no_irradiance = [](Vec3, Vec3, float, Sampler&) { return RGB(0); };
-  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance};
+  auto black = [](const SurfaceHit&) { return RGB(0); };
+  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance, black};
   int exits = 0;
   for (int i = 0; i < 2000; ++i) {
     Sampler sampler(SamplerKind::Independent, 5, uint64_t(i), 0);

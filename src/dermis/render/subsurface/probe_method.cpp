@@ -1,6 +1,9 @@
 #include "dermis/render/subsurface/probe_method.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <stdexcept>
 #include <vector>
 
 #include "dermis/render/subsurface/profile_from_params.h"
@@ -42,36 +45,58 @@ bool pick_probe_hit(const sss::ProfileRGB& profile, const SubsurfaceEntry& entry
   return true;
 }
 
+// Channels are chosen in proportion to their albedo (never zero, so that every
+// channel's hits can be found).
+RGB channel_weights(const sss::ProfileRGB& profile) {
+  RGB weights;
+  for (int c = 0; c < 3; ++c) weights[c] = std::max(float(profile.channel[c].albedo()), 1e-3f);
+  return weights;
+}
+
+sss::ProbeAxisProbabilities axes(SubsurfaceParams::Method m) {
+  return m == SubsurfaceParams::Method::Disk ? sss::ProbeAxisProbabilities{} : sss::ProbeAxisProbabilities::single_axis();
+}
+
 }  // namespace
 
-ProbeMethod::ProbeMethod(const SubsurfaceParams& params)
-    : method_(params.method), profile_(std::make_unique<sss::ProfileRGB>(make_profile(params))) {
-  // Channels are chosen in proportion to their albedo (never zero, so that every
-  // channel's hits can be found).
-  RGB weights;
-  for (int c = 0; c < 3; ++c) weights[c] = std::max(float(profile_->channel[c].albedo()), 1e-3f);
-  if (method_ == Method::Disk || method_ == Method::DiskSingleAxis) {
-    disk_ = std::make_unique<sss::DiskProbeSampler>(
-        *profile_, weights,
-        method_ == Method::Disk ? sss::ProbeAxisProbabilities{} : sss::ProbeAxisProbabilities::single_axis());
+ProbeMethod::ProbeMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures)
+    : method_(params.method), params_(params), textures_(textures), table_(profile_table(params)),
+      profile_(std::make_unique<sss::ProfileRGB>(make_profile(params, medium_at(params), table_))) {
+  const bool disk = method_ == Method::Disk || method_ == Method::DiskSingleAxis;
+  if (params.textured() && !disk)
+    throw std::invalid_argument(fmt::format(
+        "textured parameters need method \"disk\", \"disk-single-axis\" or \"randomwalk\": \"{}\" tabulates "
+        "its probes once per material",
+        to_string(method_)));
+  if (disk) {
+    disk_ = std::make_unique<sss::DiskProbeSampler>(*profile_, channel_weights(*profile_), axes(method_));
   } else {
     line_tables_ = std::make_unique<sss::SphereLineTablesRGB>(*profile_);
-    lines_ = std::make_unique<sss::SphereLineSampler>(*line_tables_, weights);
+    lines_ = std::make_unique<sss::SphereLineSampler>(*line_tables_, channel_weights(*profile_));
   }
 }
 
 double ProbeMethod::max_radius() const { return disk_ ? disk_->max_radius() : lines_->max_radius(); }
 
+bool ProbeMethod::sample_disk(const sss::ProfileRGB& profile, const sss::DiskProbeSampler& disk,
+                              const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
+  const sss::ProbeFrame frame = sss::ProbeFrame::around(to_d(entry.hit.p), to_d(entry.hit.ng));
+  const float u_axis = sampler.get1d(), u_strategy = sampler.get1d();
+  const Vec2 u_disk = sampler.get2d();  // radius and angle on the disk, stratified together
+  sss::DiskProbeSample s = disk.sample(frame, u_axis, u_strategy, u_disk.x, u_disk.y);
+  return pick_probe_hit(profile, entry, s.segment, sampler,
+                        [&](const SurfaceHit& h) { return disk.pdf_area(frame, to_d(h.p), to_d(h.ng)); }, out);
+}
+
 bool ProbeMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
   const Vec3d p = to_d(entry.hit.p);
-  if (disk_) {
-    sss::ProbeFrame frame = sss::ProbeFrame::around(p, to_d(entry.hit.ng));
-    const float u_axis = sampler.get1d(), u_strategy = sampler.get1d();
-    const Vec2 u_disk = sampler.get2d();  // radius and angle on the disk, stratified together
-    sss::DiskProbeSample s = disk_->sample(frame, u_axis, u_strategy, u_disk.x, u_disk.y);
-    return pick_probe_hit(*profile_, entry, s.segment, sampler,
-                          [&](const SurfaceHit& h) { return disk_->pdf_area(frame, to_d(h.p), to_d(h.ng)); }, out);
+  if (disk_ && params_.textured()) {
+    // The entry point's own parameters.
+    const sss::ProfileRGB profile = make_profile(params_, medium_at(params_, textures_, entry.hit.uv), table_);
+    const sss::DiskProbeSampler disk(profile, channel_weights(profile), axes(method_));
+    return sample_disk(profile, disk, entry, sampler, out);
   }
+  if (disk_) return sample_disk(*profile_, *disk_, entry, sampler, out);
   if (method_ == Method::SphereLines) {
     const float u_channel = sampler.get1d(), u_radius = sampler.get1d();
     const Vec2 u_first = sampler.get2d(), u_second = sampler.get2d();

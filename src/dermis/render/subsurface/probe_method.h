@@ -7,18 +7,26 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
+#include "dermis/materials/texture.h"
 #include "dermis/scene/subsurface_params.h"
 #include "dermis/render/subsurface/subsurface_exit.h"
 #include "dermis/sss/probe/disk_probe.h"
 #include "dermis/sss/probe/sphere_lines.h"
 #include "dermis/sss/profiles/profile.h"
+#include "dermis/sss/profiles/tabulated.h"
 
 namespace dermis {
 
+// Textured parameters (disk, disk-single-axis): the profile and its probe sampler are
+// made at each entry point from the parameters there (on the stack, no allocation),
+// and the exit is weighted with that profile.
 class ProbeMethod {
  public:
-  explicit ProbeMethod(const SubsurfaceParams& params);
+  // textures: the scene's (outlives the method); throws std::invalid_argument for
+  // textured parameters with the sphere-line probes, whose tables are per material.
+  ProbeMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures);
 
   bool sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const;
 
@@ -30,8 +38,14 @@ class ProbeMethod {
 
  private:
   using Method = SubsurfaceParams::Method;
+  bool sample_disk(const sss::ProfileRGB& profile, const sss::DiskProbeSampler& disk, const SubsurfaceEntry& entry,
+                   Sampler& sampler, SubsurfaceExit& out) const;
+
   Method method_;
-  std::unique_ptr<sss::ProfileRGB> profile_;
+  SubsurfaceParams params_;
+  const std::vector<Texture>* textures_;
+  std::shared_ptr<const sss::ProfileTable> table_;  // the tabulated profile's
+  std::unique_ptr<sss::ProfileRGB> profile_;        // the constant parameters' profile
   std::unique_ptr<sss::DiskProbeSampler> disk_;                // disk, disk-single-axis
   std::unique_ptr<sss::SphereLineTablesRGB> line_tables_;      // sphere-lines(-retry)
   std::unique_ptr<sss::SphereLineSampler> lines_;

@@ -3,21 +3,26 @@
 #include <cmath>
 #include <memory>
 
-#include "dermis/render/subsurface/coefficients.h"
-#include "dermis/sss/profiles/tabulated.h"
 
 namespace dermis {
 
-sss::ProfileRGB make_profile(const SubsurfaceParams& p) {
+std::shared_ptr<const sss::ProfileTable> profile_table(const SubsurfaceParams& p) {
+  // The Cycles page's table: the (A, r/l) reparameterised dipole, at this eta.
+  if (p.profile != SubsurfaceParams::Profile::Tabulated) return nullptr;
+  return std::make_shared<const sss::ProfileTable>(sss::dipole_family(p.eta));
+}
+
+sss::ProfileRGB make_profile(const SubsurfaceParams& p, const MediumAt& at,
+                             const std::shared_ptr<const sss::ProfileTable>& table) {
   using Profile = SubsurfaceParams::Profile;
-  const auto [A, l] = albedo_and_mfp(p);
+  const auto [A, l] = albedo_and_mfp(at, p.g);
   switch (p.profile) {
     case Profile::Burley:
       return sss::make_burley_rgb(A, l, sss::BurleyParameterisation::VolumeMeanFreePath);
     case Profile::BurleyDiffuseMfp:
       return sss::make_burley_rgb(A, l, sss::BurleyParameterisation::DiffuseMeanFreePath);
     case Profile::Dipole:
-      if (p.sigma_a) return sss::make_dipole_rgb_from_coefficients(*p.sigma_a, *p.sigma_s, p.g, p.eta);
+      if (at.sigma_a) return sss::make_dipole_rgb_from_coefficients(*at.sigma_a, *at.sigma_s, p.g, p.eta);
       return sss::make_dipole_rgb(A, l, p.eta);
     case Profile::Gaussian:
     case Profile::Cubic: {
@@ -35,12 +40,9 @@ sss::ProfileRGB make_profile(const SubsurfaceParams& p) {
       // d'Eon & Luebke's variances are in mm; `scale` multiplies coefficients, i.e.
       // divides lengths, so scene units per mm = 1 / scale. Weights times the albedo
       // when reflectance is given.
-      return sss::make_skin_rgb(1.0 / p.scale, p.reflectance ? *p.reflectance : RGB(1.0f));
-    case Profile::Tabulated: {
-      // The Cycles page's table: the (A, r/l) reparameterised dipole, at this eta.
-      auto table = std::make_shared<const sss::ProfileTable>(sss::dipole_family(p.eta));
+      return sss::make_skin_rgb(1.0 / p.scale, at.reflectance ? *at.reflectance : RGB(1.0f));
+    case Profile::Tabulated:
       return sss::make_tabulated_rgb(table, A, l);
-    }
   }
   return sss::make_burley_rgb(A, l);
 }

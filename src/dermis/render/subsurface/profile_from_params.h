@@ -2,11 +2,25 @@
 // the methods built on profiles (probes, the point cloud).
 #pragma once
 
+#include <memory>
+
+#include "dermis/render/subsurface/coefficients.h"
 #include "dermis/scene/subsurface_params.h"
 #include "dermis/sss/profiles/profile.h"
+#include "dermis/sss/profiles/tabulated.h"
 
 namespace dermis {
 
-sss::ProfileRGB make_profile(const SubsurfaceParams& params);
+// The table of the `tabulated` profile (the dipole family at the material's eta), null
+// for the other profiles. Built once per material: per-point profiles share it.
+std::shared_ptr<const sss::ProfileTable> profile_table(const SubsurfaceParams& params);
+
+// The profile for the medium `at` (the material's constants, or its textures at one
+// point); `table` from profile_table(). Allocates nothing for the closed-form profiles.
+sss::ProfileRGB make_profile(const SubsurfaceParams& params, const MediumAt& at,
+                             const std::shared_ptr<const sss::ProfileTable>& table);
+inline sss::ProfileRGB make_profile(const SubsurfaceParams& params) {
+  return make_profile(params, medium_at(params), profile_table(params));
+}
 
 }  // namespace dermis

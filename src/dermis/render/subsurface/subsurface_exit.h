@@ -30,12 +30,17 @@ struct SubsurfaceExit {
 // the light arriving at the entry point (the point cloud's local disk) calls it.
 using TransmittedIrradiance = FunctionRef<RGB(Vec3 p, Vec3 n, float eta, Sampler& sampler)>;
 
+// The albedo of a surface of another object met inside this one (ObjectTracer::
+// first_boundary): light there is reflected diffusely with it (a black surface absorbs).
+using InteriorAlbedo = FunctionRef<RGB(const SurfaceHit& hit)>;
+
 // Everything an exit sampler may use besides its own parameters.
 struct SubsurfaceEntry {
   const SurfaceHit& hit;  // where the path entered; hit.ng points out of the object
   Vec3 wo;                // toward where the path came from, on the side of hit.ng
   const ObjectTracer& tracer;
   TransmittedIrradiance irradiance;
+  InteriorAlbedo interior_albedo;
 };
 
 }  // namespace dermis

@@ -8,17 +8,20 @@ namespace dermis {
 
 namespace {
 
-SubsurfaceMethod make_method(const SubsurfaceParams& p) {
+SubsurfaceMethod make_method(const SubsurfaceParams& p, const std::vector<Texture>* textures) {
   using Method = SubsurfaceParams::Method;
   switch (p.method) {
     case Method::Disk:
     case Method::DiskSingleAxis:
     case Method::SphereLines:
     case Method::SphereLinesRetry:
-      return SubsurfaceMethod(std::in_place_type<ProbeMethod>, p);
+      return SubsurfaceMethod(std::in_place_type<ProbeMethod>, p, textures);
     case Method::RandomWalk:
-      return SubsurfaceMethod(std::in_place_type<WalkMethod>, p, resolve_coefficients(p));
+      return SubsurfaceMethod(std::in_place_type<WalkMethod>, p, textures);
     case Method::PointCloud:
+      if (p.textured())
+        throw std::invalid_argument("textured parameters are not supported by method \"pointcloud\" yet (its cloud "
+                                    "holds one profile); use \"disk\" or \"randomwalk\"");
       return SubsurfaceMethod(std::in_place_type<PointCloudMethod>, p);
     case Method::Volumetric:
       break;
@@ -28,8 +31,9 @@ SubsurfaceMethod make_method(const SubsurfaceParams& p) {
 
 }  // namespace
 
-SubsurfaceMaterial make_subsurface_material(const SubsurfaceParams& params) {
-  SubsurfaceMaterial m{params, params.eta, params.eta, subsurface_exit_normalization(params.eta), make_method(params)};
+SubsurfaceMaterial make_subsurface_material(const SubsurfaceParams& params, const std::vector<Texture>* textures) {
+  SubsurfaceMaterial m{params, params.eta, params.eta, subsurface_exit_normalization(params.eta),
+                       make_method(params, textures)};
   if (params.method == SubsurfaceParams::Method::RandomWalk && params.boundary == SubsurfaceParams::Boundary::Matched)
     m.entry_eta = 1;
   return m;

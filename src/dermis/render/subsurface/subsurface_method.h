@@ -35,7 +35,9 @@ struct SubsurfaceMaterial {
 // Builds the method of a material (profiles, probe tables; for the walk, the albedo
 // inversion when the user gave reflectance + mfp, which may take seconds the first
 // time). Throws std::invalid_argument for parameters a method cannot use.
-SubsurfaceMaterial make_subsurface_material(const SubsurfaceParams& params);
+// textures: the scene's, which textured parameters read (must outlive the material).
+SubsurfaceMaterial make_subsurface_material(const SubsurfaceParams& params,
+                                            const std::vector<Texture>* textures = nullptr);
 
 inline bool sample_subsurface_exit(const SubsurfaceMaterial& m, const SubsurfaceEntry& entry, Sampler& sampler,
                                    SubsurfaceExit& out) {

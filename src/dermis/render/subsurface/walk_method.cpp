@@ -1,5 +1,9 @@
 #include "dermis/render/subsurface/walk_method.h"
 
+#include <cmath>
+
+#include "dermis/core/frame.h"
+#include "dermis/core/warp.h"
 #include "dermis/materials/fresnel.h"
 
 namespace dermis {
@@ -17,20 +21,38 @@ sss::WalkSampling walk_sampling(SubsurfaceParams::WalkSampling s) {
 
 constexpr int kMaxInternalReflections = 256;
 
+sss::WalkMedium walk_medium(const Coefficients& k, float g) {
+  sss::WalkMedium m;
+  m.sigma_s = k.sigma_s;
+  m.sigma_t = k.sigma_a + k.sigma_s;
+  m.g = g;
+  return m;
+}
+
 }  // namespace
 
-WalkMethod::WalkMethod(const SubsurfaceParams& params, const Coefficients& k)
-    : boundary_(params.boundary), eta_(params.eta) {
-  medium_.sigma_s = k.sigma_s;
-  medium_.sigma_t = k.sigma_a + k.sigma_s;
-  medium_.g = params.g;
+WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures)
+    : params_(params), textures_(textures), table_(albedo_inversion_for(params)), boundary_(params.boundary),
+      eta_(params.eta) {
+  medium_ = walk_medium(coefficients_from(medium_at(params), table_), params.g);
   settings_.sampling = walk_sampling(params.walk_sampling);
   settings_.backward_guiding = params.backward_guiding;
   step_ = std::make_unique<sss::MixtureWalkStep<3>>(sss::make_walk_step(medium_, settings_));
 }
 
-// Entry and exit 1/eta^2 radiance factors cancel and are omitted.
 bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
+  if (!params_.textured()) return walk(entry, *step_, sampler, out);
+  // The entry point's own medium.
+  const sss::WalkMedium m =
+      walk_medium(coefficients_from(medium_at(params_, textures_, entry.hit.uv), table_), params_.g);
+  for (int c = 0; c < 3; ++c)
+    if (!(m.sigma_t[c] > 0) || !std::isfinite(m.sigma_t[c])) return false;  // a texture without extinction
+  return walk(entry, sss::make_walk_step(m, settings_), sampler, out);
+}
+
+// Entry and exit 1/eta^2 radiance factors cancel and are omitted.
+bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3>& step, Sampler& sampler,
+                      SubsurfaceExit& out) const {
   using Boundary = SubsurfaceParams::Boundary;
   const SurfaceHit& in = entry.hit;
   Vec3 dir;
@@ -42,27 +64,40 @@ bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Sub
     dir = *t;
   }
   Vec3 start = in.p, start_n = in.ng;
+  SurfaceHit last;  // the boundary the latest flight was traced to: where a walk ends
   auto tracer = [&](Vec3 o, Vec3 d) {
     sss::BoundaryHit b;
     Ray r{o, d};
     if (o == start) r.o = offset_ray_origin(start, start_n, d);  // leave the surface we stand on
-    SurfaceHit h;
-    if (!entry.tracer.first_hit(r, h)) return b;
+    if (!entry.tracer.first_boundary(r, last)) return b;
     b.hit = true;
-    b.p = h.p;
-    b.n = h.ng;
-    b.t = length(h.p - o);
+    b.p = last.p;
+    b.n = last.ng;
+    b.t = length(last.p - o);
     return b;
   };
   const sss::WalkGuide guide = sss::make_walk_guide(settings_, in.p, in.ng, tracer);
   RGB weight(1);
   for (int reflections = 0; reflections < kMaxInternalReflections; ++reflections) {
     sss::WalkResult res;
-    if (!sss::random_walk(*step_, settings_, guide, start, dir, sampler, tracer, res, weight)) {
+    if (!sss::random_walk(step, settings_, guide, start, dir, sampler, tracer, res, weight)) {
       out.truncated = res.truncated;
       return false;
     }
     weight = res.weight;  // includes what the earlier segments carried
+    if (!entry.tracer.contains(last)) {
+      // An interior boundary (another object inside this one): diffuse reflection back
+      // into the medium with its albedo, as the volumetric path tracer does there
+      // (cosine-sampled: the weight is the albedo); the walk goes on.
+      weight *= entry.interior_albedo(last);
+      if (weight.is_black()) return false;
+      const Vec3 n = dot(res.exit_dir_in_medium, last.ng) < 0 ? last.ng : -last.ng;
+      const float u1 = sampler.uniform(), u2 = sampler.uniform();
+      dir = Frame(n).to_world(sample_cosine_hemisphere({u1, u2}));
+      start = res.exit_p;
+      start_n = n;
+      continue;
+    }
     out.hit = in;
     out.hit.p = res.exit_p;
     out.hit.ng = out.hit.ns = res.exit_n;

@@ -3,30 +3,43 @@
 // it crosses the boundary. The boundary decides how light leaves: `diffuse` through the
 // exit lobe Sw at the first crossing, `matched` straight through it, `dielectric` by
 // Fresnel (internal reflection continues the walk, refraction leaves specularly).
+// Textured parameters: the medium of a walk is the one at its entry point (its
+// coefficients from the exact albedo inversion's table: a lookup, no simulation), kept
+// for the whole walk, as in Cycles: a texture varying under the surface is blurred
+// over the walk's extent, not followed.
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "dermis/scene/subsurface_params.h"
 #include "dermis/render/subsurface/coefficients.h"
 #include "dermis/render/subsurface/subsurface_exit.h"
+#include "dermis/sss/walk/albedo_inversion.h"
 #include "dermis/sss/walk/random_walk.h"
 
 namespace dermis {
 
 class WalkMethod {
  public:
-  // `k`: the coefficients per scene unit (coefficients.h resolve_coefficients).
-  WalkMethod(const SubsurfaceParams& params, const Coefficients& k);
+  // textures: the scene's (outlives the method). Builds the albedo-inversion table the
+  // parameters need (seconds the first time in a process; cached on disk).
+  WalkMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures);
 
   bool sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const;
 
   const sss::WalkMedium& medium() const { return medium_; }
 
  private:
+  bool walk(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3>& step, Sampler& sampler,
+            SubsurfaceExit& out) const;
+
+  SubsurfaceParams params_;
+  const std::vector<Texture>* textures_;
+  const sss::AlbedoInversion* table_;  // (reflectance, mfp) -> coefficients; null: given, or the fit
   SubsurfaceParams::Boundary boundary_;
   float eta_;
-  sss::WalkMedium medium_;
+  sss::WalkMedium medium_;  // the constant parameters' medium
   sss::WalkSettings settings_;
   std::unique_ptr<sss::MixtureWalkStep<3>> step_;
 };
