@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "dermis/core/frame.h"
 #include "dermis/core/warp.h"
@@ -259,8 +260,28 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         ray.tmax = kInf;
         continue;
       }
+      std::optional<Vec3> refracted;
+      const BSDF boundary = sm.entry_boundary(hit.ng);
       float F = fresnel_dielectric(cos_o, sm.entry_eta);
-      if (start.split_first_hit && start.from_camera && start.depth == 0 && depth == 1) {
+      if (boundary.is_rough()) {
+        // A rough boundary: the rough dielectric sampled. Reflection continues the path
+        // (no light sampling at rough glass: its emission counts in full); transmission
+        // enters the method along the sampled direction, the 1/eta^2 radiance factor
+        // omitted as for the smooth entry (the exit's cancels it).
+        const float u_lobe = sampler.get1d();
+        const auto bs = bsdf_sample(boundary, wo, u_lobe, sampler.get2d());
+        if (!bs) break;
+        if (!bs->transmission) {
+          beta *= bs->weight;
+          specular = true;
+          prev_p = hit.p;
+          ray = Ray{offset_ray_origin(hit.p, hit.ng, bs->wi), bs->wi};
+          if (!beta.is_finite() || beta.is_black()) break;
+          continue;
+        }
+        beta *= bs->weight * bs->eta_scale;
+        refracted = bs->wi;
+      } else if (start.split_first_hit && start.from_camera && start.depth == 0 && depth == 1) {
         // The camera's first hit is split: reflection and transmission are both followed,
         // weighted F and 1 - F (unbiased: one sample of each term of F L_r + (1 - F) L_t).
         // Chosen by Fresnel, a sharp highlight of a small light rests on the few per cent
@@ -296,7 +317,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         return m.type == Material::Type::Diffuse ? bsdf_at(m, sc.textures, h).albedo : RGB(0);
       };
       SubsurfaceExit ex;
-      const bool exited = sample_subsurface_exit(sm, {hit, wo, tracer, irradiance, interior_albedo}, sampler, ex);
+      const bool exited =
+          sample_subsurface_exit(sm, {hit, wo, tracer, irradiance, interior_albedo, refracted}, sampler, ex);
       sampler.set_dimension(after_exit);
       if (!exited) {
         if (ex.truncated) ++counters.truncated;

@@ -190,6 +190,8 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
     }
     sc->materials[i].type = Material::Type::Dielectric;
     sc->materials[i].eta = sp.eta;
+    sc->materials[i].alpha_x = roughness_to_alpha(sp.uroughness, sp.remap_roughness);
+    sc->materials[i].alpha_y = roughness_to_alpha(sp.vroughness, sp.remap_roughness);
     subsurface_medium[i] = int(sc->media.size());
     sc->volumetric_media.push_back({sp, subsurface_medium[i]});
     sc->media.push_back(HomogeneousMedium{});

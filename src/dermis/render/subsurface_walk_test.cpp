@@ -47,6 +47,22 @@ TEST(SubsurfaceRandomWalk, DielectricBoundaryEqualsAMediumInsideADielectric) {
   }
 }
 
+// A rough boundary (Trowbridge-Reitz, pbrt-v4's roughness): the walk enters through the
+// sampled rough dielectric and leaves or reflects internally at every boundary hit by
+// sampling it from inside; the same physics as the medium inside a rough dielectric.
+TEST(SubsurfaceRandomWalk, RoughDielectricBoundaryEqualsAMediumInsideARoughDielectric) {
+  const std::string rough = " \"float eta\" 1.4 \"float roughness\" 0.3";
+  std::string walk = std::string(kHeader) + "Material \"subsurface\" " + kCoefficients + rough +
+                     " \"string method\" \"randomwalk\" \"string boundary\" \"dielectric\"\nShape \"sphere\"\n";
+  std::string volume = std::string(kHeader) + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " + kCoefficients +
+                       "\nMediumInterface \"m\" \"\"\nMaterial \"dielectric\"" + rough + "\nShape \"sphere\"\n";
+  expect_same_picture(walk, volume, 96);
+  // And the volumetric method with the same parameters is that rough dielectric.
+  std::string volumetric = std::string(kHeader) + "Material \"subsurface\" " + kCoefficients + rough +
+                           " \"string method\" \"volumetric\"\nShape \"sphere\"\n";
+  expect_same_picture(volumetric, volume, 96);
+}
+
 // The default sampler (Owen-scrambled Sobol') changes the noise, never the mean: the
 // walk behind a dielectric (MIS sampling, internal reflections, exit lobe, NEE at the
 // exit) with 12 randomisations of 32 Sobol' samples against 256 independent samples.

@@ -65,10 +65,10 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"scale", "float", "1", "multiplies the coefficients, divides mfp"},
     {"eta", "float", "1.33", "index of refraction of the boundary, in [1, 3]"},
     {"g", "float", "0", "Henyey-Greenstein anisotropy, in (-1, 1)"},
-    {"roughness", "float", "0", "rough boundaries are not rendered yet: warned, rendered smooth"},
-    {"uroughness", "float", "0", "as roughness"},
-    {"vroughness", "float", "0", "as roughness"},
-    {"remaproughness", "bool", "true", "as roughness"},
+    {"roughness", "float", "0", "Trowbridge-Reitz roughness of the boundary (both tangent axes)"},
+    {"uroughness", "float", "0", "roughness along the first tangent (overrides roughness)"},
+    {"vroughness", "float", "0", "roughness along the second tangent (overrides roughness)"},
+    {"remaproughness", "bool", "true", "alpha = sqrt(roughness) as pbrt-v4; false: alpha = roughness"},
     {"method", "string", "randomwalk", "how light is carried from entry to exit"},
     {"profile", "string", "burley (dipole for pointcloud)", "the diffusion profile of the profile methods"},
     {"boundary", "string", "diffuse", "random walk: how light leaves (diffuse, dielectric, matched)"},
@@ -143,6 +143,7 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
   float scale = 1;
   const ParsedParam *sigma_a = nullptr, *sigma_s = nullptr, *reflectance = nullptr, *mfp = nullptr, *name = nullptr;
   bool profile_given = false;
+  std::optional<float> roughness, uroughness, vroughness;
   for (const ParsedParam& item : pl.items()) {
     const ParsedParam& p = item;
     const std::string& n = p.param.name;
@@ -186,10 +187,18 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
       s.group = p.param.strings[0];
     }
     else if (n == "roughness" || n == "uroughness" || n == "vroughness") {
-      if (p.type == "texture" || (!p.param.numbers.empty() && p.param.numbers[0] > 0))
-        diag.warn(p.param.loc, "subsurface: rough boundaries are not supported yet; rendered smooth");
-    } else {  // remaproughness, normalmap, displacement
-      if (n != "remaproughness") diag.warn(p.param.loc, fmt::format("subsurface: \"{}\" ignored", n));
+      if (p.type == "texture") {
+        diag.warn(p.param.loc, fmt::format("subsurface: textured \"{}\" is not supported; 0 used", n));
+        continue;
+      }
+      const float r = read_float(p);
+      if (r < 0) throw SceneError(p.value_loc, fmt::format("\"{}\" must be >= 0", n));
+      if (n == "roughness") roughness = r;
+      else (n == "uroughness" ? uroughness : vroughness) = r;
+    }
+    else if (n == "remaproughness") s.remap_roughness = read_bool(p);
+    else {  // normalmap, displacement
+      diag.warn(p.param.loc, fmt::format("subsurface: \"{}\" ignored", n));
     }
   }
   // A spectrum parameter: its value, or its texture (the value is then a stand-in).
@@ -198,6 +207,9 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
     texture = texture_index_of(p);
     return stand_in;
   };
+  // pbrt-v4: "roughness" sets both axes, "uroughness" / "vroughness" override one each.
+  s.uroughness = uroughness.value_or(roughness.value_or(0));
+  s.vroughness = vroughness.value_or(roughness.value_or(0));
   if (scale <= 0) throw SceneError(loc, "subsurface: \"scale\" must be positive");
   s.scale = scale;
   if (s.eta < 1.0f || s.eta > 3.0f)

@@ -33,6 +33,11 @@ struct SubsurfaceParams {
   // number per material (e.g. the point spacing of a point cloud).
   int sigma_a_texture = -1, sigma_s_texture = -1, reflectance_texture = -1, mfp_texture = -1;
   float eta = 1.33f;
+  // The boundary's microfacet roughness (pbrt-v4's parameters; alpha = sqrt(r) when
+  // remapped): a rough dielectric at the entry of every method and at the exits of the
+  // walk's `dielectric` boundary.
+  float uroughness = 0, vroughness = 0;
+  bool remap_roughness = true;
   float g = 0;
   float scale = 1;  // as written (already applied to the coefficients and lengths above)
   Method method = Method::RandomWalk;

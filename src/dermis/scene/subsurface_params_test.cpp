@@ -40,6 +40,16 @@ TEST(SubsurfaceParams, ReadsCoefficientsScaleAndDermisOptions) {
   EXPECT_TRUE(params_of("Material \"subsurface\" \"bool backwardguiding\" true").backward_guiding);
 }
 
+TEST(SubsurfaceParams, RoughnessAsPbrtV4) {
+  SubsurfaceParams p = params_of("Material \"subsurface\" \"float roughness\" 0.2 \"float vroughness\" 0.05 "
+                                 "\"bool remaproughness\" false");
+  EXPECT_FLOAT_EQ(p.uroughness, 0.2f);  // roughness sets both, vroughness overrides one
+  EXPECT_FLOAT_EQ(p.vroughness, 0.05f);
+  EXPECT_FALSE(p.remap_roughness);
+  EXPECT_TRUE(params_of("Material \"subsurface\"").remap_roughness);
+  EXPECT_THROW(params_of("Material \"subsurface\" \"float roughness\" -0.1"), SceneError);
+}
+
 TEST(SubsurfaceParams, PresetNameUsesJensenTableTimesScale) {
   SubsurfaceParams p = params_of("Material \"subsurface\" \"string name\" \"Skin1\" \"float scale\" 0.5");
   ASSERT_TRUE(p.sigma_a);

@@ -3,6 +3,8 @@
 // produced it.
 #pragma once
 
+#include <optional>
+
 #include "dermis/core/function_ref.h"
 #include "dermis/core/rgb.h"
 #include "dermis/core/sampler.h"
@@ -41,6 +43,9 @@ struct SubsurfaceEntry {
   const ObjectTracer& tracer;
   TransmittedIrradiance irradiance;
   InteriorAlbedo interior_albedo;
+  // The direction the path took into the medium when the integrator sampled a rough
+  // entry; unset for a smooth one (the method refracts wo itself).
+  std::optional<Vec3> refracted = {};
 };
 
 }  // namespace dermis

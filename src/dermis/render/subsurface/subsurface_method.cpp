@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "dermis/materials/bsdf.h"
+#include "dermis/materials/microfacet.h"
 
 namespace dermis {
 
@@ -32,10 +33,14 @@ SubsurfaceMethod make_method(const SubsurfaceParams& p, const std::vector<Textur
 }  // namespace
 
 SubsurfaceMaterial make_subsurface_material(const SubsurfaceParams& params, const std::vector<Texture>* textures) {
-  SubsurfaceMaterial m{params, params.eta, params.eta, subsurface_exit_normalization(params.eta),
+  SubsurfaceMaterial m{params, params.eta, params.eta, subsurface_exit_normalization(params.eta), 0, 0,
                        make_method(params, textures)};
   if (params.method == SubsurfaceParams::Method::RandomWalk && params.boundary == SubsurfaceParams::Boundary::Matched)
     m.entry_eta = 1;
+  if (m.entry_eta != 1) {
+    m.alpha_x = roughness_to_alpha(params.uroughness, params.remap_roughness);
+    m.alpha_y = roughness_to_alpha(params.vroughness, params.remap_roughness);
+  }
   return m;
 }
 

@@ -15,6 +15,8 @@
 
 #include <variant>
 
+#include "dermis/materials/bsdf.h"
+
 #include "dermis/scene/subsurface_params.h"
 #include "dermis/render/subsurface/point_cloud_method.h"
 #include "dermis/render/subsurface/probe_method.h"
@@ -29,7 +31,19 @@ struct SubsurfaceMaterial {
   float entry_eta = 1.33f;  // index the entry's Fresnel reflection sees (1 for a matched walk)
   float exit_eta = 1.33f;   // index of the exit lobe Sw
   float sw_norm = 1;        // c of the exit lobe Sw (bsdf.h)
+  float alpha_x = 0, alpha_y = 0;  // the boundary's Trowbridge-Reitz alphas (0: smooth)
   SubsurfaceMethod method;
+
+  // The entry as a BSDF: a smooth or rough dielectric about the entry's normal n.
+  BSDF entry_boundary(Vec3 n) const {
+    BSDF b;
+    b.type = BSDF::Type::Dielectric;
+    b.n = n;
+    b.eta = entry_eta;
+    b.alpha_x = alpha_x;
+    b.alpha_y = alpha_y;
+    return b;
+  }
 };
 
 // Builds the method of a material (profiles, probe tables; for the walk, the albedo

@@ -4,7 +4,9 @@
 
 #include "dermis/core/frame.h"
 #include "dermis/core/warp.h"
+#include "dermis/materials/bsdf.h"
 #include "dermis/materials/fresnel.h"
+#include "dermis/materials/microfacet.h"
 
 namespace dermis {
 
@@ -34,6 +36,11 @@ sss::WalkMedium walk_medium(const Coefficients& k, float g) {
 WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures)
     : params_(params), textures_(textures), table_(albedo_inversion_for(params)), boundary_(params.boundary),
       eta_(params.eta) {
+  if (boundary_ == SubsurfaceParams::Boundary::Dielectric) {
+    alpha_x_ = roughness_to_alpha(params.uroughness, params.remap_roughness);
+    alpha_y_ = roughness_to_alpha(params.vroughness, params.remap_roughness);
+    if (std::max(alpha_x_, alpha_y_) < kSmoothAlpha) alpha_x_ = alpha_y_ = 0;
+  }
   medium_ = walk_medium(coefficients_from(medium_at(params), table_), params.g);
   settings_.sampling = walk_sampling(params.walk_sampling);
   settings_.backward_guiding = params.backward_guiding;
@@ -56,7 +63,9 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3
   using Boundary = SubsurfaceParams::Boundary;
   const SurfaceHit& in = entry.hit;
   Vec3 dir;
-  if (boundary_ == Boundary::Matched) {
+  if (entry.refracted) {
+    dir = *entry.refracted;  // through a rough entry
+  } else if (boundary_ == Boundary::Matched) {
     dir = -entry.wo;
   } else {
     auto t = refract(entry.wo, in.ng, eta_);
@@ -111,6 +120,30 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3
     if (boundary_ == Boundary::Matched) {
       out.direction = d;
       return true;
+    }
+    if (alpha_x_ > 0 || alpha_y_ > 0) {
+      // A rough boundary: the rough dielectric seen from inside, sampled; its 1/eta^2
+      // radiance factor omitted as at the entry.
+      BSDF b;
+      b.type = BSDF::Type::Dielectric;
+      b.n = res.exit_n;
+      b.eta = eta_;
+      b.alpha_x = alpha_x_;
+      b.alpha_y = alpha_y_;
+      const float u_lobe = sampler.uniform(), u1 = sampler.uniform(), u2 = sampler.uniform();
+      const auto bs = bsdf_sample(b, -d, u_lobe, {u1, u2});
+      if (!bs) return false;  // a microfacet sample lost below the surface
+      weight *= bs->weight * bs->eta_scale;
+      if (!weight.is_finite() || weight.is_black()) return false;
+      if (bs->transmission) {
+        out.weight = weight;
+        out.direction = bs->wi;
+        return true;
+      }
+      dir = bs->wi;
+      start = res.exit_p;
+      start_n = res.exit_n;
+      continue;
     }
     const float F = fresnel_dielectric(dot(-d, res.exit_n), eta_);
     if (sampler.uniform() >= F) {

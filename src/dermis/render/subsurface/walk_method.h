@@ -39,6 +39,7 @@ class WalkMethod {
   const sss::AlbedoInversion* table_;  // (reflectance, mfp) -> coefficients; null: given, or the fit
   SubsurfaceParams::Boundary boundary_;
   float eta_;
+  float alpha_x_ = 0, alpha_y_ = 0;  // a rough `dielectric` boundary's exits (0: smooth)
   sss::WalkMedium medium_;  // the constant parameters' medium
   sss::WalkSettings settings_;
   std::unique_ptr<sss::MixtureWalkStep<3>> step_;
