@@ -8,7 +8,7 @@ packages=(
   build-essential cmake pkg-config
   libembree-dev libtbb-dev
   libopenimageio-dev openimageio-tools
-  libassimp-dev
+  libassimp-dev zlib1g-dev
   libcli11-dev libfmt-dev libpcg-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-matplotlib

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "dermis/render/image.h"
+#include "dermis/scene/scene_test_util.h"
 
 namespace {
 
@@ -98,6 +99,19 @@ TEST_F(Cli, MissingSceneIsAnErrorWithStatus2) {
   CommandResult r = run_dermis("render " + path("nope.pbrt") + " -o " + path("o.exr"));
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("nope.pbrt"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("o.exr")));
+}
+
+TEST_F(Cli, GzipSceneRendersAndCorruptGzipExitsWithStatus2) {
+  const std::string z = dermis::test::gzip(kSmallScene);
+  CommandResult ok = run_dermis("render " + write("s.pbrt.gz", z) + " -q --no-png -o " + path("ok.exr"));
+  EXPECT_EQ(ok.status, 0) << ok.output;
+  EXPECT_TRUE(fs::exists(path("ok.exr")));
+  std::string cut = write("cut.pbrt.gz", z.substr(0, z.size() / 2));
+  CommandResult r = run_dermis("render " + cut + " -q -o " + path("o.exr"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find(cut + "': gzip data is corrupt/truncated (zlib: unexpected end of file)"), std::string::npos)
+      << r.output;
   EXPECT_FALSE(fs::exists(path("o.exr")));
 }
 

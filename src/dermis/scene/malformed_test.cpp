@@ -159,6 +159,39 @@ TEST(MalformedScenes, BrokenPlyFileNamesTheFileAndTheReason) {
                      "ends before all elements were read", dir.path());
 }
 
+TEST(MalformedScenes, BrokenGzipFilesNameTheFile) {
+  test::TempDir dir;
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                          "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                          "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const std::string zply = test::gzip(ply), zpbrt = test::gzip("Shape \"sphere\"\n");
+  std::string corrupt_ply = zply;
+  corrupt_ply[corrupt_ply.size() - 6] ^= 0x55;  // the trailer's CRC-32
+  dir.write("cut.ply.gz", zply.substr(0, zply.size() / 2));
+  dir.write("bad.ply.gz", corrupt_ply);
+  dir.write("cut.pbrt.gz", zpbrt.substr(0, zpbrt.size() - 3));
+  const std::string d = dir.path() + "/";
+  expect_scene_error("WorldBegin\nShape \"plymesh\" \"string filename\" \"cut.ply.gz\"\n", 2, 1,
+                     "could not read mesh file '" + d + "cut.ply.gz': gzip data is corrupt/truncated "
+                     "(zlib: unexpected end of file)", dir.path());
+  expect_scene_error("WorldBegin\nShape \"plymesh\" \"string filename\" \"bad.ply.gz\"\n", 2, 1,
+                     "could not read mesh file '" + d + "bad.ply.gz': gzip data is corrupt/truncated "
+                     "(zlib: incorrect data check)", dir.path());
+  expect_scene_error("WorldBegin\n  Include \"cut.pbrt.gz\"\n", 2, 11,
+                     "could not read included file '" + d + "cut.pbrt.gz': gzip data is corrupt/truncated "
+                     "(zlib: unexpected end of file)", dir.path());
+  std::string main = dir.write("main.pbrt.gz", zpbrt.substr(0, 12));
+  try {
+    parse_scene_file(main);
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("could not read scene file '" + main +
+                                         "': gzip data is corrupt/truncated (zlib: unexpected end of file)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(MalformedScenes, NanInPlyFileIsRejected) {
   test::TempDir dir;
   dir.write("nan.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"

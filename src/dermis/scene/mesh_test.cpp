@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 
@@ -185,6 +186,45 @@ TEST(ShapePly, IgeaBinaryWithTriangleStrips) {
   size_t repeated = 0;
   for (const auto& [edge, count] : directed) repeated += count > 1;
   EXPECT_LT(double(repeated), 1e-3 * double(directed.size())) << repeated << " directed edges repeated";
+}
+
+void expect_same_mesh(const TriangleMeshDesc& a, const TriangleMeshDesc& b) {
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_EQ(a.normals, b.normals);
+  ASSERT_EQ(a.uvs.size(), b.uvs.size());
+  for (size_t i = 0; i < a.uvs.size(); ++i) {
+    EXPECT_EQ(a.uvs[i].x, b.uvs[i].x) << "uv " << i;
+    EXPECT_EQ(a.uvs[i].y, b.uvs[i].y) << "uv " << i;
+  }
+  EXPECT_EQ(a.indices, b.indices);
+}
+
+TEST(ShapePly, GzipAsciiAndBinaryReadAsThePlainFile) {
+  test::TempDir dir;
+  const std::string ascii =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float nx\nproperty float ny\nproperty float nz\nproperty float u\nproperty float v\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n1 1 0 0 0 1 1 1\n0 1 0 0 0 1 0 1\n4 0 1 2 3\n";
+  std::string binary;
+  {
+    std::ifstream in(std::string(DERMIS_SOURCE_DIR) + "/scenes/meshes/igea.ply", std::ios::binary);
+    binary.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    ASSERT_GT(binary.size(), 1000000u) << "scenes/meshes/igea.ply";
+  }
+  for (const auto& [name, ply] : {std::pair<std::string, std::string>{"ascii", ascii}, {"binary", binary}}) {
+    SCOPED_TRACE(name);
+    TriangleMeshDesc plain = read_ply(dir.write(name + ".ply", ply));
+    ASSERT_FALSE(plain.indices.empty());
+    const std::string z = test::gzip(ply, 1);
+    expect_same_mesh(read_ply(dir.write(name + ".ply.gz", z)), plain);
+    // Detected by the magic, not the extension.
+    expect_same_mesh(read_ply(dir.write(name + "-gz.ply", z)), plain);
+    // Through the scene parser.
+    SceneDesc s = parse_world("Shape \"plymesh\" \"string filename\" \"" + name + ".ply.gz\"\n", dir.path());
+    ASSERT_EQ(s.shapes.size(), 1u);
+    expect_same_mesh(s.shapes[0].mesh, plain);
+  }
 }
 
 TEST(ShapeObj, AssimpKeepsWindingAndMergesMeshes) {

@@ -1,17 +1,15 @@
 #include "dermis/scene/parser.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include <cmath>
 
+#include "dermis/scene/gzip_file.h"
 #include "dermis/scene/scene_parser.h"
 
 namespace dermis {
@@ -28,19 +26,14 @@ std::string resolve_path(const std::string& file, const std::string& dir) {
 
 namespace {
 
+// The file's text (inflated when it is gzip data); on failure, empty with `why` set.
 std::string read_text(const std::string& path, std::string& why) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    why = std::strerror(errno);
+  try {
+    return read_file_contents(path);
+  } catch (const FileReadError& e) {
+    why = e.reason();
     return {};
   }
-  if (fs::is_directory(path)) {
-    why = "it is a directory";
-    return {};
-  }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 std::string describe(const Token* t) {

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "dermis/scene/gzip_file.h"
 #include "dermis/scene/mesh_import.h"
 #include "dermis/scene/ply_reader.h"
 #include "dermis/scene/scene_parser.h"
@@ -78,8 +79,8 @@ void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir)
     s_.diagnostics.warn(loc, "area lights are not supported on instanced shapes (as in pbrt-v4); the shape is not emissive");
   }
 
-  auto mesh_error = [&](const std::string& file, const std::exception& e) {
-    return SceneError(loc, fmt::format("Shape \"{}\": could not read mesh file '{}': {}", type, file, e.what()));
+  auto mesh_error = [&](const std::string& file, const std::string& why) {
+    return SceneError(loc, fmt::format("Shape \"{}\": could not read mesh file '{}': {}", type, file, why));
   };
 
   if (type == "sphere") {
@@ -143,8 +144,10 @@ void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir)
       }
     } catch (const SceneError&) {
       throw;
+    } catch (const FileReadError& e) {
+      throw mesh_error(file, e.reason());  // the message names the file already
     } catch (const std::exception& e) {
-      throw mesh_error(file, e);
+      throw mesh_error(file, e.what());
     }
     if (type == "plymesh" && (pl.has("displacement") || pl.has("edgelength")))
       s_.diagnostics.warn(loc, "plymesh displacement is not supported (ignored)");

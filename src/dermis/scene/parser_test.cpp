@@ -249,6 +249,41 @@ TEST(ParserInclude, RelativeToTheIncludingFile) {
   EXPECT_EQ(s.base_directory, dir.path());
 }
 
+TEST(ParserInclude, GzipIncludeParsesLikeThePlainOne) {
+  test::TempDir dir;
+  const std::string inner = "Translate 0 1 0\n# a comment\nShape \"sphere\" \"float radius\" 7\nFoo\n";
+  dir.write("plain.pbrt", inner);
+  dir.write("sub/inner.pbrt.gz", test::gzip(inner));
+  SceneDesc plain = parse_scene_file(dir.write("a.pbrt", "WorldBegin\nInclude \"plain.pbrt\"\n"));
+  SceneDesc gz = parse_scene_file(dir.write("b.pbrt", "WorldBegin\nImport \"sub/inner.pbrt.gz\"\n"));
+  ASSERT_EQ(gz.shapes.size(), 1u);
+  ASSERT_EQ(plain.shapes.size(), 1u);
+  EXPECT_FLOAT_EQ(gz.shapes[0].radius, 7);
+  expect_matrix_near(gz.shapes[0].object_to_world.matrix(), plain.shapes[0].object_to_world.matrix());
+  // Locations point into the decompressed text of the included file.
+  EXPECT_EQ(gz.shapes[0].loc.file, dir.path() + "/sub/inner.pbrt.gz");
+  EXPECT_EQ(gz.shapes[0].loc.line, 3);
+  EXPECT_EQ(gz.shapes[0].loc.column, 1);
+  EXPECT_TRUE(has_warning(gz, dir.path() + "/sub/inner.pbrt.gz:4:1: warning:"));
+  // The main scene file may be compressed too.
+  SceneDesc main_gz = parse_scene_file(dir.write("c.pbrt.gz", test::gzip("WorldBegin\nInclude \"plain.pbrt\"\n")));
+  ASSERT_EQ(main_gz.shapes.size(), 1u);
+  EXPECT_FLOAT_EQ(main_gz.shapes[0].radius, 7);
+}
+
+TEST(ParserInclude, ErrorsInAGzipIncludePointIntoItsText) {
+  test::TempDir dir;
+  dir.write("inner.pbrt.gz", test::gzip("Shape \"sphere\"\n\n  Shape \"sphere\" \"float radius\" [ 1\n"));
+  try {
+    parse_scene_file(dir.write("main.pbrt", "WorldBegin\nInclude \"inner.pbrt.gz\"\n"));
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.loc().file, dir.path() + "/inner.pbrt.gz") << e.what();
+    EXPECT_EQ(e.loc().line, 3) << e.what();
+    EXPECT_GE(e.loc().column, 3) << e.what();
+  }
+}
+
 TEST(ParserInclude, StringBaseDirectory) {
   test::TempDir dir;
   dir.write("a.pbrt", "Shape \"sphere\"\n");

@@ -1,15 +1,16 @@
 #include "dermis/scene/ply_reader.h"
 
+#include <algorithm>
 #include <bit>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <vector>
 
 #include <fmt/format.h>
+
+#include "dermis/scene/gzip_file.h"
 
 namespace dermis {
 
@@ -58,7 +59,8 @@ struct Element {
 // Reads values one at a time from the body of the file, whatever its format.
 class BodyReader {
  public:
-  BodyReader(std::string data, Format format) : data_(std::move(data)), format_(format) {}
+  // The body is `data` from `start` on.
+  BodyReader(std::string data, size_t start, Format format) : data_(std::move(data)), format_(format), pos_(start) {}
 
   double read(ScalarType t) {
     if (format_ == Format::Ascii) return read_ascii();
@@ -102,21 +104,33 @@ class BodyReader {
 
   std::string data_;
   Format format_;
-  size_t pos_ = 0;
+  size_t pos_;
 };
 
-std::string read_header(std::istream& in, Format& format, std::vector<Element>& elements) {
+// The line of `data` that starts at `pos` (without its '\n'); `pos` moves past it. False at the end.
+bool next_line(const std::string& data, size_t& pos, std::string& line) {
+  if (pos >= data.size()) return false;
+  size_t nl = data.find('\n', pos);
+  if (nl == std::string::npos) nl = data.size();
+  line.assign(data, pos, nl - pos);
+  pos = std::min(nl + 1, data.size());
+  return true;
+}
+
+// Reads the header of `data`; returns where the body starts.
+size_t read_header(const std::string& data, Format& format, std::vector<Element>& elements) {
   std::string line;
-  if (!std::getline(in, line) || line.substr(0, 3) != "ply") throw std::runtime_error("not a PLY file (no 'ply' magic)");
+  size_t pos = 0;
+  if (!next_line(data, pos, line) || line.substr(0, 3) != "ply") throw std::runtime_error("not a PLY file (no 'ply' magic)");
   bool have_format = false;
-  while (std::getline(in, line)) {
+  while (next_line(data, pos, line)) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream ls(line);
     std::string kw;
     ls >> kw;
     if (kw == "end_header") {
       if (!have_format) throw std::runtime_error("header has no 'format' line");
-      return {};
+      return pos;
     }
     if (kw == "format") {
       std::string f;
@@ -165,13 +179,11 @@ uint32_t checked_index(double v, size_t nverts, const char* what, size_t which) 
 }  // namespace
 
 TriangleMeshDesc read_ply(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(std::strerror(errno));
+  std::string data = read_file_contents(path);
   Format format = Format::Ascii;
   std::vector<Element> elements;
-  read_header(in, format, elements);
-  std::string body((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  BodyReader reader(std::move(body), format);
+  size_t body = read_header(data, format, elements);
+  BodyReader reader(std::move(data), body, format);
 
   TriangleMeshDesc mesh;
   size_t nverts = 0;

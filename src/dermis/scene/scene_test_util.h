@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include "dermis/core/transform.h"
 #include "dermis/scene/parser.h"
@@ -36,6 +37,26 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+// `data` as one gzip member (RFC 1952), compressed with zlib at `level`.
+inline std::string gzip(const std::string& data, int level = Z_BEST_COMPRESSION) {
+  z_stream zs{};
+  // 16 + MAX_WBITS: write a gzip header and trailer rather than zlib's own.
+  if (deflateInit2(&zs, level, Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
+    ADD_FAILURE() << "deflateInit2 failed";
+    return {};
+  }
+  std::string out(deflateBound(&zs, uLong(data.size())) + 64, '\0');
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  zs.avail_in = uInt(data.size());
+  zs.next_out = reinterpret_cast<Bytef*>(out.data());
+  zs.avail_out = uInt(out.size());
+  int rc = deflate(&zs, Z_FINISH);
+  EXPECT_EQ(rc, Z_STREAM_END);
+  out.resize(zs.total_out);
+  deflateEnd(&zs);
+  return out;
+}
 
 inline SceneDesc parse_world(const std::string& body, const std::string& dir = ".") {
   return parse_scene_string("WorldBegin\n" + body, "test.pbrt", dir);
