@@ -1,9 +1,15 @@
-// A lat-long (equirectangular) environment map, importance-sampled by a
-// piecewise-constant 2D distribution over its pixels weighted by sin(theta)
-// (pbrt-v3 sec. 14.2.4, with the mapping below).
+// An image environment map, in pbrt-v4's equal-area octahedral mapping (Clarberg 2008,
+// "Fast Equal-Area Mapping of the (Hemi)Sphere using SIMD": a square image, every pixel
+// the same solid angle 4 pi / N) or the lat-long (equirectangular) mapping; importance-
+// sampled by a piecewise-constant 2D distribution over its pixels (pbrt-v3 sec. 14.2.4),
+// weighted by each pixel's solid angle.
 //
-// Mapping, in light space (z up): theta = acos(z), phi = atan2(y, x) in [0, 2 pi);
-// image column u = phi / (2 pi), row v = theta / pi (row 0 is the +z pole).
+// Mappings, in light space (z up), image uv in [0, 1]^2 with (0, 0) the top-left pixel:
+// - equal-area: (u', v') = (2u - 1, 2v - 1), r = 1 - |1 - |u'| - |v'||,
+//   z = sign(1 - |u'| - |v'|) (1 - r^2), phi = pi/4 ((|v'| - |u'|) / r + 1) in the
+//   quadrant of (u', v'): the centre is +z, the corners -z (Clarberg 2008, sec. 3).
+// - lat-long: theta = acos(z), phi = atan2(y, x) in [0, 2 pi); column u = phi / (2 pi),
+//   row v = theta / pi (row 0 is the +z pole).
 #pragma once
 
 #include <vector>
@@ -16,8 +22,12 @@ namespace dermis {
 
 class EnvironmentMap {
  public:
-  // pixels: width*height RGB, row-major, top row first (linear radiance).
-  EnvironmentMap(int width, int height, std::vector<float> pixels, const Transform& light_to_world, float scale);
+  enum class Mapping { EqualArea, LatLong };
+
+  // pixels: width*height RGB, row-major, top row first (linear radiance). EqualArea
+  // needs a square image (std::invalid_argument otherwise).
+  EnvironmentMap(int width, int height, std::vector<float> pixels, const Transform& light_to_world, float scale,
+                 Mapping mapping);
 
   // Radiance arriving from world direction w (pointing toward the environment).
   RGB eval(Vec3 w) const;
@@ -26,18 +36,30 @@ class EnvironmentMap {
   float pdf(Vec3 w) const;
   // Mean radiance over the sphere of directions (for light selection).
   float average_luminance() const { return average_; }
+  // Illuminance at a surface facing light-space +z: the integral of luminance x cos
+  // over the upper hemisphere (pbrt-v4's "illuminance" normalises it).
+  // Computed when asked (16 points per pixel).
+  float upper_hemisphere_illuminance() const;
+  Mapping mapping() const { return mapping_; }
 
   Vec2 direction_to_uv(Vec3 w_world) const;
   Vec3 uv_to_direction(Vec2 uv) const;
 
  private:
   RGB texel(Vec2 uv) const;
+  // Solid angle per unit uv area at uv (the Jacobian of the mapping).
+  float solid_angle_density(Vec2 uv) const;
   int width_, height_;
+  Mapping mapping_;
   std::vector<float> pixels_;
   Transform light_to_world_, world_to_light_;
   float scale_;
   Distribution2D distribution_;
   float average_ = 0;
 };
+
+// Clarberg 2008: the equal-area map of the unit square onto the unit sphere and back.
+Vec3 equal_area_square_to_sphere(Vec2 uv);
+Vec2 equal_area_sphere_to_square(Vec3 w);
 
 }  // namespace dermis

@@ -21,7 +21,7 @@ EnvironmentMap structured_map(const Transform& xf) {
       if (y < 2) v = 0;
       for (int c = 0; c < 3; ++c) px[3 * (std::size_t(y) * w + x) + c] = v * (1 + 0.1f * c);
     }
-  return EnvironmentMap(w, h, px, xf, 1.0f);
+  return EnvironmentMap(w, h, px, xf, 1.0f, EnvironmentMap::Mapping::LatLong);
 }
 
 TEST(EnvironmentMap, PdfIntegratesToOne) {

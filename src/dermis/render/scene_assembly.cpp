@@ -290,6 +290,9 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
       }
       case LightDesc::Type::Distant: {
         l.type = Light::Type::Distant;
+        // pbrt-v4: the illuminance on a surface facing the light is L's luminance.
+        if (d.illuminance >= 0 && d.spectrum.luminance() > 0)
+          l.emission = d.spectrum * (d.scale * d.illuminance / d.spectrum.luminance());
         Vec3 w = d.light_to_world.vector(d.from - d.to);
         if (length(w) == 0) throw SceneError(d.loc, "distant light: 'from' and 'to' coincide");
         l.direction = normalize(w);
@@ -304,9 +307,23 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
           } catch (const std::exception& ex) {
             throw SceneError(d.loc, ex.what());
           }
-          l.environment = std::make_shared<EnvironmentMap>(img.width, img.height, std::move(img.pixels),
-                                                           d.light_to_world, d.scale);
-          l.emission = RGB(d.scale);
+          const auto mapping = d.latlong ? EnvironmentMap::Mapping::LatLong : EnvironmentMap::Mapping::EqualArea;
+          float scale = d.scale;
+          try {
+            if (d.illuminance >= 0) {
+              // pbrt-v4: scaled so that a surface facing up (light-space +z) receives it.
+              const EnvironmentMap unit(img.width, img.height, img.pixels, d.light_to_world, 1, mapping);
+              if (unit.upper_hemisphere_illuminance() > 0) scale *= d.illuminance / unit.upper_hemisphere_illuminance();
+            }
+            l.environment = std::make_shared<EnvironmentMap>(img.width, img.height, std::move(img.pixels),
+                                                             d.light_to_world, scale, mapping);
+          } catch (const std::invalid_argument& ex) {
+            throw SceneError(d.loc, fmt::format("infinite light \"{}\": {}", d.filename, ex.what()));
+          }
+          l.emission = RGB(scale);
+        } else if (d.illuminance >= 0 && d.spectrum.luminance() > 0) {
+          // pbrt-v4: uniform radiance L gives the illuminance pi L on any surface.
+          l.emission = d.spectrum * (d.scale * d.illuminance / (kPi * d.spectrum.luminance()));
         }
         sc->infinite_lights.push_back(int(sc->lights.size()));
         break;

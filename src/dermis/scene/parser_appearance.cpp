@@ -1,5 +1,6 @@
 // Material, MakeNamedMaterial, NamedMaterial, Texture, LightSource, AreaLightSource,
 // MakeNamedMedium, MediumInterface.
+#include <cmath>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -299,7 +300,8 @@ void SceneParser::light_source(const Token& d, TokenStream& ts, const std::strin
   l.light_to_world = gs_.ctm;
   l.medium = gs_.outside_medium;
   for (const char* ignored : {"power", "illuminance"})
-    if (const ParsedParam* p = pl.find(ignored)) {
+    if (const ParsedParam* p = pl.find(ignored); p && !(std::string(ignored) == "illuminance" &&
+                                                        (type == "infinite" || type == "distant"))) {
       p->used = true;
       s_.diagnostics.warn(p->param.loc, fmt::format("\"{}\" ignored: Dermis uses the given radiance/intensity and "
                                                     "\"scale\" only",
@@ -326,15 +328,35 @@ void SceneParser::light_source(const Token& d, TokenStream& ts, const std::strin
     l.from = pl.get_vec3("from", {"point3"}).value_or(l.from);
     l.to = pl.get_vec3("to", {"point3"}).value_or(l.to);
     if (l.from == l.to) throw SceneError(loc, "distant light: \"from\" and \"to\" coincide");
+    if (const ParsedParam* p = pl.find("illuminance")) {
+      l.illuminance = pl.get_float("illuminance", -1);
+      if (!(l.illuminance >= 0) || !std::isfinite(l.illuminance))
+        throw SceneError(p->value_loc, "distant light \"illuminance\" must be finite and non-negative");
+    }
   } else if (type == "infinite") {
     l.type = LightDesc::Type::Infinite;
     if (pl.has("L") && pl.has("filename"))
       throw SceneError(pl.find("filename")->param.loc, "infinite light: give either \"L\" or \"filename\", not both");
     l.spectrum = rgb_param(pl, "L", RGB(1), s_.diagnostics);
     if (pl.has("filename")) l.filename = existing_file(pl, "filename", dir, "infinite light");
+    // pbrt-v4 reads the image in the equal-area octahedral mapping; Dermis also takes
+    // lat-long maps when asked ("string mapping" "latlong", not a pbrt-v4 parameter).
+    if (const ParsedParam* p = pl.find("mapping")) {
+      const std::string m = pl.get_string("mapping", "equalarea");
+      if (m != "equalarea" && m != "latlong")
+        throw SceneError(p->value_loc, fmt::format("infinite light \"mapping\" must be \"equalarea\" (pbrt-v4's) or "
+                                                   "\"latlong\", got \"{}\"", m));
+      l.latlong = m == "latlong";
+    }
+    if (const ParsedParam* p = pl.find("illuminance")) {
+      l.illuminance = pl.get_float("illuminance", -1);
+      if (!(l.illuminance >= 0) || !std::isfinite(l.illuminance))
+        throw SceneError(p->value_loc, "infinite light \"illuminance\" must be finite and non-negative");
+    }
     if (const ParsedParam* p = pl.find("portal")) {
       p->used = true;
-      s_.diagnostics.warn(p->param.loc, "infinite light \"portal\" ignored");
+      s_.diagnostics.warn(p->param.loc, "infinite light \"portal\" ignored (the map is importance-sampled over the "
+                                        "whole sphere: unbiased, noisier through a window)");
     }
   } else {
     s_.diagnostics.warn(loc, fmt::format("LightSource \"{}\" is not supported and is ignored", type));

@@ -161,7 +161,9 @@ struct LightDesc {
   Vec3 to{0, 0, 1};            // spot, distant (light space)
   float cone_angle = 30;       // spot, degrees
   float cone_delta = 5;        // spot, degrees
-  std::string filename;        // infinite: absolute path of a lat-long (equirectangular) image
+  std::string filename;        // infinite: absolute path of the image
+  bool latlong = false;        // infinite image: equirectangular ("string mapping" "latlong"), else equal-area
+  float illuminance = -1;      // infinite, distant: pbrt-v4's "illuminance" (normalises the light), -1: unset
   int medium = -1;             // medium the light sits in
   SourceLoc loc;
 };

@@ -1,0 +1,101 @@
+// pbrt-v4's equal-area octahedral environment maps (Clarberg 2008).
+#include "dermis/lights/environment_map.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dermis/core/rng.h"
+#include "support/chi_square.h"
+
+namespace dermis {
+namespace {
+
+TEST(EqualAreaMapping, RoundTripsAndKnowsItsLandmarks) {
+  // Centre +z, corners -z, edge midpoints on the equator along +-x, +-y.
+  EXPECT_NEAR(equal_area_square_to_sphere({0.5f, 0.5f}).z, 1, 1e-6);
+  EXPECT_NEAR(equal_area_square_to_sphere({0, 0}).z, -1, 1e-6);
+  EXPECT_NEAR(equal_area_square_to_sphere({1, 0.5f}).x, 1, 1e-6);
+  EXPECT_NEAR(equal_area_square_to_sphere({0.5f, 1}).y, 1, 1e-6);
+  Rng rng(3, 4);
+  for (int i = 0; i < 10000; ++i) {
+    const Vec2 uv{rng.uniform(), rng.uniform()};
+    const Vec3 w = equal_area_square_to_sphere(uv);
+    ASSERT_NEAR(length(w), 1, 1e-5);
+    const Vec2 back = equal_area_sphere_to_square(w);
+    ASSERT_NEAR(back.x, uv.x, 2e-4) << uv.x << " " << uv.y;
+    ASSERT_NEAR(back.y, uv.y, 2e-4) << uv.x << " " << uv.y;
+  }
+}
+
+// Equal area: uniform points of the square are uniform on the sphere. Binned by z in 16
+// equal-area bands and by octant-free azimuth in 16 sectors: chi-square.
+TEST(EqualAreaMapping, UniformSquareIsUniformSphere) {
+  const int bands = 16, sectors = 16, n = 200000;
+  std::vector<double> observed(bands * sectors, 0), expected(bands * sectors, double(n) / (bands * sectors));
+  Rng rng(5, 6);
+  for (int i = 0; i < n; ++i) {
+    const Vec3 w = equal_area_square_to_sphere({rng.uniform(), rng.uniform()});
+    double phi = std::atan2(w.y, w.x);
+    if (phi < 0) phi += 2 * kPiD;
+    const int b = std::clamp(int((w.z + 1) / 2 * bands), 0, bands - 1);
+    const int s = std::clamp(int(phi / (2 * kPiD) * sectors), 0, sectors - 1);
+    observed[b * sectors + s] += 1;
+  }
+  auto r = testing::chi_square(observed, expected);
+  EXPECT_GT(r.p_value, testing::kChiSquareAlpha) << "chi2 " << r.statistic << " dof " << r.dof;
+}
+
+EnvironmentMap square_map(const Transform& xf) {
+  const int s = 32;
+  std::vector<float> px(std::size_t(s) * s * 3);
+  for (int y = 0; y < s; ++y)
+    for (int x = 0; x < s; ++x) {
+      const float v = 0.2f + (std::abs(x - 20) < 3 && std::abs(y - 9) < 3 ? 40.0f : 0.0f) + (x < 4 ? 1.0f : 0.0f);
+      for (int c = 0; c < 3; ++c) px[3 * (std::size_t(y) * s + x) + c] = v * (1 + 0.1f * c);
+    }
+  return EnvironmentMap(s, s, px, xf, 1.0f, EnvironmentMap::Mapping::EqualArea);
+}
+
+TEST(EqualAreaEnvironmentMap, PdfIntegratesToOneAndSamplerMatchesIt) {
+  const Transform xf = Transform::rotate(30, {1, 0, 0});
+  EnvironmentMap env = square_map(xf);
+  // The pdf over the sphere, integrated in uv (dω = 4 π du dv), midpoint rule on a grid
+  // 4x finer than the texels.
+  const int g = 128;
+  double sum = 0;
+  for (int j = 0; j < g; ++j)
+    for (int i = 0; i < g; ++i) sum += env.pdf(env.uv_to_direction({(i + 0.5f) / g, (j + 0.5f) / g})) * 4 * kPi / (g * g);
+  EXPECT_NEAR(sum, 1.0, 1e-3);
+  // Samples binned per texel: a texel's probability is its luminance over the sum (every
+  // texel has the same solid angle).
+  const int s = 32, n = 300000;
+  std::vector<double> observed(s * s, 0), expected(s * s, 0);
+  Rng rng(7, 8);
+  for (int i = 0; i < n; ++i) {
+    float pdf;
+    const Vec3 dir = env.sample({rng.uniform(), rng.uniform()}, &pdf);
+    ASSERT_GT(pdf, 0);
+    const Vec2 uv = equal_area_sphere_to_square(normalize(xf.inverse().vector(dir)));
+    observed[std::clamp(int(uv.y * s), 0, s - 1) * s + std::clamp(int(uv.x * s), 0, s - 1)] += 1;
+  }
+  double total = 0;
+  for (int y = 0; y < s; ++y)
+    for (int x = 0; x < s; ++x)
+      total += expected[y * s + x] = env.eval(env.uv_to_direction({(x + 0.5f) / s, (y + 0.5f) / s})).luminance();
+  for (double& e : expected) e *= n / total;
+  auto r = testing::chi_square(observed, expected);
+  EXPECT_GT(r.p_value, testing::kChiSquareAlpha) << "chi2 " << r.statistic << " dof " << r.dof;
+}
+
+TEST(EqualAreaEnvironmentMap, NonSquareImageIsAnErrorThatNamesLatLong) {
+  try {
+    EnvironmentMap(4, 2, std::vector<float>(24, 1.0f), Transform(), 1, EnvironmentMap::Mapping::EqualArea);
+    ADD_FAILURE();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("latlong"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace dermis
