@@ -32,6 +32,19 @@ RGB evaluate_texture(const std::vector<Texture>& textures, int index, Vec2 uv) {
       RGB base = t.base >= 0 ? evaluate_texture(textures, t.base, uv) : t.value;
       return base * t.scale;
     }
+    case Texture::Type::Mix: {
+      // pbrt-v4: (1 - amount) tex1 + amount tex2.
+      const float a = t.amount_texture >= 0 ? evaluate_texture(textures, t.amount_texture, uv)[0] : t.amount;
+      const RGB a1 = t.tex1 >= 0 ? evaluate_texture(textures, t.tex1, uv) : t.value;
+      const RGB a2 = t.tex2 >= 0 ? evaluate_texture(textures, t.tex2, uv) : t.value2;
+      return a1 * (1 - a) + a2 * a;
+    }
+    case Texture::Type::Bilerp: {
+      // pbrt-v4: bilinear between v00, v01, v10, v11 at (s, t).
+      const float s = uv.x * t.uscale + t.udelta, tt = uv.y * t.vscale + t.vdelta;
+      return t.corners[0] * ((1 - s) * (1 - tt)) + t.corners[1] * ((1 - s) * tt) + t.corners[2] * (s * (1 - tt)) +
+             t.corners[3] * (s * tt);
+    }
     case Texture::Type::Checkerboard: {
       // pbrt-v4: (s, t) = (uscale u + udelta, vscale v + vdelta); tex1 where
       // floor(s) + floor(t) is even.

@@ -1,7 +1,8 @@
-// RGB textures: constants, image maps (bilinear lookup), scaled textures and the 2D
-// checkerboard.
+// RGB textures: constants, image maps (bilinear lookup), scaled textures, the 2D
+// checkerboard, mix and bilerp (pbrt-v4's).
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -16,7 +17,7 @@ struct ImageData {
 };
 
 struct Texture {
-  enum class Type { Constant, Image, Scale, Checkerboard };
+  enum class Type { Constant, Image, Scale, Checkerboard, Mix, Bilerp };
   enum class Wrap { Repeat, Black, Clamp };
   Type type = Type::Constant;
   RGB value{1, 1, 1};
@@ -27,7 +28,10 @@ struct Texture {
   float uscale = 1, vscale = 1, udelta = 0, vdelta = 0;
   int base = -1;  // Scale: the texture scaled, or -1 for `value`
   RGB value2{0, 0, 0};       // Checkerboard: value = tex1, value2 = tex2
-  int tex1 = -1, tex2 = -1;  // Checkerboard: the squares' textures, or -1 for the values
+  int tex1 = -1, tex2 = -1;  // Checkerboard, Mix: the two textures, or -1 for the values
+  float amount = 0.5f;       // Mix: the weight of tex2 ...
+  int amount_texture = -1;   // ... or a float texture for it (its first channel)
+  std::array<RGB, 4> corners{};  // Bilerp: v00, v01, v10, v11
 };
 
 // Evaluates texture `index` of `textures` at surface coordinates uv.

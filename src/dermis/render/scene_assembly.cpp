@@ -88,10 +88,17 @@ Texture make_texture(const TextureDesc& d) {
       t.type = Texture::Type::Scale;
       break;
     case TextureDesc::Type::Checkerboard:
-      t.type = Texture::Type::Checkerboard;
+    case TextureDesc::Type::Mix:
+      t.type = d.type == TextureDesc::Type::Mix ? Texture::Type::Mix : Texture::Type::Checkerboard;
       t.value2 = d.value2;
       t.tex1 = d.tex1;
       t.tex2 = d.tex2;
+      t.amount = d.amount;
+      t.amount_texture = d.amount_texture;
+      break;
+    case TextureDesc::Type::Bilerp:
+      t.type = Texture::Type::Bilerp;
+      t.corners = d.corners;
       break;
     case TextureDesc::Type::ImageMap: {
       t.type = Texture::Type::Image;

@@ -264,6 +264,28 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
         t.scale = pl.get_float("scale", 1);
       }
     }
+  } else if (cls == "mix") {
+    // pbrt-v4: (1 - amount) tex1 + amount tex2; amount a float value or float texture.
+    t.type = TextureDesc::Type::Mix;
+    t.value = value_or_texture("tex1", RGB(0), t.tex1);
+    t.value2 = value_or_texture("tex2", RGB(1), t.tex2);
+    if (const ParsedParam* p = pl.find("amount")) {
+      if (p->type == "texture") {
+        const std::string other = *pl.get_texture("amount");
+        auto it = float_textures_.find(other);
+        if (it == float_textures_.end())
+          throw SceneError(p->value_loc, fmt::format("unknown float texture \"{}\" for \"amount\" (defined: {})", other,
+                                                     names_of(float_textures_)));
+        t.amount_texture = it->second;
+      } else {
+        t.amount = pl.get_float("amount", 0.5f);
+      }
+    }
+  } else if (cls == "bilerp") {
+    // pbrt-v4: bilinear in (s, t) between the values at the corners v00, v01, v10, v11.
+    t.type = TextureDesc::Type::Bilerp;
+    t.corners = {value_param("v00", RGB(0)), value_param("v01", RGB(1)), value_param("v10", RGB(0)),
+                 value_param("v11", RGB(1))};
   } else if (cls == "checkerboard") {
     // pbrt-v4's checkerboard: tex1 where floor(s) + floor(t) is even, tex2 where odd.
     t.type = TextureDesc::Type::Checkerboard;

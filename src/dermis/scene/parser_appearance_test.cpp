@@ -145,9 +145,10 @@ TEST(ParserTextures, ImageMapConstantScaleAndReference) {
       "Texture \"f\" \"float\" \"constant\" \"float value\" 0.7\n"
       "Texture \"odd\" \"spectrum\" \"marble\"\n"
       "Texture \"check\" \"spectrum\" \"checkerboard\" \"texture tex1\" \"k\" \"float uscale\" 8\n"
+      "Texture \"blend\" \"spectrum\" \"mix\" \"texture tex2\" \"k\" \"texture amount\" \"f\"\n"
       "Material \"diffuse\" \"texture reflectance\" \"half\"\n",
       dir.path());
-  ASSERT_EQ(s.textures.size(), 6u);
+  ASSERT_EQ(s.textures.size(), 7u);
   const TextureDesc& w = s.textures[0];
   EXPECT_EQ(w.type, TextureDesc::Type::ImageMap);
   EXPECT_EQ(w.filename, dir.path() + "/tex/wood.png");
@@ -174,6 +175,11 @@ TEST(ParserTextures, ImageMapConstantScaleAndReference) {
   EXPECT_EQ(c.tex2, -1);
   expect_rgb(c.value2, RGB(0));  // pbrt-v4's default tex2
   EXPECT_FLOAT_EQ(c.uscale, 8);
+  const TextureDesc& m = s.textures[6];
+  EXPECT_EQ(m.type, TextureDesc::Type::Mix);
+  EXPECT_EQ(m.tex2, 1);            // "k"
+  EXPECT_EQ(m.amount_texture, 3);  // the float texture "f"
+  expect_rgb(m.value, RGB(0));     // pbrt-v4's default tex1
   EXPECT_EQ(s.materials[0].reflectance.texture, 2);
 }
 

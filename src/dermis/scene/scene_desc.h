@@ -64,7 +64,7 @@ struct RenderSettingsDesc {
 };
 
 struct TextureDesc {
-  enum class Type { Constant, ImageMap, Scale, Checkerboard };
+  enum class Type { Constant, ImageMap, Scale, Checkerboard, Mix, Bilerp };
   std::string name;
   Type type = Type::Constant;
   bool is_float = false;     // declared "float" (value holds the float in all channels), else "spectrum"
@@ -76,8 +76,11 @@ struct TextureDesc {
   std::string wrap = "repeat";    // repeat, black, clamp
   float uscale = 1, vscale = 1, udelta = 0, vdelta = 0;
   int base = -1;             // scale: texture being scaled (index), or -1 (then `value` is scaled)
-  RGB value2{0, 0, 0};       // checkerboard: tex2 (value holds tex1)
-  int tex1 = -1, tex2 = -1;  // checkerboard: the squares' textures (index), or -1 for the values
+  RGB value2{0, 0, 0};       // checkerboard, mix: tex2 (value holds tex1)
+  int tex1 = -1, tex2 = -1;  // checkerboard, mix: the two textures (index), or -1 for the values
+  float amount = 0.5f;       // mix: the weight of tex2
+  int amount_texture = -1;   // mix: a float texture for it, or -1
+  std::array<RGB, 4> corners{};  // bilerp: v00, v01, v10, v11
   SourceLoc loc;
 };
 
