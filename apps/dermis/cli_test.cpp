@@ -127,6 +127,14 @@ TEST_F(Cli, MalformedSceneReportsLineAndColumnAndWritesNothing) {
 TEST_F(Cli, BadOptionsExitWithStatus2) {
   std::string scene = write("s.pbrt", kSmallScene);
   EXPECT_EQ(run_dermis("render " + scene + " --res 12by5 -o " + path("o.exr")).status, 2);
+  EXPECT_EQ(run_dermis("render " + scene + " --res 32x32junk -o " + path("o.exr")).status, 2);
+  // A film that cannot be allocated is refused before anything is read or allocated.
+  std::string huge = kSmallScene;
+  const std::string xres = "\"integer xresolution\" 24";
+  huge.replace(huge.find(xres), xres.size(), "\"integer xresolution\" 100000000");
+  CommandResult r = run_dermis("render " + write("huge.pbrt", huge) + " -o " + path("o.exr"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("too large"), std::string::npos) << r.output;
   EXPECT_EQ(run_dermis("render " + scene + " --spp -3 -o " + path("o.exr")).status, 2);
   EXPECT_EQ(run_dermis("render " + scene + " -o " + path("o.bmpx")).status, 2);
   EXPECT_EQ(run_dermis("render " + scene + " -o " + path("missing_dir/o.exr")).status, 2);
@@ -173,9 +181,15 @@ Shape "sphere"
 
 TEST_F(Cli, InterruptWritesThePartialImageAndSaysSo) {
   std::string scene = write("s.pbrt", kSmallScene);
-  // SIGINT one second into a render that would take minutes.
+  // SIGINT half a second into the rendering of a render that would take minutes. Sent
+  // only once rendering has begun (its header line is in the log): a background job of
+  // sh starts with SIGINT ignored until dermis installs its handler, and on a loaded
+  // machine the start-up alone can take over a second (then the signal would be lost).
+  const std::string log = path("render.log");
   std::string cmd = "sh -c '" + std::string(DERMIS_BINARY) + " render " + scene + " --spp 1000000 --res 64x64 -o " +
-                    path("i.exr") + " 2>&1 & pid=$!; sleep 1; kill -INT $pid; wait $pid; echo rc=$?'";
+                    path("i.exr") + " > " + log + " 2>&1 & pid=$!; i=0; while ! grep -q \"spp,\" " + log +
+                    " && [ $i -lt 600 ]; do sleep 0.1; i=$((i+1)); done; sleep 0.5; kill -INT $pid; wait $pid; "
+                    "echo rc=$?; cat " + log + "'";
   FILE* p = popen(cmd.c_str(), "r");
   ASSERT_NE(p, nullptr);
   std::string out;

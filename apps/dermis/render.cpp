@@ -48,13 +48,22 @@ int run_render(const RenderArgs& a) {
   try {
     desc = parse_scene_file(a.scene);
     if (!a.res.empty()) {
-      int w = 0, h = 0;
+      int w = 0, h = 0, consumed = 0;
       char x = 0;
-      if (std::sscanf(a.res.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') || w <= 0 || h <= 0 ||
-          w > 65536 || h > 65536)
+      if (std::sscanf(a.res.c_str(), "%d%c%d%n", &w, &x, &h, &consumed) != 3 || consumed != int(a.res.size()) ||
+          (x != 'x' && x != 'X') || w <= 0 || h <= 0 || w > 65536 || h > 65536)
         throw std::invalid_argument(fmt::format("--res {}: expected WIDTHxHEIGHT with positive integers, e.g. 640x480", a.res));
       desc.film.xres = w;
       desc.film.yres = h;
+    }
+    {
+      // The film holds 3 doubles and a count per pixel: refuse what cannot be allocated.
+      const PixelBounds px = film_pixel_bounds(desc.film);
+      const double pixels = double(px.width()) * px.height(), gib = pixels * 28 / double(1ull << 30);
+      if (pixels > double(1ull << 28))
+        throw std::invalid_argument(fmt::format("{}: a film of {}x{} pixels is too large (it would need {:.0f} GiB); "
+                                                "lower the Film's xresolution/yresolution or use --res",
+                                                a.scene, px.width(), px.height(), gib));
     }
     if (a.spp > 0) desc.settings.spp = a.spp;
     if (!a.sampler.empty()) parse_sampler_kind(a.sampler, desc.settings.sampler);  // checked by CLI11
@@ -76,6 +85,9 @@ int run_render(const RenderArgs& a) {
   } catch (const Interrupted&) {
     fmt::print(stderr, "dermis render: interrupted while preparing the scene; nothing written\n");
     return 130;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "dermis render: {}: out of memory while loading or preparing the scene\n", a.scene);
+    return 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "dermis render: {}\n", e.what());
     return 2;

@@ -52,6 +52,12 @@ void SceneParser::parse_file(const std::string& path, const SourceLoc* from) {
     for (const std::string& f : include_stack_) chain += f + " -> ";
     throw SceneError(*from, fmt::format("Include cycle: {}{}", chain, canonical));
   }
+  // A chain of Includes deeper than any real scene needs ends here, not in a stack overflow.
+  constexpr std::size_t kMaxIncludeDepth = 64;
+  if (from && include_stack_.size() >= kMaxIncludeDepth)
+    throw SceneError(*from, fmt::format("Include nested more than {} files deep (at '{}'); is the scene generating "
+                                        "its own includes?",
+                                        kMaxIncludeDepth, canonical));
   std::string why;
   std::string text = read_text(canonical, why);
   if (!why.empty()) {

@@ -326,3 +326,22 @@ TEST(ParserObjects, AreaLightsAndMediaInsideObjectsWarn) {
 
 }  // namespace
 }  // namespace dermis
+
+namespace dermis {
+namespace {
+
+// A chain of 100 Includes stops at the depth limit with a message, not a stack overflow.
+TEST(ParserInclude, ChainsDeeperThanTheLimitAreAnError) {
+  test::TempDir dir;
+  for (int i = 0; i < 100; ++i) dir.write("f" + std::to_string(i) + ".pbrt", "Include \"f" + std::to_string(i + 1) + ".pbrt\"\n");
+  dir.write("f100.pbrt", "WorldBegin\n");
+  try {
+    parse_scene_file(dir.path() + "/f0.pbrt");
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("Include nested more than 64 files deep"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace dermis
