@@ -12,6 +12,8 @@ packages=(
   libcli11-dev libfmt-dev libpcg-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-matplotlib
+  python3-dev pybind11-dev python3-pytest
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()
