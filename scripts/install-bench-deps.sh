@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
 # Installs the optional benchmark dependencies (not needed by `make demo` or `make test`):
-# Blender, whose Cycles renderer bench/vs_cycles/run.py compares Dermis against, and the
-# Python modules the benchmark scripts use. Idempotent and non-interactive: packages
-# already present are not touched, and apt is only consulted when something is missing.
+# Blender, whose Cycles renderer bench/vs_cycles/run.py compares Dermis against, the
+# Python modules the benchmark scripts use, and Chromium, in which the study report's
+# browser test (python/tests/test_report_browser.py) opens the page headless.
+# Idempotent and non-interactive: packages already present are not touched, and apt is
+# only consulted when something is missing.
 set -euo pipefail
 
 packages=(
   blender
   python3-numpy python3-pil python3-matplotlib
   python3-openimageio openimageio-tools
+  chromium
 )
 
 missing=()
