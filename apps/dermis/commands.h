@@ -10,5 +10,6 @@ void register_render(CLI::App& app, int& exit_code);
 void register_compare(CLI::App& app, int& exit_code);
 void register_halfspace(CLI::App& app, int& exit_code);
 void register_profile(CLI::App& app, int& exit_code);
+void register_study(CLI::App& app, int& exit_code);
 
 }  // namespace dermis::app

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   dermis::app::register_compare(app, exit_code);
   dermis::app::register_halfspace(app, exit_code);
   dermis::app::register_profile(app, exit_code);
+  dermis::app::register_study(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
