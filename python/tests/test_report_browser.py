@@ -46,32 +46,35 @@ class _Images(html.parser.HTMLParser):
             self.status = a
 
 
-@pytest.fixture
-def page(tmp_path):
-    synthetic_study = make_synthetic_study()
-    path = tmp_path / "index.html"
-    report.write_report(path, synthetic_study)
-    return path
+@pytest.fixture(scope="module")
+def browser(tmp_path_factory):
+    """One Chromium run on a synthetic report: the DOM after its script ran (--dump-dom)
+    and a 1400 x 1000 screenshot."""
+    chromium = _chromium()
+    tmp_path = tmp_path_factory.mktemp("browser")
+    page = tmp_path / "index.html"
+    report.write_report(page, make_synthetic_study())
+    shot = tmp_path / "shot.png"
+    dom = _run(chromium, tmp_path, f"--screenshot={shot}", "--dump-dom", page.as_uri())
+    return dom, shot
 
 
-def test_browser_decodes_every_image(page, tmp_path):
-    """--dump-dom prints the DOM after the page's script ran: every <img> (images and
-    plots) has a natural width, and the status line counts them all as decoded."""
-    dom = _run(_chromium(), tmp_path, "--dump-dom", page.as_uri())
+def test_browser_decodes_every_image(browser):
+    """Every <img> (images and plots) has a natural width, and the status line counts
+    them all as decoded."""
     p = _Images()
-    p.feed(dom)
+    p.feed(browser[0])
     assert len(p.imgs) >= 8
     widths = [int(a.get("data-natural-width", "0")) for a in p.imgs]
     assert all(w > 0 for w in widths), widths
     assert p.status is not None and p.status.get("data-loaded") == f"{len(p.imgs)}/{len(p.imgs)}", p.status
 
 
-def test_browser_screenshot_is_not_blank(page, tmp_path):
-    shot = tmp_path / "shot.png"
-    _run(_chromium(), tmp_path, f"--screenshot={shot}", page.as_uri())
-    img = np.asarray(Image.open(shot).convert("RGB"))
+def test_browser_screenshot_is_not_blank(browser):
+    img = np.asarray(Image.open(browser[1]).convert("RGB"))
     assert img.shape[:2] == (1000, 1400)
-    colours = np.unique(img.reshape(-1, 3), axis=0)
+    packed = (img[..., 0].astype(np.uint32) << 16) | (img[..., 1].astype(np.uint32) << 8) | img[..., 2]
+    colours = np.unique(packed)
     assert len(colours) > 500, len(colours)  # the noisy images, not just text on a background
     # The images' black-framed panels and their content: well away from a uniform page.
     assert img.std() > 30
