@@ -1,0 +1,372 @@
+"""Equal-time comparison of subsurface methods on one scene, written as an HTML report.
+
+    /usr/bin/python3 -m dermis.study SCENE --methods disk,randomwalk --time 10 [options]
+    dermis study SCENE ...                       (the same, from the command line)
+
+For every method, every `subsurface` material of the scene is switched to it and the
+scene is rendered for the same time at each budget, K times with different seeds; each
+render is compared with a converged reference. DIR/index.html shows the images, error
+maps, tables (mean ± standard error over the K repeats) and convergence plots
+(report.py); DIR/study.json holds every number, DIR/*.exr the images. See docs/study.md.
+
+Method specs: a `"string method"` value (docs/materials.md), optionally followed by
+parameters of the material, `name:key=value:key=value`, e.g.
+`randomwalk:walksampling=mis:boundary=dielectric`. A value is a bool (true/false), a
+number, three numbers a/b/c (rgb), else a string.
+
+Cost: equal wall time (default): render(time_limit=T) with an unbounded sample count.
+Equal CPU time (--cpu-time): the budget is CPU seconds of the process (all threads);
+each render gets the sample count T / (CPU seconds per pixel sample), the cost per
+sample measured for that method so far (first by a short pilot render), so a loaded or
+shared machine does not change what a method is given. Either way the tables and plots
+use the time each render actually took.
+"""
+
+import argparse
+import datetime
+import json
+import os
+import platform
+import re
+import shlex
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+import dermis
+
+from . import report
+
+UNBOUNDED_SPP = 1_000_000  # the sample count of time-limited renders (the time limit stops them)
+REFERENCE_SEEDS = (1_000_001, 1_000_002)
+
+
+# ---------------------------------------------------------------------------- arguments
+
+class Method:
+    """A method spec: `name[:key=value...]`, the label it is shown under."""
+
+    def __init__(self, spec):
+        self.label = spec
+        parts = spec.split(":")
+        self.method = parts[0].strip()
+        if not self.method:
+            raise ValueError(f"method '{spec}': empty method name")
+        self.params = {}
+        for p in parts[1:]:
+            key, eq, value = p.partition("=")
+            if not eq or not key:
+                raise ValueError(f"method '{spec}': '{p}' is not key=value")
+            self.params[key.strip()] = _value(value.strip())
+
+    def apply(self, scene):
+        """Sets every subsurface material of `scene` to this method."""
+        for i in scene.subsurface_materials:
+            scene.set_material(i, method=self.method, **self.params)
+
+
+def _value(text):
+    if text in ("true", "false"):
+        return text == "true"
+    parts = text.split("/")
+    try:
+        numbers = [float(x) for x in parts]
+    except ValueError:
+        return text
+    if len(numbers) == 3:
+        return tuple(numbers)
+    if len(numbers) == 1:
+        return numbers[0]
+    return text
+
+
+def _seconds_list(text):
+    values = [float(x) for x in text.split(",") if x.strip()]
+    if not values or min(values) <= 0:
+        raise argparse.ArgumentTypeError(f"'{text}': expected positive seconds, comma-separated")
+    return values
+
+
+def _resolution(text):
+    m = re.fullmatch(r"(\d+)x(\d+)", text)
+    if not m:
+        raise argparse.ArgumentTypeError(f"'{text}': expected WIDTHxHEIGHT, e.g. 200x150")
+    return int(m.group(1)), int(m.group(2))
+
+
+def parse_args(argv):
+    prog = os.environ.get("DERMIS_STUDY_PROG", "python3 -m dermis.study")
+    ap = argparse.ArgumentParser(prog=prog, description=__doc__.split("\n\n")[0],
+                                 epilog="See docs/study.md for what the report shows and how errors are computed.")
+    ap.add_argument("scene", help="the .pbrt scene (with at least one subsurface material)")
+    ap.add_argument("--methods", required=True,
+                    help="comma-separated method specs: disk,sphere-lines,randomwalk:walksampling=mis,...")
+    ap.add_argument("--time", type=float, required=True, metavar="T",
+                    help="the equal-time budget (seconds) whose images and table the report shows")
+    ap.add_argument("--budgets", type=_seconds_list, metavar="T1,T2,...",
+                    help="the budgets of the convergence plots (T is added); default T/4,T/2,T")
+    ap.add_argument("--repeats", type=int, default=3, metavar="K",
+                    help="independent renders (seeds) per method and budget, for standard errors (default 3)")
+    ref = ap.add_mutually_exclusive_group()
+    ref.add_argument("--reference", metavar="IMAGE", help="a converged reference image (EXR) at the study's resolution")
+    ref.add_argument("--reference-method", default="volumetric", metavar="SPEC",
+                     help="the (unbiased) method the reference is rendered with (default volumetric)")
+    ap.add_argument("--reference-time", type=float, metavar="SEC",
+                    help="wall seconds of the rendered reference, in two independent halves (default 10 x the "
+                         "largest budget)")
+    ap.add_argument("--cpu-time", action="store_true",
+                    help="equal CPU time (all threads, user + system) instead of equal wall time")
+    ap.add_argument("--threads", type=int, default=0, help="render threads (default 0: all cores)")
+    ap.add_argument("--res", type=_resolution, metavar="WxH", help="film resolution (default: the scene's)")
+    ap.add_argument("--seed", type=int, default=1, help="first seed of the test renders (default 1)")
+    ap.add_argument("--out", metavar="DIR", help="output folder (default study-<scene name>)")
+    args = ap.parse_args(argv)
+    try:
+        args.methods = [Method(s) for s in args.methods.split(",") if s.strip()]
+        args.reference_method = Method(args.reference_method)
+    except ValueError as e:
+        ap.error(str(e))
+    if not args.methods:
+        ap.error("--methods: no method given")
+    if len({m.label for m in args.methods}) != len(args.methods):
+        ap.error("--methods: a method is named twice")
+    if args.time <= 0 or args.repeats < 1 or args.threads < 0:
+        ap.error("--time must be positive, --repeats at least 1, --threads at least 0")
+    budgets = args.budgets or [args.time / 4, args.time / 2]
+    args.budgets = sorted(set(budgets) | {args.time})
+    if args.reference_time is None:
+        args.reference_time = 10 * max(args.budgets)
+    if args.out is None:
+        args.out = "study-" + os.path.splitext(os.path.basename(args.scene))[0]
+    args.command = prog + " " + shlex.join(argv)
+    return args
+
+
+# ---------------------------------------------------------------------------- rendering
+
+class Study:
+    """The renders of one study and their errors against the reference."""
+
+    def __init__(self, args):
+        self.args = args
+        self.threads = args.threads or len(os.sched_getaffinity(0))
+        self.pixels = None
+
+    def scene(self, method):
+        """A freshly loaded scene set to `method` (fresh: set_material keeps parameters a
+        previous method set, which must not leak into the next)."""
+        scene = dermis.load_scene(self.args.scene)
+        if self.args.res:
+            scene.resolution = self.args.res
+        if not scene.subsurface_materials:
+            raise dermis.SceneError(f"{self.args.scene}: the scene has no subsurface material to compare methods on")
+        method.apply(scene)
+        return scene
+
+    def render(self, scene, seed, time_limit=0.0, spp=None):
+        img, st = dermis.render(scene, spp=spp or UNBOUNDED_SPP, seed=seed, threads=self.args.threads,
+                                time_limit=time_limit, stats=True)
+        return img, st
+
+    def warm_up(self, scene):
+        """A 1-spp render: builds what the method prepares once (tables, point clouds),
+        so that it is not counted in the timed renders. Returns its wall seconds."""
+        t0 = time.perf_counter()
+        self.render(scene, seed=0, spp=1)
+        return time.perf_counter() - t0
+
+    def reference(self, log):
+        """The reference image, its label, details and own noise (when rendered)."""
+        a = self.args
+        if a.reference:
+            img = dermis.read_image(a.reference)
+            return dict(image=img, label=a.reference, details=f"read from {a.reference}", noise_rmse=None,
+                        noise_mask_rmse=None)
+        scene = self.scene(a.reference_method)
+        self.warm_up(scene)
+        halves, stats = [], []
+        for seed in REFERENCE_SEEDS:
+            img, st = self.render(scene, seed, time_limit=a.reference_time / 2)
+            halves.append(img)
+            stats.append(st)
+            log(f"reference half (seed {seed}): {st['samples'] / img.shape[0] / img.shape[1]:.0f} spp, "
+                f"{st['seconds']:.1f} s")
+        ref = 0.5 * (halves[0] + halves[1])
+        # The halves are independent: E (h1 - h2)^2 = 2 var(h), var(mean of 2) = var(h) / 2.
+        ref_var = (halves[0] - halves[1]) ** 2 / 4
+        spp = sum(s["samples"] for s in stats) / (ref.shape[0] * ref.shape[1])
+        details = (f"{a.reference_method.label}, two independent halves (seeds {REFERENCE_SEEDS[0]}, "
+                   f"{REFERENCE_SEEDS[1]}) of {a.reference_time / 2:g} s wall each: {spp:.0f} spp in all, "
+                   f"{sum(s['seconds'] for s in stats):.1f} s wall, {sum(s['cpu_seconds'] for s in stats):.1f} s CPU")
+        return dict(image=ref.astype(np.float32), var=ref_var, label=f"{a.reference_method.label}, {spp:.0f} spp",
+                    details=details, stats=stats)
+
+    def errors(self, img, ref, mask):
+        """RMSE and relMSE over the image and over the mask (dermis.compare)."""
+        whole = dermis.compare(img, ref)
+        e = dict(rmse=whole["rmse"], relmse=whole["relmse"], mask_rmse=float("nan"), mask_relmse=float("nan"))
+        if mask.any():
+            obj = dermis.compare(img[mask][None], ref[mask][None])  # the masked pixels as a 1 x N image
+            e.update(mask_rmse=obj["rmse"], mask_relmse=obj["relmse"])
+        return e
+
+    def run_method(self, method, ref, mask, log):
+        """Every budget and repeat of one method; its first repeat at the main budget kept."""
+        a = self.args
+        scene = self.scene(method)
+        warmup = self.warm_up(scene)
+        cost = None  # CPU seconds per pixel sample (equal CPU time)
+        if a.cpu_time:
+            _, st = self.render(scene, seed=0, time_limit=max(0.05, min(a.budgets) / 4))
+            cost = [st["cpu_seconds"], st["samples"]]
+        runs, shown = [], None
+        for bi, budget in enumerate(a.budgets):
+            for k in range(a.repeats):
+                seed = a.seed + 1000 * bi + k
+                if a.cpu_time:
+                    spp = max(1, round(budget / (cost[0] / max(cost[1], 1)) / self.pixels))
+                    img, st = self.render(scene, seed, spp=spp)
+                    cost[0] += st["cpu_seconds"]
+                    cost[1] += st["samples"]
+                else:
+                    img, st = self.render(scene, seed, time_limit=budget)
+                run = dict(budget=budget, repeat=k, seed=seed, **{key: st[key] for key in (
+                    "seconds", "cpu_seconds", "samples", "min_spp", "max_spp", "nonfinite", "truncated")})
+                run.update(self.errors(img, ref["image"], mask))
+                runs.append(run)
+                if budget == a.time and k == 0:
+                    shown = img
+                log(f"{method.label:>20}  {budget:g} s  #{k + 1}: {st['samples'] / self.pixels:.0f} spp, "
+                    f"{st['seconds']:.2f} s wall, {st['cpu_seconds']:.2f} s CPU, RMSE {run['rmse']:.4g}, "
+                    f"relMSE {run['relmse']:.4g}")
+        emap, scale = dermis.error_map(shown, ref["image"])
+        return dict(name=method.label, method=method.method, params=method.params, image=shown, error_map=emap,
+                    error_scale=scale, runs=runs, warmup_seconds=warmup)
+
+    def run(self, log):
+        a = self.args
+        t0 = time.time()
+        base = self.scene(a.methods[0])
+        W, H = base.resolution
+        self.pixels = W * H
+        mask = np.asarray(dermis.subsurface_mask(base), dtype=bool)
+        n = len(a.methods) * a.repeats * sum(a.budgets)
+        ref_t = 0 if a.reference else a.reference_time
+        log(f"{W}x{H} pixels, {len(a.methods)} methods x {a.repeats} repeats x budgets "
+            f"{','.join(f'{b:g}' for b in a.budgets)} s: about {n + ref_t:.0f} s of rendering")
+        ref = self.reference(log)
+        if ref["image"].shape[:2] != (H, W):
+            raise ValueError(f"the reference is {ref['image'].shape[1]}x{ref['image'].shape[0]} pixels, the study "
+                             f"renders {W}x{H}: give --res {ref['image'].shape[1]}x{ref['image'].shape[0]}")
+        if "var" in ref:  # the reference's own noise (RMSE of the averaged halves)
+            ref["noise_rmse"] = float(np.sqrt(ref["var"].mean()))
+            ref["noise_mask_rmse"] = float(np.sqrt(ref["var"][mask].mean())) if mask.any() else float("nan")
+        methods = [self.run_method(m, ref, mask, log) for m in a.methods]
+        notes = [f"{m['name']}: {sum(r['nonfinite'] for r in m['runs'])} non-finite samples (dropped)"
+                 for m in methods if any(r["nonfinite"] for r in m["runs"])]
+        notes += [f"{m['name']}: {sum(r['truncated'] for r in m['runs'])} paths cut short (truncated)"
+                  for m in methods if any(r["truncated"] for r in m["runs"])]
+        how = ("equal CPU time: each render took T / (the method's measured CPU seconds per sample) samples"
+               if a.cpu_time else f"equal wall time: render(time_limit=T, spp={UNBOUNDED_SPP})")
+        settings = (f"Every subsurface material set to the method (a freshly loaded scene per method, a 1-spp warm-up "
+                    f"render first so that preparation is not timed); {how}; threads={a.threads or 'all'} "
+                    f"({self.threads}); seeds {a.seed} + 1000 × budget index + repeat.")
+        return dict(title=f"Dermis study: {os.path.basename(a.scene)}", scene=a.scene,
+                    cost="cpu" if a.cpu_time else "wall", budgets=a.budgets, main_budget=a.time, repeats=a.repeats,
+                    resolution=(W, H), threads=self.threads, mask=mask, reference=ref, methods=methods,
+                    command=a.command, settings=settings, version=dermis.__version__, commit=_git_commit(),
+                    machine=machine(self.threads), date=datetime.datetime.now().astimezone().strftime(
+                        "%Y-%m-%d %H:%M %Z"), total_seconds=time.time() - t0, notes=notes)
+
+
+# ---------------------------------------------------------------------------- provenance
+
+def _git_commit():
+    here = os.path.dirname(os.path.abspath(__file__))
+    try:
+        p = subprocess.run(["git", "-C", here, "describe", "--always", "--dirty"], capture_output=True, text=True,
+                           timeout=10)
+        return p.stdout.strip() or "unknown"
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def _first_line(path, prefix, sep):
+    try:
+        with open(path) as f:
+            for line in f:
+                if line.startswith(prefix):
+                    return line.split(sep, 1)[1].strip().strip('"')
+    except OSError:
+        pass
+    return "unknown"
+
+
+def machine(threads):
+    """The machine, for the report: CPU, cores, memory, OS, load."""
+    mem = _first_line("/proc/meminfo", "MemTotal", ":")
+    load = ", ".join(f"{x:.2f}" for x in os.getloadavg())
+    return {"CPU": _first_line("/proc/cpuinfo", "model name", ":"),
+            "cores": f"{os.cpu_count()} logical, {len(os.sched_getaffinity(0))} available, {threads} render threads",
+            "memory": mem, "OS": f"{_first_line('/etc/os-release', 'PRETTY_NAME', '=')}, {platform.system()} "
+                                 f"{platform.release()}",
+            "Python": f"{platform.python_version()} ({sys.executable}), NumPy {np.__version__}",
+            "load average (1, 5, 15 min) at the end": load}
+
+
+# ---------------------------------------------------------------------------- output
+
+def _filename(label):
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", label)
+
+
+def save(study, out):
+    """DIR/index.html, DIR/study.json (every number), DIR/reference.exr and DIR/<method>.exr."""
+    os.makedirs(out, exist_ok=True)
+    report.write_report(os.path.join(out, "index.html"), study)
+    dermis.write_image(os.path.join(out, "reference.exr"), study["reference"]["image"])
+    for m in study["methods"]:
+        dermis.write_image(os.path.join(out, _filename(m["name"]) + ".exr"), m["image"])
+    skip = {"image", "error_map", "mask", "var", "stats"}
+
+    def plain(x):
+        if isinstance(x, dict):
+            return {k: plain(v) for k, v in x.items() if k not in skip}
+        if isinstance(x, (list, tuple)):
+            return [plain(v) for v in x]
+        if isinstance(x, (np.floating, np.integer)):
+            return x.item()
+        return x
+
+    data = plain(study)
+    data["mask_pixels"] = int(study["mask"].sum())
+    with open(os.path.join(out, "study.json"), "w") as f:
+        json.dump(data, f, indent=1)
+
+
+def main(argv=None):
+    args = parse_args(sys.argv[1:] if argv is None else argv)
+
+    def log(text):
+        print(text, flush=True)
+
+    try:
+        study = Study(args).run(log)
+    except dermis.SceneError as e:
+        print(e, file=sys.stderr)
+        return 2
+    except (ValueError, OSError, RuntimeError) as e:
+        print(f"{args.command.split()[0]}: error: {e}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("interrupted: no report written", file=sys.stderr)
+        return 130
+    save(study, args.out)
+    log(f"wrote {os.path.join(args.out, 'index.html')} ({study['total_seconds']:.0f} s)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

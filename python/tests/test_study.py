@@ -1,0 +1,117 @@
+"""The study end to end on a tiny scene: renders, errors, report and files; and the
+`dermis study` subcommand that runs it."""
+
+import json
+import math
+import os
+import subprocess
+
+import pytest
+
+import dermis
+from dermis import study
+
+# A subsurface sphere on a floor, a sky and an area light, in 48 x 36 pixels.
+TINY_SCENE = """LookAt 0 -4 1.2  0 0 0  0 0 1
+Camera "perspective" "float fov" 40
+Film "rgb" "integer xresolution" 48 "integer yresolution" 36
+Sampler "zsobol" "integer pixelsamples" 4
+Integrator "volpath" "integer maxdepth" 64
+WorldBegin
+LightSource "infinite" "rgb L" [0.3 0.35 0.4]
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [10 9 8]
+  Translate 2 -2 3
+  Shape "sphere" "float radius" 0.5
+AttributeEnd
+AttributeBegin
+  Material "subsurface" "rgb reflectance" [0.8 0.5 0.3] "rgb mfp" [0.4 0.2 0.1] "float eta" 1.33
+  Shape "sphere" "float radius" 1
+AttributeEnd
+AttributeBegin
+  Material "diffuse" "rgb reflectance" [0.4 0.4 0.4]
+  Shape "trianglemesh" "point3 P" [-9 -9 -1  9 -9 -1  9 9 -1  -9 9 -1] "integer indices" [0 1 2 0 2 3]
+AttributeEnd
+"""
+
+
+@pytest.fixture(scope="module")
+def tiny(tmp_path_factory):
+    path = tmp_path_factory.mktemp("scene") / "tiny.pbrt"
+    path.write_text(TINY_SCENE)
+    return path
+
+
+@pytest.fixture(scope="module")
+def wall_study(tiny, tmp_path_factory):
+    out = tmp_path_factory.mktemp("study")
+    rc = study.main([str(tiny), "--methods", "disk,randomwalk:walksampling=mis", "--time", "0.3", "--budgets", "0.15",
+                     "--repeats", "2", "--reference-time", "1", "--threads", "2", "--out", str(out)])
+    assert rc == 0
+    return out
+
+
+def test_study_writes_report_and_numbers(wall_study):
+    for name in ("index.html", "study.json", "reference.exr", "disk.exr", "randomwalk_walksampling_mis.exr"):
+        assert (wall_study / name).is_file(), name
+    data = json.loads((wall_study / "study.json").read_text())
+    assert data["budgets"] == [0.15, 0.3] and data["repeats"] == 2 and data["cost"] == "wall"
+    assert [m["name"] for m in data["methods"]] == ["disk", "randomwalk:walksampling=mis"]
+    assert data["methods"][1]["params"] == {"walksampling": "mis"}
+    assert 0 < data["mask_pixels"] < 48 * 36
+    for m in data["methods"]:
+        runs = m["runs"]
+        assert len(runs) == 4
+        assert len({r["seed"] for r in runs}) == 4  # independent repeats
+        for r in runs:
+            assert 0 < r["rmse"] < 1 and 0 < r["relmse"] < 1 and math.isfinite(r["mask_rmse"])
+            # Equal wall time: the renderer stops at the first pass boundary past the limit.
+            assert 0.8 * r["budget"] <= r["seconds"] <= r["budget"] + 1.0, r
+    ref = data["reference"]
+    assert ref["noise_rmse"] > 0 and "volumetric" in ref["label"]
+    text = (wall_study / "index.html").read_text()
+    assert text.count("<img ") == 1 + 2 * 2 + 2 + 2 + 1
+    assert "randomwalk:walksampling=mis" in text and "--reference-time 1" in text
+
+
+def test_study_masked_errors_match_compare(wall_study):
+    """The object errors are dermis.compare over the mask's pixels: check one by hand."""
+    data = json.loads((wall_study / "study.json").read_text())
+    ref = dermis.read_image(str(wall_study / "reference.exr"))
+    img = dermis.read_image(str(wall_study / "disk.exr"))
+    scene = dermis.load_scene(data["scene"])
+    mask = dermis.subsurface_mask(scene)
+    run = next(r for r in data["methods"][0]["runs"] if r["budget"] == 0.3 and r["repeat"] == 0)
+    d = (img[mask].astype(float) - ref[mask]) ** 2
+    assert math.isclose(run["mask_rmse"], math.sqrt(d.mean()), rel_tol=1e-4)
+    assert math.isclose(run["mask_relmse"], (d / (ref[mask].astype(float) ** 2 + 0.01)).mean(), rel_tol=1e-4)
+
+
+def test_study_equal_cpu_time_with_given_reference(wall_study, tiny, tmp_path):
+    rc = study.main([str(tiny), "--methods", "disk", "--time", "0.4", "--budgets", "0.4", "--repeats", "2",
+                     "--cpu-time", "--threads", "1", "--reference", str(wall_study / "reference.exr"),
+                     "--out", str(tmp_path)])
+    assert rc == 0
+    data = json.loads((tmp_path / "study.json").read_text())
+    assert data["cost"] == "cpu" and data["reference"]["noise_rmse"] is None
+    for r in data["methods"][0]["runs"]:
+        # The sample count comes from the measured cost per sample: CPU time near the budget.
+        assert 0.4 / 3 < r["cpu_seconds"] < 0.4 * 3, r
+        assert r["min_spp"] == r["max_spp"]
+
+
+def test_study_bad_input_is_status_2(tiny, tmp_path, capsys):
+    assert study.main([str(tiny), "--methods", "no-such-method", "--time", "0.1", "--reference-time", "0.1",
+                       "--out", str(tmp_path)]) == 2
+    assert "error" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as e:
+        study.main([str(tiny), "--methods", "disk"])  # no --time
+    assert e.value.code == 2
+
+
+def test_dermis_study_subcommand(dermis_binary, tiny):
+    p = subprocess.run([dermis_binary, "study", "--help"], capture_output=True, text=True, timeout=60)
+    assert p.returncode == 0, p.stderr
+    assert "--methods" in p.stdout and "study" in p.stdout.splitlines()[0]
+    p = subprocess.run([dermis_binary, "study", str(tiny)], capture_output=True, text=True, timeout=60)
+    assert p.returncode == 2 and "--methods" in p.stderr
