@@ -31,7 +31,8 @@ figcaption b { font-size: 1.05em; }
 .flip .ref { visibility: hidden; }
 .flip.flipped .ref { visibility: visible; }
 .flip .tag { position: absolute; left: 4px; top: 4px; z-index: 2; background: rgba(0,0,0,0.65); color: #fff;
-             font-size: 12px; padding: 1px 5px; border-radius: 3px; pointer-events: none; }
+             font-size: 12px; padding: 1px 5px; border-radius: 3px; pointer-events: none;
+             max-width: calc(100% - 18px); overflow: hidden; text-overflow: ellipsis; white-space: nowrap; }
 .flip.flipped .tag { background: rgba(160,20,20,0.85); }
 table { border-collapse: collapse; font-size: 0.9em; background: #fff; }
 th, td { border: 1px solid #ccc; padding: 3px 7px; text-align: right; }

@@ -252,10 +252,11 @@ class Study:
         W, H = base.resolution
         self.pixels = W * H
         mask = np.asarray(dermis.subsurface_mask(base), dtype=bool)
-        n = len(a.methods) * a.repeats * sum(a.budgets)
+        n = len(a.methods) * a.repeats * sum(a.budgets) / (self.threads if a.cpu_time else 1)
         ref_t = 0 if a.reference else a.reference_time
         log(f"{W}x{H} pixels, {len(a.methods)} methods x {a.repeats} repeats x budgets "
-            f"{','.join(f'{b:g}' for b in a.budgets)} s: about {n + ref_t:.0f} s of rendering")
+            f"{','.join(f'{b:g}' for b in a.budgets)} s ({'CPU' if a.cpu_time else 'wall'}): about "
+            f"{n + ref_t:.0f} s of rendering (wall)")
         ref = self.reference(log)
         if ref["image"].shape[:2] != (H, W):
             raise ValueError(f"the reference is {ref['image'].shape[1]}x{ref['image'].shape[0]} pixels, the study "
