@@ -285,7 +285,7 @@ class Study:
 # ---------------------------------------------------------------------------- provenance
 
 def _git_commit():
-    here = os.path.dirname(os.path.abspath(__file__))
+    here = os.path.dirname(os.path.realpath(__file__))
     try:
         p = subprocess.run(["git", "-C", here, "describe", "--always", "--dirty"], capture_output=True, text=True,
                            timeout=10)
@@ -307,7 +307,9 @@ def _first_line(path, prefix, sep):
 
 def machine(threads):
     """The machine, for the report: CPU, cores, memory, OS, load."""
-    mem = _first_line("/proc/meminfo", "MemTotal", ":")
+    mem = _first_line("/proc/meminfo", "MemTotal", ":")  # "24683584 kB"
+    if mem.endswith(" kB"):
+        mem = f"{int(mem.split()[0]) / 2**20:.1f} GiB"
     load = ", ".join(f"{x:.2f}" for x in os.getloadavg())
     return {"CPU": _first_line("/proc/cpuinfo", "model name", ":"),
             "cores": f"{os.cpu_count()} logical, {len(os.sched_getaffinity(0))} available, {threads} render threads",
