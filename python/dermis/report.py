@@ -88,16 +88,15 @@ class _Panels:
         return f"<figure>{box}<figcaption>{caption}</figcaption></figure>"
 
 
-def _main_table(study):
-    """Methods at the main budget: samples, time, errors (mean ± stderr), efficiency."""
+def main_rows(study, has_mask=True):
+    """The main table as text: (header, rows), the methods at the main budget with samples,
+    times, errors (mean ± stderr) and efficiency. Also used for Markdown (bench/sss_methods.py)."""
     T, pixels = study["main_budget"], study["resolution"][0] * study["resolution"][1]
-    has_mask = bool(study["mask"].any())
     cost_key = "cpu_seconds" if study["cost"] == "cpu" else "seconds"
     head = ["method", "spp: mean (min..max)", "wall (s)", "CPU (s)", "RMSE", "relMSE"]
     if has_mask:
         head += ["object RMSE", "object relMSE"]
-    base = None
-    rows = []
+    base, rows = None, []
     for m in study["methods"]:
         runs = _runs_at(m, T)
         if not runs:
@@ -106,19 +105,26 @@ def _main_table(study):
         rel, rel_se = repeats.summarize(runs, "relmse")
         work = rel * cost  # relMSE x time: lower is better, time-independent if unbiased
         rse = (rel_se / rel) if (rel_se is not None and rel > 0) else None
-        if base is None:
+        first = base is None
+        if first:
             base = (m["name"], work, rse)
         speedup = base[1] / work if work > 0 else float("nan")
-        sp_err = None if (rse is None or base[2] is None or m is study["methods"][0]) else \
-            speedup * (base[2] ** 2 + rse ** 2) ** 0.5
-        cells = [f"<b>{esc(m['name'])}</b>", _spp_text(runs, pixels), _ms(runs, "seconds", 3),
-                 _ms(runs, "cpu_seconds", 3), _ms(runs, "rmse"), _ms(runs, "relmse")]
+        sp_err = None if (first or rse is None or base[2] is None) else speedup * (base[2] ** 2 + rse ** 2) ** 0.5
+        cells = [m["name"], _spp_text(runs, pixels), _ms(runs, "seconds", 3), _ms(runs, "cpu_seconds", 3),
+                 _ms(runs, "rmse"), _ms(runs, "relmse")]
         if has_mask:
             cells += [_ms(runs, "mask_rmse"), _ms(runs, "mask_relmse")]
         cells.append(repeats.format_mean_stderr(speedup, sp_err, 3) + "×")
-        rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
-    head.append(f"efficiency vs {esc(base[0]) if base else ''}")
-    return ("<table><tr>" + "".join(f"<th>{h}</th>" for h in head) + "</tr>" + "".join(rows) + "</table>")
+        rows.append(cells)
+    head.append(f"efficiency vs {base[0] if base else ''}")
+    return head, rows
+
+
+def _main_table(study):
+    head, rows = main_rows(study, bool(study["mask"].any()))
+    return ("<table><tr>" + "".join(f"<th>{esc(h)}</th>" for h in head) + "</tr>" +
+            "".join("<tr>" + f"<td><b>{esc(r[0])}</b></td>" + "".join(f"<td>{esc(c)}</td>" for c in r[1:]) + "</tr>"
+                    for r in rows) + "</table>")
 
 
 def _budget_table(study):
