@@ -22,6 +22,9 @@ from . import repeats  # noqa: E402
 MEASURES = {
     "mse": ("MSE", lambda r, mask: (r["mask_rmse"] if mask else r["rmse"]) ** 2),
     "relmse": ("relMSE", lambda r, mask: r["mask_relmse"] if mask else r["relmse"]),
+    # MSE less the rendered reference's own variance (an unbiased estimate of the method's
+    # MSE against the exact image): needs a rendered reference; points <= 0 are not drawn.
+    "mse_corr": ("MSE − ref. variance", lambda r, mask: r["mask_mse_corr"] if mask else r["mse_corr"]),
 }
 
 
@@ -36,6 +39,9 @@ def _series(study, method, measure, mask):
             continue
         xs.append(repeats.summarize(runs, cost)[0])
         y, e = repeats.summarize(runs, lambda r: value(r, mask))
+        if not y > 0:  # log axes (a noise-corrected MSE can be negative)
+            xs.pop()
+            continue
         ys.append(y)
         es.append(e or 0.0)
     return xs, ys, es
@@ -55,7 +61,7 @@ def _slope_line(ax, points):
 
 
 def convergence_svg(study, measure):
-    """SVG bytes of the convergence figure of one measure ('mse' or 'relmse')."""
+    """SVG bytes of the convergence figure of one measure ('mse', 'relmse' or 'mse_corr')."""
     label, _ = MEASURES[measure]
     panels = [(False, "whole image")]
     if study["mask"].any():

@@ -134,6 +134,9 @@ def _budget_table(study):
     head = ["method", "budget (s)", "repeats", "spp", "wall (s)", "CPU (s)", "MSE", "relMSE"]
     if has_mask:
         head += ["object MSE", "object relMSE"]
+    corrected = all("mse_corr" in r for m in study["methods"] for r in m["runs"])
+    if corrected:
+        head += ["MSE − ref. var."] + (["object MSE − ref. var."] if has_mask else [])
     rows = []
     for m in study["methods"]:
         for b in study["budgets"]:
@@ -144,6 +147,8 @@ def _budget_table(study):
                      _ms(runs, "cpu_seconds", 3), _ms(runs, lambda r: r["rmse"] ** 2), _ms(runs, "relmse")]
             if has_mask:
                 cells += [_ms(runs, lambda r: r["mask_rmse"] ** 2), _ms(runs, "mask_relmse")]
+            if corrected:
+                cells += [_ms(runs, "mse_corr")] + ([_ms(runs, "mask_mse_corr")] if has_mask else [])
             rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
     return ("<table><tr>" + "".join(f"<th>{h}</th>" for h in head) + "</tr>" + "".join(rows) + "</table>")
 
@@ -235,13 +240,17 @@ def build_html(study):
 
     # Convergence.
     w("<h2>Convergence: error against time</h2>")
-    for measure in ("mse", "relmse"):
+    corrected = all("mse_corr" in r for m in study["methods"] for r in m["runs"])
+    for measure in ("mse", "relmse") + (("mse_corr",) if corrected else ()):
         w(f'<p><img class="plot" src="{svg_uri(plots.convergence_svg(study, measure))}" '
           f'alt="convergence plot {measure}"></p>')
     w('<p class="note">Log-log; every point is the mean over the repeats at one budget (x: the mean '
       f"{cost_word} time the renders took), error bars one standard error. Dashed: slope −1, the rate of an "
       "unbiased estimator (MSE ∝ 1/time); a curve that flattens is biased or has reached the reference's "
-      "noise.</p>")
+      "noise." + (" <i>MSE − ref. variance</i>: each render's MSE less the rendered reference's own variance "
+                  "(estimated from its two halves), since E(A − R)² = Var A + bias² + Var R: the method's own "
+                  "error against the exact image, free of the reference's noise (non-positive means are not "
+                  "drawn)." if corrected else "") + "</p>")
     w(f"<details><summary>All budgets</summary>{_budget_table(study)}</details>")
 
     # Object mask.

@@ -235,6 +235,9 @@ class Study:
                 run = dict(budget=budget, repeat=k, seed=seed, **{key: st[key] for key in (
                     "seconds", "cpu_seconds", "samples", "min_spp", "max_spp", "nonfinite", "truncated")})
                 run.update(self.errors(img, ref["image"], mask))
+                if ref.get("noise_rmse") is not None:  # E (A - R)^2 = Var A + bias^2 + Var R: remove Var R
+                    run["mse_corr"] = run["rmse"] ** 2 - ref["noise_rmse"] ** 2
+                    run["mask_mse_corr"] = run["mask_rmse"] ** 2 - ref["noise_mask_rmse"] ** 2
                 runs.append(run)
                 if budget == a.time and k == 0:
                     shown = img

@@ -27,7 +27,8 @@ def make_synthetic_study(width=48, height=36, methods=("disk", "randomwalk"), bu
                 runs.append(dict(budget=b, repeat=r, seed=1 + r, seconds=b * 1.01, cpu_seconds=b * 1.9,
                                  samples=int(1000 * b * width * height / (i + 1)), min_spp=int(900 * b),
                                  max_spp=int(1100 * b), rmse=e, relmse=e * e * 3, mask_rmse=e * 1.5,
-                                 mask_relmse=e * e * 4, nonfinite=0))
+                                 mask_relmse=e * e * 4, nonfinite=0, mse_corr=e * e - 1e-6,
+                                 mask_mse_corr=2.25 * e * e - 4e-6))
         out.append(dict(name=name, image=img, error_map=_false_colour(d / scale), error_scale=scale, runs=runs))
     return dict(title="Dermis study: synthetic", scene="synthetic.pbrt", cost="wall", budgets=list(budgets),
                 main_budget=budgets[-1], repeats=k, resolution=(width, height), threads=2, mask=mask,

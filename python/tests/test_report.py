@@ -52,8 +52,8 @@ def test_report_has_every_image_and_plot(tmp_path):
     tags = _parse(text)
     imgs = [a for t, a in tags if t == "img"]
     n = len(synthetic_study["methods"])
-    # reference, a flip pair per method, an error map per method, two plots, the mask
-    assert len(imgs) == 1 + 2 * n + n + 2 + 1
+    # reference, a flip pair per method, an error map per method, three plots, the mask
+    assert len(imgs) == 1 + 2 * n + n + 3 + 1
     kinds = {"png": 0, "svg": 0}
     for a in imgs:
         m = re.match(r"data:image/(png|svg\+xml);base64,(.*)$", a["src"], re.S)
@@ -65,7 +65,7 @@ def test_report_has_every_image_and_plot(tmp_path):
         else:
             assert b"<svg" in data[:2000] and b"</svg>" in data[-100:]
             kinds["svg"] += 1
-    assert kinds["svg"] == 2
+    assert kinds["svg"] == 3  # MSE, relMSE, MSE less the reference's variance
     # Every method's name, the table's standard errors, the command and the machine.
     for m in synthetic_study["methods"]:
         assert m["name"] in text

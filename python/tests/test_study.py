@@ -69,7 +69,9 @@ def test_study_writes_report_and_numbers(wall_study):
     ref = data["reference"]
     assert ref["noise_rmse"] > 0 and "volumetric" in ref["label"]
     text = (wall_study / "index.html").read_text()
-    assert text.count("<img ") == 1 + 2 * 2 + 2 + 2 + 1
+    assert text.count("<img ") == 1 + 2 * 2 + 2 + 3 + 1  # 3 plots: MSE, relMSE, MSE - ref. variance
+    run = data["methods"][0]["runs"][0]
+    assert math.isclose(run["mse_corr"], run["rmse"] ** 2 - ref["noise_rmse"] ** 2)
     assert "randomwalk:walksampling=mis" in text and "--reference-time 1" in text
 
 
@@ -93,6 +95,8 @@ def test_study_equal_cpu_time_with_given_reference(wall_study, tiny, tmp_path):
     assert rc == 0
     data = json.loads((tmp_path / "study.json").read_text())
     assert data["cost"] == "cpu" and data["reference"]["noise_rmse"] is None
+    assert "mse_corr" not in data["methods"][0]["runs"][0]  # a given reference: its noise is unknown
+    assert (tmp_path / "index.html").read_text().count("image/svg+xml") == 2
     for r in data["methods"][0]["runs"]:
         # The sample count comes from the measured cost per sample: CPU time near the budget.
         assert 0.4 / 3 < r["cpu_seconds"] < 0.4 * 3, r
