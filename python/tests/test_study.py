@@ -82,6 +82,8 @@ def test_study_masked_errors_match_compare(wall_study):
     img = dermis.read_image(str(wall_study / "disk.exr"))
     scene = dermis.load_scene(data["scene"])
     mask = dermis.subsurface_mask(scene)
+    # The sphere only: the centre is on it, the bottom corners see the (diffuse) floor.
+    assert mask[18, 24] and not mask[-1, 0] and not mask[-1, -1]
     run = next(r for r in data["methods"][0]["runs"] if r["budget"] == 0.3 and r["repeat"] == 0)
     d = (img[mask].astype(float) - ref[mask]) ** 2
     assert math.isclose(run["mask_rmse"], math.sqrt(d.mean()), rel_tol=1e-4)
