@@ -252,6 +252,28 @@ void ParamList::warn_unused(Diagnostics& diag, const std::string& context) const
                 fmt::format("unused parameter \"{} {}\" (ignored by {})", p.param.type, p.param.name, context));
 }
 
+std::string param_text(const Param& p) {
+  auto quoted = [](const std::string& s) {
+    std::string q = "\"";
+    for (char c : s) {
+      if (c == '"' || c == '\\') q += '\\';
+      q += c;
+    }
+    return q + "\"";
+  };
+  std::string text = quoted(p.type + " " + p.name) + " [";
+  for (double x : p.numbers) text += fmt::format(" {}", x);  // shortest form that reads back exactly
+  for (const std::string& s : p.strings) text += " " + quoted(s);
+  for (bool b : p.bools) text += b ? " true" : " false";
+  return text + " ]";
+}
+
+void ParamList::replace(const ParamList& changes) {
+  std::erase_if(items_, [&](const ParsedParam& p) { return changes.has(p.param.name); });
+  items_.insert(items_.end(), changes.items_.begin(), changes.items_.end());
+  for (const ParsedParam& p : items_) p.used = false;
+}
+
 std::vector<Param> ParamList::as_written() const {
   std::vector<Param> out;
   out.reserve(items_.size());

@@ -27,6 +27,9 @@ struct ParsedParam {
   SourceLoc value_at(size_t i) const;
 };
 
+// One parameter as pbrt text: `"type name" [ values ]`, read back to the same values.
+std::string param_text(const Param& p);
+
 class ParamList {
  public:
   // Reads parameters while the next token is a string. Throws on a malformed list.
@@ -55,6 +58,9 @@ class ParamList {
   void mark_all_used() const;
   // One warning per parameter that no getter read, naming its file:line:col.
   void warn_unused(Diagnostics& diag, const std::string& context) const;
+  // Drops the parameters `changes` names, appends those of `changes`, and marks all
+  // unused again (for re-reading a material with some parameters changed).
+  void replace(const ParamList& changes);
   // All parameters as written.
   std::vector<Param> as_written() const;
   const std::vector<ParsedParam>& items() const { return items_; }

@@ -480,4 +480,18 @@ SceneDesc parse_scene_string(const std::string& text, const std::string& name, c
   return scene;
 }
 
+std::vector<std::string> set_material_parameters(SceneDesc& scene, std::size_t index, const std::string& params_text,
+                                                 const std::string& source_name) {
+  if (index >= scene.materials.size())
+    throw std::out_of_range(fmt::format("material {} does not exist (the scene has {})", index, scene.materials.size()));
+  const std::size_t warnings_before = scene.diagnostics.warnings.size();
+  SceneParser parser(scene);
+  MaterialDesc m = parser.rebuild_material(scene.materials[index], params_text, source_name);
+  scene.materials[index] = std::move(m);  // only once the whole text was read: an error changes nothing
+  std::vector<std::string> added(scene.diagnostics.warnings.begin() + std::ptrdiff_t(warnings_before),
+                                 scene.diagnostics.warnings.end());
+  scene.diagnostics.warnings.resize(warnings_before);
+  return added;
+}
+
 }  // namespace dermis

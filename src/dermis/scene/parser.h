@@ -3,7 +3,9 @@
 // things Dermis ignores or approximates become warnings in SceneDesc::diagnostics.
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "dermis/scene/scene_desc.h"
 
@@ -15,5 +17,14 @@ SceneDesc parse_scene_file(const std::string& path);
 // Same for a string; `name` is used in messages; relative paths resolve against base_dir.
 SceneDesc parse_scene_string(const std::string& text, const std::string& name = "<string>",
                              const std::string& base_dir = ".");
+
+// Re-reads material `index` of a parsed scene with the parameters in `params_text`
+// (pbrt parameter text, e.g. "\"string method\" \"disk\" \"rgb mfp\" [1 2 3]") replacing
+// those of the same name, as if the scene had been written that way; meshes and
+// textures are not read again. Messages about the new text name `source_name`.
+// Throws SceneError (file:line:col) or std::out_of_range for a bad index; returns the
+// warnings the new parameters caused.
+std::vector<std::string> set_material_parameters(SceneDesc& scene, std::size_t index, const std::string& params_text,
+                                                 const std::string& source_name = "<parameters>");
 
 }  // namespace dermis

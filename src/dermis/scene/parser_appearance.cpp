@@ -146,6 +146,32 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
   }
   if (m.eta <= 0) throw SceneError(pl.find("eta") ? pl.find("eta")->value_loc : loc, "eta must be positive");
   pl.warn_unused(s_.diagnostics, fmt::format("material \"{}\"", type));
+  m.type_name = type;
+  m.params = std::make_shared<const ParamList>(pl);
+  return m;
+}
+
+MaterialDesc SceneParser::rebuild_material(const MaterialDesc& old, const std::string& params_text,
+                                           const std::string& source_name) {
+  // Texture names as the end of the scene left them (a later definition replaces an earlier one).
+  spectrum_textures_.clear();
+  float_textures_.clear();
+  for (std::size_t i = 0; i < s_.textures.size(); ++i)
+    (s_.textures[i].is_float ? float_textures_ : spectrum_textures_)[s_.textures[i].name] = int(i);
+  TokenStream changes_ts(tokenize(params_text, source_name), source_name);
+  ParamList changes = ParamList::parse(changes_ts);
+  if (!changes_ts.at_end()) {
+    const Token& t = *changes_ts.peek();
+    throw SceneError(changes_ts.loc(t), fmt::format("expected a parameter (\"type name\" value), found {} '{}'",
+                                                    token_kind_name(t.kind), t.text));
+  }
+  // The parameters as written (with their places in the scene), those named again replaced.
+  ParamList merged = old.params ? *old.params : ParamList();
+  merged.replace(changes);
+  // MakeNamedMaterial's "type" is one of its parameters; "string type" changes any material's.
+  const std::string type = merged.has("type") ? merged.get_string("type", old.type_name) : old.type_name;
+  MaterialDesc m = build_material(type, merged, old.loc);
+  m.name = old.name;
   return m;
 }
 

@@ -303,5 +303,58 @@ TEST(Spectra, NamedMetalsAreBandAveragesOfPbrtTables) {
   EXPECT_FALSE(named_spectrum_rgb("metal-Fe-eta").has_value());
 }
 
+// set_material_parameters: a material re-read with some parameters changed equals the
+// material written that way in the scene.
+TEST(ParserMaterialEdit, EqualsTheSceneWrittenWithTheChange) {
+  const std::string before = "Texture \"t\" \"spectrum\" \"constant\" \"rgb value\" [0.2 0.4 0.6]\n"
+                             "MakeNamedMaterial \"skin\" \"string type\" \"subsurface\" \"rgb mfp\" [1 2 3] "
+                             "\"rgb reflectance\" [0.5 0.5 0.5] \"string method\" \"randomwalk\"\n"
+                             "NamedMaterial \"skin\"\nShape \"sphere\"\n";
+  SceneDesc edited = parse_world(before);
+  const auto warnings = set_material_parameters(edited, 0, "\"string method\" \"disk\" \"texture reflectance\" \"t\"");
+  EXPECT_TRUE(warnings.empty());
+  SceneDesc written = parse_world(
+      "Texture \"t\" \"spectrum\" \"constant\" \"rgb value\" [0.2 0.4 0.6]\n"
+      "MakeNamedMaterial \"skin\" \"string type\" \"subsurface\" \"rgb mfp\" [1 2 3] "
+      "\"texture reflectance\" \"t\" \"string method\" \"disk\"\nNamedMaterial \"skin\"\nShape \"sphere\"\n");
+  const SubsurfaceParams& a = edited.materials[0].subsurface;
+  const SubsurfaceParams& b = written.materials[0].subsurface;
+  EXPECT_EQ(edited.materials[0].name, "skin");
+  EXPECT_EQ(a.method, SubsurfaceParams::Method::Disk);
+  EXPECT_EQ(a.method, b.method);
+  EXPECT_EQ(a.reflectance_texture, 0);
+  EXPECT_EQ(a.reflectance_texture, b.reflectance_texture);
+  ASSERT_TRUE(a.mfp && b.mfp);
+  expect_rgb(*a.mfp, *b.mfp);
+  EXPECT_EQ(edited.shapes[0].material, 0);
+}
+
+TEST(ParserMaterialEdit, ChangesTypeAndKeepsValuesExactly) {
+  SceneDesc s = parse_world("Material \"diffuse\" \"rgb reflectance\" [0.1 0.123456789 0.3]\nShape \"sphere\"\n");
+  set_material_parameters(s, 0, "\"float eta\" 1.4");  // unused by diffuse: warned
+  expect_rgb(s.materials[0].reflectance.value, RGB(0.1f, 0.123456789f, 0.3f), 0);
+  set_material_parameters(s, 0, "\"string type\" \"dielectric\" \"float eta\" 1.4 \"rgb reflectance\" [0 0 0]");
+  EXPECT_EQ(s.materials[0].type, MaterialDesc::Type::Dielectric);
+  EXPECT_FLOAT_EQ(s.materials[0].eta, 1.4f);
+}
+
+TEST(ParserMaterialEdit, BadTextIsAnErrorWithItsPositionAndChangesNothing) {
+  SceneDesc s = parse_world("Material \"subsurface\" \"string method\" \"randomwalk\"\nShape \"sphere\"\n");
+  try {
+    set_material_parameters(s, 0, "\"string method\" \"nonsense\"", "<python>");
+    FAIL() << "expected a SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("<python>:1:"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(s.materials[0].subsurface.method, SubsurfaceParams::Method::RandomWalk);
+  EXPECT_THROW(set_material_parameters(s, 0, "\"string method\" \"disk\" 12"), SceneError);  // trailing junk
+  EXPECT_THROW(set_material_parameters(s, 0, "\"texture reflectance\" \"nope\""), SceneError);
+  EXPECT_THROW(set_material_parameters(s, 3, ""), std::out_of_range);
+  const auto warnings = set_material_parameters(s, 0, "\"float nonsense\" 1");
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("nonsense"), std::string::npos) << warnings[0];
+  EXPECT_TRUE(s.diagnostics.warnings.empty() || s.diagnostics.warnings.back().find("nonsense") == std::string::npos);
+}
+
 }  // namespace
 }  // namespace dermis

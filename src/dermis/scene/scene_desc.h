@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +21,8 @@ namespace dermis {
 
 // One parameter as written: `"type name" [values]`. Kept on descriptions whose
 // parameters are interpreted later (e.g. the subsurface material's methods).
+class ParamList;
+
 struct Param {
   std::string type;  // integer, float, point2, vector2, point3, vector3, normal, normal3,
                      // rgb, spectrum, blackbody, bool, string, texture, point, vector, color
@@ -107,6 +110,10 @@ struct MaterialDesc {
   float uroughness = 0, vroughness = 0;
   bool remap_roughness = true;
   SubsurfaceParams subsurface;  // subsurface: every parameter, read once (subsurface_params.h)
+  // The material as written, so that it can be re-read with some parameters changed
+  // (set_material_parameters in parser.h): its type and every parameter (params.h).
+  std::string type_name;
+  std::shared_ptr<const ParamList> params;
   SourceLoc loc;
 };
 

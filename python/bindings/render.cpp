@@ -1,0 +1,182 @@
+// dermis.render: the scene made renderable (assembly and preparation, kept between
+// renders), the render loop without the GIL, progress and Ctrl-C.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <fmt/format.h>
+#include <time.h>
+
+#include <optional>
+
+#include "bindings.h"
+#include "interruptible.h"
+#include "scene.h"
+#include "dermis/render/film.h"
+#include "dermis/render/point_cloud_prepass.h"
+#include "dermis/render/renderer.h"
+#include "dermis/render/scene_assembly.h"
+#include "dermis/render/scene_preparation.h"
+
+namespace py = pybind11;
+
+namespace dermis::python {
+
+namespace {
+
+py::handle g_render_interrupted;  // the exception class, created once by bind_render
+
+double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+// Marks the scene busy for the duration of a render (changes from other threads are refused).
+class BusyGuard {
+ public:
+  explicit BusyGuard(Scene& s) : s_(s) {
+    if (s_.busy.exchange(true)) throw std::runtime_error("the scene is already being rendered (by another thread)");
+  }
+  ~BusyGuard() { s_.busy = false; }
+
+ private:
+  Scene& s_;
+};
+
+bool has_point_clouds(const SceneDesc& desc) {
+  for (const MaterialDesc& m : desc.materials)
+    if (m.type == MaterialDesc::Type::Subsurface && m.subsurface.method == SubsurfaceParams::Method::PointCloud)
+      return true;
+  return false;
+}
+
+// The render scene for these seed and sampler: the one kept, or a new one (assembly and
+// preparation on a worker thread; Ctrl-C raises KeyboardInterrupt).
+std::shared_ptr<RenderScene> prepared_scene(Scene& s, uint64_t seed, SamplerKind sampler) {
+  // Only point clouds depend on the seed and sampler (their irradiance pre-pass).
+  const bool depends = has_point_clouds(s.desc);
+  if (s.prepared && (!depends || (s.prepared_seed == seed && s.prepared_sampler == sampler))) return s.prepared;
+  s.prepared.reset();
+  std::shared_ptr<RenderScene> built;
+  Diagnostics diag;
+  std::atomic<bool> cancel{false};
+  auto error = run_interruptible(
+      [&] {
+        built = assemble_scene(s.desc, diag);
+        PreparationOptions prep;
+        prep.point_clouds.seed = seed;
+        prep.point_clouds.sampler = sampler;
+        prep.cancel = &cancel;
+        prepare_scene(*built, prep);
+      },
+      cancel, nullptr);
+  if (error) throw *error;
+  for (const std::string& w : diag.warnings)
+    if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 2) != 0) throw py::error_already_set();
+  s.prepared = built;
+  s.prepared_seed = seed;
+  s.prepared_sampler = sampler;
+  return built;
+}
+
+py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed, int threads, double time_limit,
+                  std::optional<std::string> sampler, const py::object& progress, bool stats) {
+  BusyGuard busy(s);
+  RenderOptions opt;
+  opt.spp = spp.value_or(s.desc.settings.spp);
+  if (opt.spp <= 0) throw py::value_error(fmt::format("spp must be positive, got {}", opt.spp));
+  if (seed && *seed < 0) throw py::value_error(fmt::format("seed must be >= 0, got {}", *seed));
+  opt.seed = seed ? uint64_t(*seed) : uint64_t(s.desc.settings.seed);
+  if (threads < 0) throw py::value_error(fmt::format("threads must be >= 0 (0: all cores), got {}", threads));
+  opt.threads = threads;
+  if (!(time_limit >= 0)) throw py::value_error(fmt::format("time_limit must be >= 0 seconds, got {}", time_limit));
+  opt.time_limit = time_limit;
+  opt.sampler = s.desc.settings.sampler;
+  if (sampler && !parse_sampler_kind(*sampler, opt.sampler))
+    throw py::value_error(fmt::format("sampler must be 'sobol' or 'independent', got '{}'", *sampler));
+
+  std::shared_ptr<RenderScene> scene = prepared_scene(s, opt.seed, opt.sampler);
+
+  const PixelBounds px = film_pixel_bounds(scene->film);
+  const int64_t total = int64_t(px.width()) * px.height() * opt.spp;
+  std::atomic<int64_t> done{0};
+  int64_t reported = -1;
+  opt.progress = [&done](int64_t n) { done += n; };
+  std::atomic<bool> cancel{false};
+  opt.cancel = &cancel;
+  RenderResult r;
+  const double cpu0 = process_cpu_seconds();
+  auto poll = [&] {
+    const int64_t d = done.load();
+    if (!progress.is_none() && d != reported) {
+      reported = d;
+      progress(d, total);
+    }
+  };
+  auto error = run_interruptible([&] { r = render_image(*scene, opt); }, cancel, poll);
+  const double cpu_seconds = process_cpu_seconds() - cpu0;
+  if (!error && !progress.is_none() && reported != done.load()) progress(done.load(), total);
+
+  py::array_t<float> image({py::ssize_t(r.height), py::ssize_t(r.width), py::ssize_t(3)});
+  std::copy(r.rgb.begin(), r.rgb.end(), image.mutable_data());
+  py::dict st;
+  st["seconds"] = r.seconds;
+  st["cpu_seconds"] = cpu_seconds;
+  st["spp"] = opt.spp;
+  st["seed"] = opt.seed;
+  st["samples"] = r.samples;
+  st["min_spp"] = r.min_spp;
+  st["max_spp"] = r.max_spp;
+  st["rays"] = r.rays;
+  st["nonfinite"] = r.nonfinite;
+  st["truncated"] = r.truncated;
+  st["interrupted"] = r.interrupted;
+  st["time_limited"] = r.time_limited;
+  if (error) {
+    if (!error->matches(PyExc_KeyboardInterrupt)) throw *error;
+    py::object e = py::reinterpret_borrow<py::object>(g_render_interrupted)(
+        fmt::format("render interrupted: the image holds the samples finished so far ({}..{} per pixel of {})",
+                    r.min_spp, r.max_spp, opt.spp));
+    e.attr("image") = image;
+    e.attr("stats") = st;
+    PyErr_SetObject(g_render_interrupted.ptr(), e.ptr());
+    throw py::error_already_set();
+  }
+  if (stats) return py::make_tuple(image, st);
+  return image;
+}
+
+}  // namespace
+
+void bind_render(py::module_& m) {
+  g_render_interrupted = PyErr_NewExceptionWithDoc(
+      "dermis.RenderInterrupted",
+      "Ctrl-C (KeyboardInterrupt) during render(): .image holds the partial image (every pixel with the samples "
+      "finished so far) and .stats the render statistics.",
+      PyExc_KeyboardInterrupt, nullptr);
+  m.attr("RenderInterrupted") = py::reinterpret_borrow<py::object>(g_render_interrupted);
+  m.def("render", &render, py::arg("scene"), py::kw_only(), py::arg("spp") = py::none(), py::arg("seed") = py::none(),
+        py::arg("threads") = 0, py::arg("time_limit") = 0.0, py::arg("sampler") = py::none(),
+        py::arg("progress") = py::none(), py::arg("stats") = false,
+        R"(Renders a scene; returns a float32 NumPy array (height, width, 3) of linear RGB.
+
+spp: samples per pixel (default: scene.spp, the scene's Sampler).
+seed: the random seed (default: scene.seed). The same seed gives the same image, whatever
+  the number of threads.
+threads: worker threads (0: all cores).
+time_limit: stop after this many seconds (0: none), keeping the samples finished; the
+  render takes samples in passes of 1, 1, 2, 4, ... 16 per pixel, so every pixel then has
+  about the same number.
+sampler: 'sobol' (Owen-scrambled Sobol') or 'independent' (default: the scene's).
+progress: a callable progress(done, total) of pixel samples, called on this thread
+  about every 50 ms and once at the end.
+stats: also return a dict (image, stats): seconds (wall), cpu_seconds (this process),
+  spp, seed, samples, min_spp, max_spp, rays, nonfinite (NaN/inf samples, dropped),
+  truncated (paths cut short), interrupted, time_limited.
+The GIL is released while rendering. Ctrl-C raises dermis.RenderInterrupted (a
+KeyboardInterrupt) whose .image is the partial image. The scene's assembly and
+preparation (BVH, albedo tables, point clouds) are kept for the next render until the
+scene changes. Raises dermis.SceneError for materials a method cannot use.)");
+}
+
+}  // namespace dermis::python
