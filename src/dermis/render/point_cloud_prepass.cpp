@@ -44,8 +44,9 @@ void object_triangles(const RenderScene& sc, const std::vector<int>& shapes, std
 }  // namespace
 
 PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& options, Progress::Style style,
-                                    const std::atomic<bool>* cancel) {
+                                    const std::atomic<bool>* cancel, ProcessGroup* group_or_null) {
   using Clock = std::chrono::steady_clock;
+  ProcessGroup& group = group_or_null ? *group_or_null : single_process();
   PointCloudReport report;
   // The point-cloud objects, in order of their first shape.
   std::map<int, std::vector<int>> objects;
@@ -84,7 +85,8 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
       const int outside_medium = sc.shapes[shapes[0]].outside_medium;
       Progress progress(fmt::format("Point cloud {} ({} points)", k, cloud.points.size()),
                         int64_t(cloud.points.size()), style);
-      tbb::parallel_for(std::size_t(0), cloud.points.size(), [&](std::size_t j) {
+      const auto [begin, end] = group.share(cloud.points.size());
+      tbb::parallel_for(begin, end, [&](std::size_t j) {
         if (cancel && cancel->load(std::memory_order_relaxed)) return;
         PathCounters counters;
         const pc::SurfacePoint& p = cloud.points[j];
@@ -99,11 +101,14 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
         cloud.irradiance[j] = sum / float(samples);
         progress.advance();
       });
-      if (cancel && cancel->load()) throw Interrupted();
+      if (group.any(cancel && cancel->load())) throw Interrupted();
+      static_assert(sizeof(RGB) == 3 * sizeof(float));
+      group.allgather(std::span<float>(cloud.irradiance.data()->c, 3 * cloud.irradiance.size()), 3);
+      progress.advance(int64_t(cloud.points.size() - (end - begin)));
       progress.finish();
     }
     report.prepass_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-    if (!options.save_path.empty()) {
+    if (!options.save_path.empty() && group.is_root()) {
       pc::save_point_cloud(options.save_path + suffix, cloud);
       report.file_bytes += std::filesystem::file_size(options.save_path + suffix);
     }

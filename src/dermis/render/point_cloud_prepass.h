@@ -9,6 +9,7 @@
 #include <string>
 
 #include "dermis/core/sampler.h"
+#include "dermis/render/process_group.h"
 #include "dermis/render/progress.h"
 #include "dermis/render/render_scene.h"
 
@@ -31,10 +32,13 @@ struct PointCloudReport {
 // Computes the clouds of the scene's point-cloud objects (the scene's other subsurface
 // methods must be made already: the irradiance paths may meet them). Throws
 // std::runtime_error with a message a user can act on; stops early (throwing
-// Interrupted) when `cancel` becomes true.
+// Interrupted) when `cancel` becomes true. With a group, each process computes the
+// irradiance of its share of the points (a point's value depends on its index, not on
+// who computes it) and all receive every point's; the cancel flag is then combined so
+// that all stop together; only rank 0 saves. Loading: every process reads the file.
 PointCloudReport build_point_clouds(RenderScene& scene, const PointCloudOptions& options,
                                     Progress::Style progress = Progress::Style::kQuiet,
-                                    const std::atomic<bool>* cancel = nullptr);
+                                    const std::atomic<bool>* cancel = nullptr, ProcessGroup* group = nullptr);
 
 // Thrown by a preparation stage stopped by its cancel flag.
 struct Interrupted : std::runtime_error {

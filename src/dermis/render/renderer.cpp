@@ -22,6 +22,13 @@ struct Tile {
   int x0, y0, x1, y1;
 };
 
+int tile_owner(std::size_t tile, std::size_t tiles, const ProcessGroup& group, TileAssignment assignment) {
+  if (assignment == TileAssignment::Interleaved) return int(tile % std::size_t(group.size()));
+  for (int r = 0; r < group.size(); ++r)
+    if (tile < group.share_of(r, tiles).second) return r;
+  return group.size() - 1;
+}
+
 }  // namespace
 
 RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
@@ -35,11 +42,17 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
   Film film(w, h);
   FilterSampler filter(sc.film.filter);
 
-  std::vector<Tile> tiles;
+  // This process's tiles: the same ones in every pass (a pixel's samples are summed
+  // by one process, in sample order).
+  ProcessGroup& group = opt.group ? *opt.group : single_process();
+  std::vector<Tile> all_tiles, tiles;
   for (int y = 0; y < h; y += kTileSize)
-    for (int x = 0; x < w; x += kTileSize) tiles.push_back({x, y, std::min(x + kTileSize, w), std::min(y + kTileSize, h)});
+    for (int x = 0; x < w; x += kTileSize) all_tiles.push_back({x, y, std::min(x + kTileSize, w), std::min(y + kTileSize, h)});
+  for (std::size_t i = 0; i < all_tiles.size(); ++i)
+    if (tile_owner(i, all_tiles.size(), group, opt.tile_assignment) == group.rank()) tiles.push_back(all_tiles[i]);
 
   std::atomic<uint64_t> nonfinite{0}, rays{0}, truncated{0};
+  std::atomic<int64_t> pass_samples{0};
   std::atomic<bool> stop{false}, interrupted{false}, time_limited{false};
   RenderResult result;
   auto out_of_time = [&] {
@@ -73,7 +86,9 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
     nonfinite += bad;
     rays += counters.rays;
     truncated += counters.truncated;
-    if (opt.progress) opt.progress(int64_t(t.x1 - t.x0) * (t.y1 - t.y0) * n_samples);
+    const int64_t taken = int64_t(t.x1 - t.x0) * (t.y1 - t.y0) * n_samples;
+    pass_samples += taken;
+    if (opt.progress) opt.progress(taken);
   };
 
   const int threads = opt.threads > 0 ? opt.threads : tbb::this_task_arena::max_concurrency();
@@ -83,8 +98,11 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
   // Passes of 1, 1, 2, 4, ... samples per pixel (at most 16), so that an interrupt or
   // the time limit leaves every pixel with a similar number of samples.
   int done = 0, pass_size = 1;
+  double busy = 0;
   while (done < opt.spp && !stop) {
     int n = std::min({pass_size, opt.spp - done, 16});
+    pass_samples = 0;
+    const auto pass_start = Clock::now();
     arena.execute([&] {
       tbb::parallel_for(std::size_t(0), tiles.size(), [&](std::size_t i) {
         if (stop.load(std::memory_order_relaxed)) return;
@@ -101,9 +119,30 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
         render_tile(tiles[i], done, n);
       });
     });
+    busy += std::chrono::duration<double>(Clock::now() - pass_start).count();
     done += n;
     if (done > 1) pass_size = std::min(pass_size * 2, 16);
+    if (group.size() > 1) {
+      // The pass boundary: all processes stop together, and the progress learns the
+      // others' samples.
+      int64_t state[3] = {interrupted ? 1 : 0, time_limited ? 1 : 0, pass_samples.load()};
+      group.sum_all(state);
+      if (state[0] > 0) interrupted = true;
+      if (state[1] > 0) time_limited = true;
+      if (state[0] > 0 || state[1] > 0) stop = true;
+      if (opt.progress && state[2] > pass_samples) opt.progress(state[2] - pass_samples);
+    }
   }
+
+  // Each pixel was summed by its owner only; the others hold zeros, and x + 0 == x.
+  uint64_t counts[3] = {nonfinite.load(), rays.load(), truncated.load()};
+  if (group.size() > 1) {
+    group.sum_to_root(std::span<double>(film.sum));
+    group.sum_to_root(std::span<uint32_t>(film.samples));
+    group.sum_to_root(std::span<uint64_t>(counts));
+  }
+  result.process_seconds.assign(std::size_t(group.size()), 0.0);
+  group.gather_to_root(busy, result.process_seconds);
 
   result.interrupted = interrupted;
   result.time_limited = time_limited;
@@ -112,9 +151,9 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
   result.rgb = film.resolve();
   if (sc.film.exposure_scale != 1)
     for (float& v : result.rgb) v *= sc.film.exposure_scale;
-  result.nonfinite = nonfinite;
-  result.rays = rays;
-  result.truncated = truncated;
+  result.nonfinite = counts[0];
+  result.rays = counts[1];
+  result.truncated = counts[2];
   result.min_spp = *std::min_element(film.samples.begin(), film.samples.end());
   result.max_spp = *std::max_element(film.samples.begin(), film.samples.end());
   for (uint32_t s : film.samples) result.samples += s;

@@ -2,7 +2,9 @@
 // time limit or an interrupt stops between tiles with a consistent image. Each
 // pixel sample draws its numbers from Sampler(kind, seed, pixel, sample) (core/sampler.h)
 // and each pixel is accumulated by one thread in sample order: the same seed gives the
-// same image whatever the number of threads.
+// same image whatever the number of threads. With a ProcessGroup of several processes
+// each tile belongs to one process for the whole render, so each pixel's sum is taken
+// in the same order as by one process: the same image whatever the number of processes.
 #pragma once
 
 #include <atomic>
@@ -11,9 +13,16 @@
 #include <vector>
 
 #include "dermis/core/sampler.h"
+#include "dermis/render/process_group.h"
 #include "dermis/render/render_scene.h"
 
 namespace dermis {
+
+// Which process of a group renders which tile (of 16x16 pixels, row-major).
+enum class TileAssignment {
+  Interleaved,  // tile i to process i mod N: heavy regions spread over the processes
+  Blocks,       // contiguous runs of tiles, one per process (ProcessGroup::share)
+};
 
 struct RenderOptions {
   int spp = 16;
@@ -22,8 +31,13 @@ struct RenderOptions {
   SamplerKind sampler = SamplerKind::Sobol;
   double time_limit = 0;      // seconds; 0: none
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop early
-  // Called from worker threads with the number of pixel samples just finished.
+  // Called from worker threads with the number of pixel samples just finished; with a
+  // group, also at each pass boundary with the samples the other processes finished.
   std::function<void(int64_t)> progress;
+  // The processes sharing the render (null: this one alone). The film is summed to
+  // rank 0: only rank 0's result holds the image and the totals.
+  ProcessGroup* group = nullptr;
+  TileAssignment tile_assignment = TileAssignment::Interleaved;
 };
 
 struct RenderResult {
@@ -35,6 +49,9 @@ struct RenderResult {
   uint64_t truncated = 0;
   uint32_t min_spp = 0, max_spp = 0;
   double seconds = 0;
+  // Seconds each process spent rendering its tiles, waits at pass boundaries excluded
+  // (rank 0 only; one entry per process).
+  std::vector<double> process_seconds;
   bool interrupted = false;   // stopped by `cancel`
   bool time_limited = false;  // stopped by the time limit
 };

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "dermis/render/scene_assembly.h"
+#include "dermis/render/subsurface/coefficients.h"
 
 namespace dermis {
 
@@ -14,11 +15,24 @@ PreparationReport prepare_scene(RenderScene& sc, const PreparationOptions& optio
   PreparationReport report;
   const auto t0 = Clock::now();
   const std::size_t stages = sc.subsurface_params.size() + sc.volumetric_media.size();
+  ProcessGroup& group = options.group ? *options.group : single_process();
   {
     Progress progress("Subsurface methods", int64_t(stages), stages > 0 ? options.progress : Progress::Style::kQuiet);
     auto check_cancel = [&] {
-      if (options.cancel && options.cancel->load()) throw Interrupted();
+      if (group.any(options.cancel && options.cancel->load())) throw Interrupted();
     };
+    // The albedo-inversion tables first, made once for the group; the methods then
+    // look them up (the other tables, profiles and probes, are quick: each process
+    // makes its own).
+    {
+      std::vector<SubsurfaceParams> table_params = sc.subsurface_params;
+      for (const RenderScene::VolumetricMedium& v : sc.volumetric_media) {
+        table_params.push_back(v.params);
+        table_params.back().boundary = SubsurfaceParams::Boundary::Dielectric;
+      }
+      check_cancel();
+      prepare_albedo_inversions(table_params, group);
+    }
     sc.subsurface.clear();
     for (const SubsurfaceParams& p : sc.subsurface_params) {
       check_cancel();
@@ -45,7 +59,7 @@ PreparationReport prepare_scene(RenderScene& sc, const PreparationOptions& optio
     progress.finish();
   }
   report.subsurface_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-  report.point_clouds = build_point_clouds(sc, options.point_clouds, options.progress, options.cancel);
+  report.point_clouds = build_point_clouds(sc, options.point_clouds, options.progress, options.cancel, &group);
   sc.prepared = true;
   return report;
 }

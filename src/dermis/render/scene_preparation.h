@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "dermis/render/point_cloud_prepass.h"
+#include "dermis/render/process_group.h"
 #include "dermis/render/progress.h"
 #include "dermis/render/render_scene.h"
 
@@ -17,6 +18,10 @@ struct PreparationOptions {
   PointCloudOptions point_clouds;
   Progress::Style progress = Progress::Style::kQuiet;
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop: throws Interrupted
+  // The processes preparing the same scene together (null: this one alone): the albedo
+  // tables and the point clouds' irradiance are computed in shares and exchanged; the
+  // cancel flag is combined at each stage, so that all stop together.
+  ProcessGroup* group = nullptr;
 };
 
 struct PreparationReport {

@@ -1,9 +1,11 @@
 #include "dermis/render/subsurface/coefficients.h"
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <tuple>
 
 #include "dermis/sss/study/albedo_inversion.h"
@@ -13,20 +15,70 @@ namespace dermis {
 
 namespace {
 
+using TableKey = std::tuple<double, double, bool>;  // (eta, g, exit matched)
+
 // One table per (eta, g, exit), shared by every material of the process.
-const sss::AlbedoInversion& albedo_inversion(double eta, double g, bool exit_matched) {
-  static std::mutex mutex;
-  static std::map<std::tuple<double, double, bool>, std::unique_ptr<sss::AlbedoInversion>> tables;
-  std::lock_guard<std::mutex> lock(mutex);
-  auto& t = tables[{eta, g, exit_matched}];
-  if (!t) {
-    sss::AlbedoTableConfig config;
-    config.eta = eta;
-    config.g = g;
-    config.exit_matched = exit_matched;
-    t = std::make_unique<sss::AlbedoInversion>(config);
-  }
+std::mutex g_tables_mutex;
+std::map<TableKey, std::unique_ptr<sss::AlbedoInversion>> g_tables;
+
+sss::AlbedoTableConfig table_config(const TableKey& key) {
+  sss::AlbedoTableConfig config;
+  config.eta = std::get<0>(key);
+  config.g = std::get<1>(key);
+  config.exit_matched = std::get<2>(key);
+  return config;
+}
+
+// The table of the walk's own boundary: the dielectric (Fresnel at entry and at every
+// exit); the diffuse boundary (refraction at entry, out at the first crossing through
+// the exit lobe); matched (eta = 1). A is per entering light under diffuse incidence.
+std::optional<TableKey> table_key(const SubsurfaceParams& p) {
+  if (!p.reflectance || p.albedo_inversion_fit) return std::nullopt;
+  using Boundary = SubsurfaceParams::Boundary;
+  const double table_eta = p.boundary == Boundary::Matched ? 1.0 : p.eta;
+  return TableKey{table_eta, p.g, p.boundary == Boundary::Diffuse};
+}
+
+const sss::AlbedoInversion& albedo_inversion(const TableKey& key) {
+  std::lock_guard<std::mutex> lock(g_tables_mutex);
+  auto& t = g_tables[key];
+  if (!t) t = std::make_unique<sss::AlbedoInversion>(table_config(key));
   return *t;
+}
+
+// One table made by the group (see prepare_albedo_inversions).
+std::unique_ptr<sss::AlbedoInversion> shared_table(const sss::AlbedoTableConfig& config, ProcessGroup& group) {
+  std::unique_ptr<sss::AlbedoInversion> t;
+  double cached = 0;
+  if (group.is_root()) {
+    t = sss::AlbedoInversion::from_cache(config);
+    cached = t ? 1 : 0;
+  }
+  group.broadcast(std::span<double>(&cached, 1));
+  const int n = config.size;
+  std::vector<double> values(2 * std::size_t(n));  // (A, stderr) per node
+  std::vector<sss::AlbedoNode> nodes(n);
+  if (cached > 0) {
+    if (group.size() == 1) return t;
+    if (t)
+      for (int i = 0; i < n; ++i) values[2 * i] = t->node_albedos()[i], values[2 * i + 1] = t->node_stderrs()[i];
+    group.broadcast(values);
+    if (t) return t;
+    for (int i = 0; i < n; ++i) nodes[i] = {values[2 * i], values[2 * i + 1]};
+    return std::make_unique<sss::AlbedoInversion>(config, nodes, true);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const auto [begin, end] = group.share(std::size_t(n));
+  for (std::size_t i = begin; i < end; ++i) {
+    const sss::AlbedoNode node = sss::simulate_albedo_node(config, int(i));
+    values[2 * i] = node.albedo, values[2 * i + 1] = node.error;
+  }
+  group.allgather(std::span<double>(values), 2);
+  for (int i = 0; i < n; ++i) nodes[i] = {values[2 * i], values[2 * i + 1]};
+  t = std::make_unique<sss::AlbedoInversion>(config, nodes, false);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (group.is_root() && seconds >= config.cache_min_seconds) t->save_to_cache();
+  return t;
 }
 
 }  // namespace
@@ -49,14 +101,32 @@ MediumAt medium_at(const SubsurfaceParams& p, const std::vector<Texture>* textur
 }
 
 const sss::AlbedoInversion* albedo_inversion_for(const SubsurfaceParams& p) {
-  if (!p.reflectance || p.albedo_inversion_fit) return nullptr;
-  // The half-space table of the walk's own boundary: the dielectric (Fresnel at entry
-  // and at every exit); the diffuse boundary (refraction at entry, out at the first
-  // crossing through the exit lobe); matched (eta = 1). A is per entering light under
-  // diffuse incidence.
-  using Boundary = SubsurfaceParams::Boundary;
-  const double table_eta = p.boundary == Boundary::Matched ? 1.0 : p.eta;
-  return &albedo_inversion(table_eta, p.g, p.boundary == Boundary::Diffuse);
+  const std::optional<TableKey> key = table_key(p);
+  return key ? &albedo_inversion(*key) : nullptr;
+}
+
+void prepare_albedo_inversions(std::span<const SubsurfaceParams> params, ProcessGroup& group) {
+  // The missing tables, in the same (sorted) order on every process.
+  std::set<TableKey> missing;
+  {
+    std::lock_guard<std::mutex> lock(g_tables_mutex);
+    for (const SubsurfaceParams& p : params) {
+      const auto key = table_key(p);
+      if (!key || g_tables.count(*key)) continue;
+      try {
+        sss::check_albedo_table_config(table_config(*key));
+      } catch (const std::invalid_argument&) {
+        continue;  // the material reports it, with its place in the scene
+      }
+      missing.insert(*key);
+    }
+  }
+  for (const TableKey& key : missing) {
+    const sss::AlbedoTableConfig config = table_config(key);
+    std::unique_ptr<sss::AlbedoInversion> t = shared_table(config, group);
+    std::lock_guard<std::mutex> lock(g_tables_mutex);
+    g_tables[key] = std::move(t);
+  }
 }
 
 Coefficients coefficients_from(const MediumAt& m, const sss::AlbedoInversion* table) {

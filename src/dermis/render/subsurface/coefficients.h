@@ -5,11 +5,13 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "dermis/core/rgb.h"
 #include "dermis/core/vec.h"
 #include "dermis/materials/texture.h"
+#include "dermis/render/process_group.h"
 #include "dermis/scene/subsurface_params.h"
 
 namespace dermis::sss {
@@ -37,6 +39,12 @@ struct Coefficients {
 // cached on disk by the table itself; may take seconds the first time: call it while
 // preparing a scene). Null when the material gives coefficients or asks for the fit.
 const sss::AlbedoInversion* albedo_inversion_for(const SubsurfaceParams& params);
+
+// Makes the tables these materials need now (albedo_inversion_for then only looks them
+// up), shared by the group: rank 0 reads each from the cache and broadcasts it, or
+// the processes simulate its nodes in shares and gather them (the nodes are
+// independent), and rank 0 writes the cache. Every process calls it.
+void prepare_albedo_inversions(std::span<const SubsurfaceParams> params, ProcessGroup& group);
 
 // Coefficients per scene unit: as given, or from (reflectance, mfp) through `table`
 // (albedo_inversion_for) or, when null, van de Hulst's fit.

@@ -51,12 +51,60 @@ std::vector<double> non_increasing_fit(const std::vector<double>& y, const std::
 }  // namespace
 
 AlbedoInversion::AlbedoInversion(const AlbedoTableConfig& config) : config_(config) {
+  init_nodes();
+  if (!cache_path_.empty() && load()) {
+    from_cache_ = true;
+  } else {
+    const auto start = std::chrono::steady_clock::now();
+    build();
+    build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!cache_path_.empty() && build_seconds_ >= config.cache_min_seconds) save();
+  }
+  init_slopes();
+}
+
+AlbedoInversion::AlbedoInversion(const AlbedoTableConfig& config, const std::vector<AlbedoNode>& nodes, bool fitted)
+    : config_(config) {
+  init_nodes();
+  if (int(nodes.size()) != config.size)
+    throw std::invalid_argument(fmt::format("albedo inversion: {} nodes given for a table of {}", nodes.size(), config.size));
+  if (fitted) {
+    albedo_.clear(), stderr_.clear();
+    for (const AlbedoNode& node : nodes) albedo_.push_back(node.albedo), stderr_.push_back(node.error);
+  } else {
+    fit(nodes);
+  }
+  init_slopes();
+}
+
+AlbedoInversion::AlbedoInversion(const AlbedoTableConfig& config, CacheOnly) : config_(config) {
+  init_nodes();
+  from_cache_ = !cache_path_.empty() && load();
+  if (from_cache_) init_slopes();
+}
+
+std::unique_ptr<AlbedoInversion> AlbedoInversion::from_cache(const AlbedoTableConfig& config) {
+  std::unique_ptr<AlbedoInversion> t(new AlbedoInversion(config, CacheOnly{}));
+  if (!t->from_cache_) return nullptr;
+  return t;
+}
+
+void AlbedoInversion::save_to_cache() const {
+  if (!cache_path_.empty()) save();
+}
+
+void check_albedo_table_config(const AlbedoTableConfig& config) {
   auto fail = [](const std::string& m) { throw std::invalid_argument("albedo inversion: " + m); };
   if (!(config.eta > 0 && std::isfinite(config.eta)))
     fail("relative index of refraction eta must be positive and finite, got " + std::to_string(config.eta));
   if (!(config.g > -1 && config.g < 1)) fail("HG anisotropy g must be in (-1, 1), got " + std::to_string(config.g));
   if (config.size < 3) fail("table size must be at least 3, got " + std::to_string(config.size));
   if (config.paths_per_node < 100) fail("need at least 100 paths per table node");
+}
+
+void AlbedoInversion::init_nodes() {
+  const AlbedoTableConfig& config = config_;
+  check_albedo_table_config(config);
 
   const int n = config.size;
   t_.resize(n), alpha_.resize(n);
@@ -71,15 +119,10 @@ AlbedoInversion::AlbedoInversion(const AlbedoTableConfig& config) : config_(conf
                                 config.exit_matched ? "-exitmatched" : "", config.g, n, config.paths_per_node,
                                 config.seed, walk_sampling_name(config.sampling));
   }
-  if (!cache_path_.empty() && load()) {
-    from_cache_ = true;
-  } else {
-    const auto start = std::chrono::steady_clock::now();
-    build();
-    build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!cache_path_.empty() && build_seconds_ >= config.cache_min_seconds) save();
-  }
+}
 
+void AlbedoInversion::init_slopes() {
+  const int n = config_.size;
   // Fritsch-Carlson monotone cubic Hermite slopes with the harmonic mean of the
   // neighbouring secants (Fritsch & Butland 1984): monotone data give a monotone curve.
   slope_.assign(n, 0.0);
@@ -92,34 +135,43 @@ AlbedoInversion::AlbedoInversion(const AlbedoTableConfig& config) : config_(conf
   }
 }
 
-void AlbedoInversion::build() {
+AlbedoNode simulate_albedo_node(const AlbedoTableConfig& config, int i) {
+  const int n = config.size;
+  // alpha = 1: nothing is absorbed, all entering light returns (A = 1);
+  // alpha = 0: nothing scatters back (A = 0). Exact, not simulated.
+  if (i == 0) return {1.0, 0.0};
+  if (i == n - 1) return {0.0, 0.0};
+  const double t = double(i) / (n - 1);  // as init_nodes() places the nodes
+  HalfspaceConfig c;
+  c.albedo = 1 - t * t;
+  c.g = config.g;
+  c.eta = config.eta;
+  c.exit_matched = config.exit_matched;
+  c.incidence = Incidence::Diffuse;
+  c.paths = config.paths_per_node;
+  c.seed = config.seed;
+  c.sampling = config.sampling;
+  c.bins = RadialBins::linear(1.0, 1);
+  const HalfspaceResult r = simulate_halfspace(c);
+  return {r.albedo_per_entering(), r.albedo_per_entering_stderr()};
+}
+
+void AlbedoInversion::fit(const std::vector<AlbedoNode>& nodes) {
   const int n = config_.size;
   std::vector<double> raw(n), weight(n);
   stderr_.assign(n, 0.0);
   for (int i = 0; i < n; ++i) {
-    if (i == 0 || i == n - 1) {
-      // alpha = 1: nothing is absorbed, all entering light returns (A = 1);
-      // alpha = 0: nothing scatters back (A = 0). Exact, not simulated.
-      raw[i] = i == 0 ? 1.0 : 0.0;
-      weight[i] = 1e30;
-      continue;
-    }
-    HalfspaceConfig c;
-    c.albedo = alpha_[i];
-    c.g = config_.g;
-    c.eta = config_.eta;
-    c.exit_matched = config_.exit_matched;
-    c.incidence = Incidence::Diffuse;
-    c.paths = config_.paths_per_node;
-    c.seed = config_.seed;
-    c.sampling = config_.sampling;
-    c.bins = RadialBins::linear(1.0, 1);
-    const HalfspaceResult r = simulate_halfspace(c);
-    raw[i] = r.albedo_per_entering();
-    stderr_[i] = r.albedo_per_entering_stderr();
-    weight[i] = 1 / std::max(stderr_[i] * stderr_[i], 1e-30);
+    raw[i] = nodes[i].albedo;
+    stderr_[i] = nodes[i].error;
+    weight[i] = i == 0 || i == n - 1 ? 1e30 : 1 / std::max(stderr_[i] * stderr_[i], 1e-30);
   }
   albedo_ = non_increasing_fit(raw, weight);
+}
+
+void AlbedoInversion::build() {
+  std::vector<AlbedoNode> nodes;
+  for (int i = 0; i < config_.size; ++i) nodes.push_back(simulate_albedo_node(config_, i));
+  fit(nodes);
 }
 
 bool AlbedoInversion::load() {

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,12 +36,33 @@ struct AlbedoTableConfig {
   double cache_min_seconds = 1.0;  // write the cache only when building took longer
 };
 
+// One node of a table as simulated, before the monotone fit.
+struct AlbedoNode {
+  double albedo = 0, error = 0;  // A at the node's alpha, its standard error
+};
+
+// Node i of the table of `config` (i = 0: alpha = 1 and i = size - 1: alpha = 0 are
+// exact). The nodes are independent: a caller may compute them anywhere, in parts
+// (the distributed renderer does), and build the table from them.
+AlbedoNode simulate_albedo_node(const AlbedoTableConfig& config, int i);
+
+// Throws std::invalid_argument, as the constructors do, when `config` cannot make a table.
+void check_albedo_table_config(const AlbedoTableConfig& config);
+
 class AlbedoInversion {
  public:
   // Loads the table from the cache, or builds it (each node's simulation runs in
   // parallel on the oneTBB arena) and caches it. Throws std::invalid_argument for bad
   // parameters. A cache that cannot be read or written is ignored (rebuilt).
   explicit AlbedoInversion(const AlbedoTableConfig& config);
+  // From `size` nodes the caller computed: as simulated (simulate_albedo_node; the
+  // monotone fit is applied), or `fitted` (another table's node_albedos() and
+  // node_stderrs()). Neither reads nor writes the cache.
+  AlbedoInversion(const AlbedoTableConfig& config, const std::vector<AlbedoNode>& nodes, bool fitted);
+  // The table from the cache alone: null when the cache has none (or is off).
+  static std::unique_ptr<AlbedoInversion> from_cache(const AlbedoTableConfig& config);
+  // Writes the table to the cache, as the first constructor does after building.
+  void save_to_cache() const;
 
   // A(alpha) for alpha in [0, 1] (monotone cubic interpolation in t; Fritsch & Carlson 1980).
   double surface_albedo(double single_scattering_albedo) const;
@@ -55,6 +77,11 @@ class AlbedoInversion {
   const std::string& cache_path() const { return cache_path_; }
 
  private:
+  struct CacheOnly {};
+  AlbedoInversion(const AlbedoTableConfig& config, CacheOnly);
+  void init_nodes();  // checks the config; t_, alpha_, cache_path_
+  void fit(const std::vector<AlbedoNode>& nodes);  // albedo_, stderr_ from raw nodes
+  void init_slopes();
   double albedo_at_t(double t) const;
   void build();
   bool load();

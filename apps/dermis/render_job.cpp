@@ -1,0 +1,247 @@
+#include "render_job.h"
+
+#include <fmt/format.h>
+
+#include <atomic>
+#include <csignal>
+#include <filesystem>
+#include <optional>
+
+#include "dermis/render/film.h"
+#include "dermis/render/image.h"
+#include "dermis/render/progress.h"
+#include "dermis/render/scene_assembly.h"
+#include "dermis/render/scene_preparation.h"
+#include "dermis/scene/parser.h"
+
+namespace dermis::app {
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void on_stop_signal(int signal) {
+  g_interrupted = true;
+  std::signal(signal, SIG_DFL);  // a second one ends the program at once
+}
+
+// A step's error on this process, if any. With a group every process learns whether
+// any failed, and the message is printed once: by rank 0 if it failed, else by each
+// process that did. Returns true when the job must stop (exit status 2).
+bool failed_somewhere(ProcessGroup& group, const std::optional<std::string>& error) {
+  int64_t state[2] = {error ? 1 : 0, error && group.is_root() ? 1 : 0};
+  group.sum_all(state);
+  if (error && (group.is_root() || state[1] == 0)) fmt::print(stderr, "{}\n", *error);
+  return state[0] > 0;
+}
+
+}  // namespace
+
+void add_render_options(CLI::App& cmd, RenderArgs& args) {
+  cmd.add_option("scene", args.scene, "pbrt-v4 scene file")->required();
+  cmd.add_option("--spp", args.spp, "samples per pixel (default: the scene's Sampler pixelsamples)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--threads", args.threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  cmd.add_option("--seed", args.seed, "random seed (default: the scene's, else 0)")->check(CLI::NonNegativeNumber);
+  cmd.add_option("--sampler", args.sampler,
+                 "sobol (Owen-scrambled Sobol', the default) or independent (default: the scene's Sampler)")
+      ->check(CLI::IsMember({"sobol", "independent"}));
+  cmd.add_option("-o,--output", args.output, "output image (.exr, .png, ...; default: the Film's filename)");
+  cmd.add_option("--res", args.res, "resolution WIDTHxHEIGHT, overriding the Film's");
+  cmd.add_option("--time-limit", args.time_limit, "stop after this many seconds, keeping the samples taken")
+      ->check(CLI::NonNegativeNumber);
+  cmd.add_flag("-q,--quiet", args.quiet, "no progress bar or summary");
+  cmd.add_option("--points", args.points, "points per `pointcloud` subsurface object (default: from its pointdensity)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--save-pointcloud", args.save_pointcloud, "save the point cloud(s) of the pre-pass to this file");
+  cmd.add_option("--load-pointcloud", args.load_pointcloud, "load the point cloud(s) instead of computing them")
+      ->excludes("--save-pointcloud");
+  cmd.add_flag("--no-png", args.no_png, "with an .exr output, do not also write a .png preview");
+}
+
+namespace {
+
+// After rendering: rank 0 writes the image and the summary; returns the exit status.
+int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& group, const std::string& out,
+                     const std::string& ext, RenderResult& r, const PreparationReport& preparation, int spp);
+
+}  // namespace
+
+int run_render(const RenderArgs& a, const RenderJob& job) {
+  ProcessGroup& group = job.group ? *job.group : single_process();
+  const bool root = group.is_root();
+  const bool quiet = a.quiet || !root;  // one progress bar and summary: rank 0's
+  const Progress::Style progress_style = quiet ? Progress::Style::kQuiet : Progress::Style::kAuto;
+  const std::string& program = job.program;
+  // One stop handler from the start: preparation stops between stages, rendering
+  // between tiles; a second signal ends the program at once.
+  const std::vector<int> stop_signals = job.stop_signals.empty() ? std::vector<int>{SIGINT} : job.stop_signals;
+  g_interrupted = false;
+  for (int s : stop_signals) std::signal(s, on_stop_signal);
+  auto restore_signals = [&] {
+    for (int s : stop_signals) std::signal(s, SIG_DFL);
+  };
+  SceneDesc desc;
+  std::unique_ptr<RenderScene> scene;
+  PreparationReport preparation;
+  PointCloudOptions pco;
+  std::optional<std::string> error;
+  // Reading and assembling: each process alone.
+  try {
+    desc = parse_scene_file(a.scene);
+    if (!a.res.empty()) {
+      int w = 0, h = 0, consumed = 0;
+      char x = 0;
+      if (std::sscanf(a.res.c_str(), "%d%c%d%n", &w, &x, &h, &consumed) != 3 || consumed != int(a.res.size()) ||
+          (x != 'x' && x != 'X') || w <= 0 || h <= 0 || w > 65536 || h > 65536)
+        throw std::invalid_argument(fmt::format("--res {}: expected WIDTHxHEIGHT with positive integers, e.g. 640x480", a.res));
+      desc.film.xres = w;
+      desc.film.yres = h;
+    }
+    {
+      // The film holds 3 doubles and a count per pixel: refuse what cannot be allocated.
+      const PixelBounds px = film_pixel_bounds(desc.film);
+      const double pixels = double(px.width()) * px.height(), gib = pixels * 28 / double(1ull << 30);
+      if (pixels > double(1ull << 28))
+        throw std::invalid_argument(fmt::format("{}: a film of {}x{} pixels is too large (it would need {:.0f} GiB); "
+                                                "lower the Film's xresolution/yresolution or use --res",
+                                                a.scene, px.width(), px.height(), gib));
+    }
+    if (a.spp > 0) desc.settings.spp = a.spp;
+    if (!a.sampler.empty()) parse_sampler_kind(a.sampler, desc.settings.sampler);  // checked by CLI11
+    if (root)
+      for (const auto& w : desc.diagnostics.warnings) fmt::print(stderr, "{}\n", w);
+    Diagnostics build_diag;
+    pco.points = std::size_t(a.points);
+    pco.save_path = a.save_pointcloud;
+    pco.load_path = a.load_pointcloud;
+    pco.seed = a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
+    pco.sampler = desc.settings.sampler;
+    scene = assemble_scene(desc, build_diag);
+    if (root)
+      for (const auto& w : build_diag.warnings) fmt::print(stderr, "{}\n", w);
+  } catch (const std::bad_alloc&) {
+    error = fmt::format("{}: {}: out of memory while loading or preparing the scene", program, a.scene);
+  } catch (const std::exception& e) {
+    error = fmt::format("{}: {}", program, e.what());
+  }
+  if (failed_somewhere(group, error)) return 2;
+  // Preparing: together (the group shares the tables and the point clouds).
+  try {
+    PreparationOptions prep;
+    prep.point_clouds = pco;
+    prep.progress = progress_style;
+    prep.cancel = &g_interrupted;
+    prep.group = &group;
+    preparation = prepare_scene(*scene, prep);
+  } catch (const Interrupted&) {
+    if (root) fmt::print(stderr, "{}: interrupted while preparing the scene; nothing written\n", program);
+    return 130;
+  } catch (const std::bad_alloc&) {
+    error = fmt::format("{}: {}: out of memory while loading or preparing the scene", program, a.scene);
+  } catch (const std::exception& e) {
+    error = fmt::format("{}: {}", program, e.what());
+  }
+  if (failed_somewhere(group, error)) return 2;
+
+  // The output: rank 0 writes it.
+  std::string out = a.output.empty() ? desc.film.filename : a.output;
+  std::filesystem::path out_path(out);
+  std::string ext = out_path.extension().string();
+  for (char& c : ext) c = char(std::tolower(c));
+  if (root) {
+    if (ext != ".exr" && ext != ".png" && ext != ".hdr" && ext != ".tif" && ext != ".tiff" && ext != ".jpg")
+      error = fmt::format("{}: {}: unsupported output format '{}' (use .exr, .png, .hdr, .tif or .jpg)", program, out, ext);
+    else if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path()))
+      error = fmt::format("{}: {}: output directory '{}' does not exist", program, out, out_path.parent_path().string());
+  }
+  if (failed_somewhere(group, error)) return 2;
+
+  RenderOptions opt;
+  opt.spp = desc.settings.spp;
+  opt.threads = a.threads;
+  opt.seed = a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
+  opt.sampler = desc.settings.sampler;
+  opt.time_limit = a.time_limit;
+  opt.cancel = &g_interrupted;
+  opt.group = &group;
+  opt.tile_assignment = job.tile_assignment;
+  const PixelBounds pixels = film_pixel_bounds(scene->film);
+  const int64_t total = int64_t(pixels.width()) * pixels.height() * opt.spp;
+  Progress progress("Rendering", total, progress_style);
+  opt.progress = [&progress](int64_t n) { progress.advance(n); };
+
+  if (!quiet)
+    fmt::print(stderr, "dermis: {} — {}x{}, {} spp, {} shapes, {} lights{}\n", a.scene, scene->film.xres,
+               scene->film.yres, opt.spp, scene->shapes.size(), scene->lights.size(),
+               group.size() > 1 ? fmt::format(", {} processes", group.size()) : "");
+  RenderResult r = render_image(*scene, opt);  // stops at once if a stop signal came during preparation
+  restore_signals();
+  progress.finish();
+  // Rank 0 holds the image. The others wait until it is written (mpirun ends the job
+  // as soon as one rank exits with a non-zero status) and exit with its status.
+  int64_t status = root ? write_and_report(a, job, group, out, ext, r, preparation, opt.spp) : 0;
+  group.sum_all(std::span<int64_t>(&status, 1));
+  return int(status);
+}
+
+namespace {
+
+int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& group, const std::string& out,
+                     const std::string& ext, RenderResult& r, const PreparationReport& preparation, int spp) {
+  const std::string& program = job.program;
+  std::filesystem::path out_path(out);
+  Image img;
+  img.width = r.width;
+  img.height = r.height;
+  img.pixels = std::move(r.rgb);
+  try {
+    write_image(out, img);
+    if (ext == ".exr" && !a.no_png) write_image(out_path.replace_extension(".png").string(), img);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "{}: {}\n", program, e.what());
+    return 2;
+  }
+
+  double mrays = r.seconds > 0 ? double(r.rays) / r.seconds * 1e-6 : 0;
+  fmt::print(stderr, "dermis: wrote {}{} in {:.1f} s ({:.2f} Mrays/s, {} samples)\n", out,
+             ext == ".exr" && !a.no_png ? " and its .png" : "", r.seconds, mrays, r.samples);
+  if (group.size() > 1 && !a.quiet) {
+    // The load balance: each process's time rendering its tiles, waits excluded.
+    std::string times;
+    double longest = 0, sum = 0;
+    for (double s : r.process_seconds) {
+      times += fmt::format("{}{:.2f}", times.empty() ? "" : " ", s);
+      longest = std::max(longest, s), sum += s;
+    }
+    fmt::print(stderr, "dermis: {} processes rendered for {} s (imbalance max/mean {:.2f})\n", group.size(), times,
+               sum > 0 ? longest * double(r.process_seconds.size()) / sum : 1.0);
+  }
+  if (const PointCloudReport& pc = preparation.point_clouds; pc.clouds > 0 && !a.quiet)
+    fmt::print(stderr,
+               "dermis: point clouds: {} points in {} object(s), {:.1f} MiB in memory{}, pre-pass {:.1f} s, octree "
+               "build {:.2f} s, render {:.1f} s\n",
+               pc.points, pc.clouds, double(pc.memory_bytes) / (1 << 20),
+               pc.file_bytes ? fmt::format(", {:.1f} MiB on disk", double(pc.file_bytes) / (1 << 20)) : "",
+               pc.prepass_seconds, pc.build_seconds, r.seconds);
+  if (r.nonfinite > 0)
+    fmt::print(stderr, "dermis: warning: {} samples were NaN or infinite; they were dropped (counted as zero)\n",
+               r.nonfinite);
+  if (r.truncated > 0)
+    fmt::print(stderr,
+               "dermis: warning: {} paths were truncated (random-walk step cap or interface-crossing guard); their "
+               "energy is missing from the image\n",
+               r.truncated);
+  if (r.interrupted) {
+    fmt::print(stderr, "dermis: interrupted: the image holds the samples finished so far ({}..{} per pixel of {})\n",
+               r.min_spp, r.max_spp, spp);
+    return 130;
+  }
+  if (r.time_limited)
+    fmt::print(stderr, "dermis: time limit reached: {}..{} samples per pixel of {}\n", r.min_spp, r.max_spp, spp);
+  return 0;
+}
+
+}  // namespace
+
+}  // namespace dermis::app

@@ -1,0 +1,45 @@
+// The render command's body, shared by `dermis render` (one process) and
+// `dermis-mpi render` (a group of MPI ranks): the same options, the same steps, the
+// same messages. With a group, rank 0 alone prints and writes; the others compute
+// their shares silently and report only errors that rank 0 did not have.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dermis/render/process_group.h"
+#include "dermis/render/renderer.h"
+
+namespace dermis::app {
+
+struct RenderArgs {
+  std::string scene;
+  int spp = 0, threads = 0;
+  int64_t seed = -1;
+  std::string sampler;  // empty: the scene's Sampler
+  std::string output, res;
+  double time_limit = 0;
+  bool quiet = false, no_png = false;
+  int64_t points = 0;
+  std::string save_pointcloud, load_pointcloud;
+};
+
+// Adds the options of `render` to a subcommand.
+void add_render_options(CLI::App& cmd, RenderArgs& args);
+
+struct RenderJob {
+  std::string program = "dermis render";  // the prefix of error messages
+  ProcessGroup* group = nullptr;           // null: this process alone
+  TileAssignment tile_assignment = TileAssignment::Interleaved;
+  // Signals that stop the render (first one: stop and write; again: default action).
+  std::vector<int> stop_signals;           // empty: SIGINT
+};
+
+// Renders; returns the exit status: 0, 2 (bad input, nothing written) or 130
+// (interrupted). Every process of the group calls it with the same arguments.
+int run_render(const RenderArgs& args, const RenderJob& job = {});
+
+}  // namespace dermis::app
