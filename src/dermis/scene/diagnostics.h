@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace dermis {
@@ -16,6 +17,10 @@ struct SourceLoc {
 };
 
 // Malformed input. what() is "file:line:col: message" ready for the user.
+// Input text quoted in a message: as is up to `max` bytes, else its start and its size
+// (a 10 MB token is not echoed into a log).
+std::string excerpt(std::string_view text, std::size_t max = 64);
+
 class SceneError : public std::runtime_error {
  public:
   SceneError(const SourceLoc& loc, const std::string& message);

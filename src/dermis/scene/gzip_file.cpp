@@ -148,9 +148,15 @@ FileReadError::FileReadError(const std::string& path, const std::string& reason)
     : std::runtime_error(fmt::format("{}: {}", path, reason)), path_(path), reason_(reason) {}
 
 std::string read_file_contents(const std::string& path, uint64_t max_decompressed) {
+  // Only regular files: a FIFO would block in fopen, a device such as /dev/zero never ends.
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec) throw FileReadError(path, ec.message());
+  if (std::filesystem::is_directory(status)) throw FileReadError(path, "it is a directory");
+  if (!std::filesystem::is_regular_file(status))
+    throw FileReadError(path, "it is not a regular file (a device, FIFO or socket); only files are read");
   File f(std::fopen(path.c_str(), "rb"));
   if (!f) throw FileReadError(path, std::strerror(errno));
-  if (std::filesystem::is_directory(path)) throw FileReadError(path, "it is a directory");
   unsigned char bytes[2];
   std::string_view head(reinterpret_cast<char*>(bytes), read_some(f.get(), bytes, 2, path));
   if (has_gzip_magic(head)) return inflate_gzip(f.get(), path, head, max_decompressed);

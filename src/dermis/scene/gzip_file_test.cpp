@@ -4,6 +4,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include "dermis/scene/gzip_file.h"
 #include "dermis/scene/scene_test_util.h"
@@ -140,6 +141,27 @@ TEST(GzipFile, MissingFileAndDirectory) {
   test::TempDir dir;
   EXPECT_EQ(read_error(dir.path() + "/none.gz"), dir.path() + "/none.gz: No such file or directory");
   EXPECT_EQ(read_error(dir.path()), dir.path() + ": it is a directory");
+}
+
+// A FIFO would block the reader until a writer comes, /dev/zero never ends: neither is
+// opened (the test would hang or run out of memory if they were).
+TEST(GzipFile, FifosAndDevicesAreRefusedWithoutBeingOpened) {
+  test::TempDir dir;
+  const std::string fifo = dir.path() + "/pipe.pbrt";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string not_regular = ": it is not a regular file (a device, FIFO or socket); only files are read";
+  EXPECT_EQ(read_error(fifo), fifo + not_regular);
+  EXPECT_EQ(read_error("/dev/zero"), "/dev/zero" + not_regular);
+  // Through the parser: the Include names the file and where it was asked for.
+  const std::string main = dir.write("main.pbrt", "WorldBegin\nInclude \"pipe.pbrt\"\n");
+  try {
+    parse_scene_file(main);
+    FAIL() << "expected a SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("main.pbrt:2:9: error: could not read included file"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

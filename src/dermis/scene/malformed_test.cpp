@@ -44,6 +44,15 @@ void expect_scene_error(const std::string& text, int line, int column, const std
 // '@' marks the offending token (it is removed before parsing); the expected line and
 // column are where it stood.
 const Case kCases[] = {
+    // Negative or overflowing light: negative or infinite pixels.
+    {"WorldBegin\nLightSource \"point\" \"rgb I\" @[1 -1 1]\n", "\"I\" must be finite and >= 0"},
+    {"WorldBegin\nAreaLightSource \"diffuse\" \"rgb L\" @[1e39 1 1]\nShape \"sphere\"\n", "\"L\" must be finite"},
+    {"WorldBegin\nLightSource \"infinite\" \"float scale\" @-2\n", "\"scale\" must be finite and >= 0"},
+    // As in pbrt-v4, an unknown directive is an error (what follows it would be misread);
+    // a near miss gets a suggestion, anything else a hint (a file that is not a scene).
+    {"WorldBegin\n  @Shpae \"sphere\"\n", "unknown directive 'Shpae' (did you mean 'Shape'?)"},
+    {"WorldBegin\n@Frobnicate \"x\" [1 2]\n", "unknown directive 'Frobnicate' (is this a pbrt-v4 scene file?)"},
+    {"WorldBegin\n@root:x:0:0:root:/root:/bin/bash\n", "unknown directive 'root:x:0:0:root:/root:/bin/bash'"},
     {"Sampler @\"sobolish\" \"integer pixelsamples\" 4\nWorldBegin\n", "unknown Sampler \"sobolish\""},
     {"WorldBegin\nShape \"sphere\" \"float radius\" @\"two\"\n", "expects numbers, found string 'two'"},
     {"WorldBegin\nShape \"sphere\" @\"string radius\" \"2\"\n", "has type 'string', expected float"},

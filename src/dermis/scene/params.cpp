@@ -46,9 +46,9 @@ void add_value(ParsedParam& p, ValueKind kind, const Token& t, const TokenStream
     case ValueKind::Numbers:
       if (t.kind != Token::Kind::Number)
         throw SceneError(loc, fmt::format("parameter \"{} {}\" expects numbers, found {} '{}'", p.param.type,
-                                          name, token_kind_name(t.kind), t.text));
+                                          name, token_kind_name(t.kind), excerpt(t.text)));
       if (p.type == "integer" && t.number != std::floor(t.number))
-        throw SceneError(loc, fmt::format("parameter \"integer {}\" expects integers, found '{}'", name, t.text));
+        throw SceneError(loc, fmt::format("parameter \"integer {}\" expects integers, found '{}'", name, excerpt(t.text)));
       p.param.numbers.push_back(t.number);
       break;
     case ValueKind::Strings:
@@ -106,7 +106,7 @@ ParamList ParamList::parse(TokenStream& ts) {
     words >> type >> name >> extra;
     if (type.empty() || name.empty() || !extra.empty())
       throw SceneError(p.param.loc,
-                       fmt::format("expected a parameter declaration \"type name\", found \"{}\"", decl.text));
+                       fmt::format("expected a parameter declaration \"type name\", found \"{}\"", excerpt(decl.text)));
     ValueKind kind;
     if (!canonical_type(type, p.type, kind))
       throw SceneError(p.param.loc, fmt::format("unknown parameter type '{}' in \"{}\" (expected integer, float, "
@@ -119,7 +119,7 @@ ParamList ParamList::parse(TokenStream& ts) {
       if (q.param.name == name)
         throw SceneError(p.param.loc, fmt::format("parameter '{}' given twice (first at {})", name, q.param.loc.str()));
     const Token* v = ts.peek();
-    if (!v) throw SceneError(ts.end_loc(), fmt::format("missing value of parameter \"{}\"", decl.text));
+    if (!v) throw SceneError(ts.end_loc(), fmt::format("missing value of parameter \"{}\"", excerpt(decl.text)));
     p.value_loc = ts.loc(*v);
     if (v->kind == Token::Kind::LBracket) {
       ts.next();

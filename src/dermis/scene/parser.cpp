@@ -36,9 +36,43 @@ std::string read_text(const std::string& path, std::string& why) {
   }
 }
 
+// The directives this parser knows (pbrt-v4's), for suggestions.
+constexpr const char* kDirectives[] = {
+    "Identity", "Translate", "Scale", "Rotate", "LookAt", "Transform", "ConcatTransform", "CoordinateSystem",
+    "CoordSysTransform", "ActiveTransform", "TransformTimes", "ReverseOrientation", "AttributeBegin",
+    "AttributeEnd", "TransformBegin", "TransformEnd", "Camera", "Film", "PixelFilter", "Sampler", "Integrator",
+    "Accelerator", "ColorSpace", "Option", "WorldBegin", "WorldEnd", "Include", "Import", "Shape", "ObjectBegin",
+    "ObjectEnd", "ObjectInstance", "Material", "MakeNamedMaterial", "NamedMaterial", "Texture", "LightSource",
+    "AreaLightSource", "MakeNamedMedium", "MediumInterface", "Attribute"};
+
+// Levenshtein distance, case-insensitive (short strings only).
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// " (did you mean 'Shape'?)" for a near miss, else a hint that the file may not be a scene.
+std::string did_you_mean(const std::string& name) {
+  if (name.size() <= 40)
+    for (const char* known : kDirectives)
+      if (edit_distance(name, known) <= 2) return fmt::format(" (did you mean '{}'?)", known);
+  return " (is this a pbrt-v4 scene file?)";
+}
+
 std::string describe(const Token* t) {
   if (!t) return "the end of the file";
-  return fmt::format("{} '{}'", token_kind_name(t->kind), t->text);
+  return fmt::format("{} '{}'", token_kind_name(t->kind), excerpt(t->text));
 }
 
 }  // namespace
@@ -87,7 +121,7 @@ void SceneParser::run(TokenStream& ts, const std::string& dir) {
   while (!ts.at_end()) {
     const Token d = ts.next();
     if (d.kind != Token::Kind::Identifier)
-      throw SceneError(ts.loc(d), fmt::format("expected a directive, found {} '{}'", token_kind_name(d.kind), d.text));
+      throw SceneError(ts.loc(d), fmt::format("expected a directive, found {} '{}'", token_kind_name(d.kind), excerpt(d.text)));
     directive(d, ts, dir);
   }
 }
@@ -164,13 +198,6 @@ Transform SceneParser::matrix_arg(TokenStream& ts, const Token& d) {
   Mat4 inv;
   if (!m.invert(inv)) throw SceneError(start, fmt::format("{}: the matrix is singular", d.text));
   return Transform(m, inv);
-}
-
-void SceneParser::skip_arguments(TokenStream& ts) {
-  while (const Token* t = ts.peek()) {
-    if (t->kind == Token::Kind::Identifier && t->text != "true" && t->text != "false") return;
-    ts.next();
-  }
 }
 
 void SceneParser::require_world(const Token& d, TokenStream& ts) const {
@@ -305,8 +332,8 @@ void SceneParser::directive(const Token& d, TokenStream& ts, const std::string& 
     for (const ParsedParam& p : pl.items()) names += (names.empty() ? "" : ", ") + p.param.name;
     s_.diagnostics.warn(loc, fmt::format("Attribute \"{}\" ignored (parameters: {})", target, names));
   } else {
-    s_.diagnostics.warn(loc, fmt::format("unknown directive '{}' ignored with its arguments", n));
-    skip_arguments(ts);
+    // pbrt-v4 stops at an unknown directive too: what follows would be read wrongly.
+    throw SceneError(loc, fmt::format("unknown directive '{}'{}", excerpt(n), did_you_mean(n)));
   }
 }
 

@@ -2,6 +2,7 @@
 // MakeNamedMedium, MediumInterface.
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -23,6 +24,26 @@ std::string names_of(const std::map<std::string, int>& m) {
 RGB rgb_param(const ParamList& pl, const std::string& name, RGB def, Diagnostics& diag) {
   const ParsedParam* p = pl.find(name);
   return p ? spectrum_param_rgb(*p, diag) : def;
+}
+
+// A light's emitted radiance or intensity: negative light would give negative pixels, and
+// a value beyond float range infinite ones; both are errors at the value.
+RGB emission_param(const ParamList& pl, const std::string& name, Diagnostics& diag) {
+  const RGB e = rgb_param(pl, name, RGB(1), diag);
+  for (int c = 0; c < 3; ++c)
+    if (!(e[c] >= 0) || !std::isfinite(e[c]))
+      throw SceneError(pl.find(name)->value_loc,
+                       fmt::format("\"{}\" must be finite and >= 0 in every channel (RGB {} {} {}): light cannot be "
+                                   "negative, and values beyond {:g} overflow",
+                                   name, e[0], e[1], e[2], double(std::numeric_limits<float>::max())));
+  return e;
+}
+
+float light_scale_param(const ParamList& pl) {
+  const float scale = pl.get_float("scale", 1);
+  if (!(scale >= 0) || !std::isfinite(scale))
+    throw SceneError(pl.find("scale")->value_loc, fmt::format("a light's \"scale\" must be finite and >= 0, got {}", scale));
+  return scale;
 }
 
 std::string existing_file(const ParamList& pl, const std::string& name, const std::string& dir,
@@ -357,11 +378,11 @@ void SceneParser::light_source(const Token& d, TokenStream& ts, const std::strin
     }
   if (type == "point") {
     l.type = LightDesc::Type::Point;
-    l.spectrum = rgb_param(pl, "I", RGB(1), s_.diagnostics);
+    l.spectrum = emission_param(pl, "I", s_.diagnostics);
     l.from = pl.get_vec3("from", {"point3"}).value_or(l.from);
   } else if (type == "spot") {
     l.type = LightDesc::Type::Spot;
-    l.spectrum = rgb_param(pl, "I", RGB(1), s_.diagnostics);
+    l.spectrum = emission_param(pl, "I", s_.diagnostics);
     l.from = pl.get_vec3("from", {"point3"}).value_or(l.from);
     l.to = pl.get_vec3("to", {"point3"}).value_or(l.to);
     l.cone_angle = pl.get_float("coneangle", l.cone_angle);
@@ -372,7 +393,7 @@ void SceneParser::light_source(const Token& d, TokenStream& ts, const std::strin
     if (l.from == l.to) throw SceneError(loc, "spot light: \"from\" and \"to\" coincide");
   } else if (type == "distant") {
     l.type = LightDesc::Type::Distant;
-    l.spectrum = rgb_param(pl, "L", RGB(1), s_.diagnostics);
+    l.spectrum = emission_param(pl, "L", s_.diagnostics);
     l.from = pl.get_vec3("from", {"point3"}).value_or(l.from);
     l.to = pl.get_vec3("to", {"point3"}).value_or(l.to);
     if (l.from == l.to) throw SceneError(loc, "distant light: \"from\" and \"to\" coincide");
@@ -385,7 +406,7 @@ void SceneParser::light_source(const Token& d, TokenStream& ts, const std::strin
     l.type = LightDesc::Type::Infinite;
     if (pl.has("L") && pl.has("filename"))
       throw SceneError(pl.find("filename")->param.loc, "infinite light: give either \"L\" or \"filename\", not both");
-    l.spectrum = rgb_param(pl, "L", RGB(1), s_.diagnostics);
+    l.spectrum = emission_param(pl, "L", s_.diagnostics);
     if (pl.has("filename")) l.filename = existing_file(pl, "filename", dir, "infinite light");
     // pbrt-v4 reads the image in the equal-area octahedral mapping; Dermis also takes
     // lat-long maps when asked ("string mapping" "latlong", not a pbrt-v4 parameter).
@@ -411,7 +432,7 @@ void SceneParser::light_source(const Token& d, TokenStream& ts, const std::strin
     pl.mark_all_used();
     return;
   }
-  l.scale = pl.get_float("scale", 1);
+  l.scale = light_scale_param(pl);
   pl.warn_unused(s_.diagnostics, fmt::format("LightSource \"{}\"", type));
   s_.lights.push_back(std::move(l));
 }
@@ -428,8 +449,8 @@ void SceneParser::area_light_source(const Token& d, TokenStream& ts) {
     return;
   }
   AreaLightDesc a;
-  a.L = rgb_param(pl, "L", RGB(1), s_.diagnostics);
-  a.scale = pl.get_float("scale", 1);
+  a.L = emission_param(pl, "L", s_.diagnostics);
+  a.scale = light_scale_param(pl);
   a.two_sided = pl.get_bool("twosided", false);
   for (const char* ignored : {"power", "filename"})
     if (const ParsedParam* p = pl.find(ignored)) {

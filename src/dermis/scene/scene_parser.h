@@ -58,7 +58,6 @@ class SceneParser {
   std::vector<double> numbers_arg(TokenStream& ts, const Token& d, size_t n, std::vector<SourceLoc>* locs = nullptr);
   std::string string_arg(TokenStream& ts, const Token& d, SourceLoc* loc = nullptr);
   Transform matrix_arg(TokenStream& ts, const Token& d);
-  void skip_arguments(TokenStream& ts);
 
   void require_world(const Token& d, TokenStream& ts) const;
   void require_options(const Token& d, TokenStream& ts) const;

@@ -128,9 +128,9 @@ class Lexer {
     char* end = nullptr;
     double v = std::strtod(begin, &end);
     if (end == begin || *end != '\0')
-      throw SceneError(at(t), fmt::format("invalid number '{}'", t.text));
+      throw SceneError(at(t), fmt::format("invalid number '{}'", excerpt(t.text)));
     if (!std::isfinite(v))
-      throw SceneError(at(t), fmt::format("number '{}' is not finite", t.text));
+      throw SceneError(at(t), fmt::format("number '{}' is not finite", excerpt(t.text)));
     return v;
   }
 
