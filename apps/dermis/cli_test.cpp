@@ -95,6 +95,39 @@ TEST_F(Cli, SameSeedSameImageWithOneAndTwoThreads) {
   EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)));
 }
 
+// --checkpoint then --resume with more samples: the same pixels as one render of that
+// many samples. A checkpoint of another seed or scene is refused with the reason.
+TEST_F(Cli, ResumeFromACheckpointIsBitIdentical) {
+  std::string scene = write("s.pbrt", kSmallScene);
+  const std::string common = " -q --no-png --seed 3 --threads 2 ";
+  ASSERT_EQ(run_dermis("render " + scene + common + "--spp 6 -o " + path("whole.exr")).status, 0);
+  CommandResult first = run_dermis("render " + scene + common + "--spp 2 --checkpoint " + path("c.ckpt") + " -o " +
+                                   path("part.exr"));
+  ASSERT_EQ(first.status, 0) << first.output;
+  ASSERT_TRUE(fs::exists(path("c.ckpt")));
+  CommandResult rest = run_dermis("render " + scene + common + "--spp 6 --resume " + path("c.ckpt") + " -o " +
+                                  path("resumed.exr"));
+  ASSERT_EQ(rest.status, 0) << rest.output;
+  dermis::Image a = dermis::read_image(path("whole.exr")), b = dermis::read_image(path("resumed.exr"));
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)));
+
+  CommandResult other_seed = run_dermis("render " + scene + " -q --seed 4 --resume " + path("c.ckpt") + " -o " +
+                                        path("o.exr"));
+  EXPECT_EQ(other_seed.status, 2);
+  EXPECT_NE(other_seed.output.find("written with --seed 3, not 4"), std::string::npos) << other_seed.output;
+  EXPECT_FALSE(fs::exists(path("o.exr")));
+  write("s.pbrt", std::string(kSmallScene) + "# changed\n");
+  CommandResult changed = run_dermis("render " + scene + " -q --seed 3 --resume " + path("c.ckpt") + " -o " +
+                                     path("o.exr"));
+  EXPECT_EQ(changed.status, 2);
+  EXPECT_NE(changed.output.find("another scene"), std::string::npos) << changed.output;
+  CommandResult garbage = run_dermis("render " + scene + " -q --resume " + write("g.ckpt", "not a checkpoint") +
+                                     " -o " + path("o.exr"));
+  EXPECT_EQ(garbage.status, 2);
+  EXPECT_NE(garbage.output.find("not a Dermis checkpoint"), std::string::npos) << garbage.output;
+}
+
 TEST_F(Cli, MissingSceneIsAnErrorWithStatus2) {
   CommandResult r = run_dermis("render " + path("nope.pbrt") + " -o " + path("o.exr"));
   EXPECT_EQ(r.status, 2);

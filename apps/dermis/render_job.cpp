@@ -1,5 +1,7 @@
 #include "render_job.h"
 
+#include "cli_checks.h"
+
 #include <fmt/format.h>
 
 #include <atomic>
@@ -7,11 +9,13 @@
 #include <filesystem>
 #include <optional>
 
+#include "dermis/render/checkpoint.h"
 #include "dermis/render/film.h"
 #include "dermis/render/image.h"
 #include "dermis/render/progress.h"
 #include "dermis/render/scene_assembly.h"
 #include "dermis/render/scene_preparation.h"
+#include "dermis/scene/gzip_file.h"
 #include "dermis/scene/parser.h"
 
 namespace dermis::app {
@@ -40,23 +44,31 @@ bool failed_somewhere(ProcessGroup& group, const std::optional<std::string>& err
 void add_render_options(CLI::App& cmd, RenderArgs& args) {
   cmd.add_option("scene", args.scene, "pbrt-v4 scene file")->required();
   cmd.add_option("--spp", args.spp, "samples per pixel (default: the scene's Sampler pixelsamples)")
-      ->check(CLI::PositiveNumber);
-  cmd.add_option("--threads", args.threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
-  cmd.add_option("--seed", args.seed, "random seed (default: the scene's, else 0)")->check(CLI::NonNegativeNumber);
+      ->check(kPositive);
+  cmd.add_option("--threads", args.threads, "worker threads (default: all cores)")->check(kNonNegative);
+  cmd.add_option("--seed", args.seed, "random seed (default: the scene's, else 0)")->check(kNonNegative);
   cmd.add_option("--sampler", args.sampler,
                  "sobol (Owen-scrambled Sobol', the default) or independent (default: the scene's Sampler)")
       ->check(CLI::IsMember({"sobol", "independent"}));
   cmd.add_option("-o,--output", args.output, "output image (.exr, .png, ...; default: the Film's filename)");
   cmd.add_option("--res", args.res, "resolution WIDTHxHEIGHT, overriding the Film's");
   cmd.add_option("--time-limit", args.time_limit, "stop after this many seconds, keeping the samples taken")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   cmd.add_flag("-q,--quiet", args.quiet, "no progress bar or summary");
   cmd.add_option("--points", args.points, "points per `pointcloud` subsurface object (default: from its pointdensity)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
   cmd.add_option("--save-pointcloud", args.save_pointcloud, "save the point cloud(s) of the pre-pass to this file");
   cmd.add_option("--load-pointcloud", args.load_pointcloud, "load the point cloud(s) instead of computing them")
       ->excludes("--save-pointcloud");
   cmd.add_flag("--no-png", args.no_png, "with an .exr output, do not also write a .png preview");
+  cmd.add_option("--checkpoint", args.checkpoint,
+                 "save the film state to this file every --checkpoint-interval seconds (between passes), on Ctrl-C "
+                 "and at the end, for --resume");
+  cmd.add_option("--checkpoint-interval", args.checkpoint_interval, "seconds between checkpoints (default 60)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--resume", args.resume,
+                 "continue from a checkpoint of the same scene, seed, sampler and resolution (--spp may be larger): "
+                 "the image is bit-identical to a render never stopped");
 }
 
 namespace {
@@ -157,6 +169,26 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   }
   if (failed_somewhere(group, error)) return 2;
 
+  // Checkpoints: the film state, with what it must match to be resumed.
+  std::optional<Film> resumed;
+  CheckpointKey key;
+  if (!a.checkpoint.empty() || !a.resume.empty()) {
+    try {
+      if (group.size() > 1)
+        throw std::invalid_argument("--checkpoint and --resume work with one process only (not with dermis-mpi yet)");
+      key.scene_hash = fingerprint(read_file_contents(a.scene));
+      key.seed = a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
+      key.sampler = desc.settings.sampler;
+      key.full_width = scene->film.xres;
+      key.full_height = scene->film.yres;
+      key.pixels = film_pixel_bounds(scene->film);
+      if (!a.resume.empty()) resumed = read_checkpoint(a.resume, key);
+    } catch (const std::exception& e) {
+      error = fmt::format("{}: {}", program, e.what());
+    }
+  }
+  if (failed_somewhere(group, error)) return 2;
+
   RenderOptions opt;
   opt.spp = desc.settings.spp;
   opt.threads = a.threads;
@@ -170,6 +202,24 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   const int64_t total = int64_t(pixels.width()) * pixels.height() * opt.spp;
   Progress progress("Rendering", total, progress_style);
   opt.progress = [&progress](int64_t n) { progress.advance(n); };
+  if (resumed) {
+    opt.resume = &*resumed;
+    int64_t had = 0;
+    for (uint32_t s : resumed->samples) had += std::min<int64_t>(s, opt.spp);
+    progress.advance(had);
+  }
+  bool checkpoint_failed = false;
+  if (!a.checkpoint.empty()) {
+    opt.checkpoint_interval = a.checkpoint_interval;
+    opt.checkpoint = [&](const Film& film) {
+      try {
+        write_checkpoint(a.checkpoint, key, film);
+      } catch (const std::exception& e) {
+        if (!checkpoint_failed) fmt::print(stderr, "\n{}: warning: {}\n", program, e.what());
+        checkpoint_failed = true;  // said once; rendering goes on
+      }
+    };
+  }
 
   if (!quiet)
     fmt::print(stderr, "dermis: {} — {}x{}, {} spp, {} shapes, {} lights{}\n", a.scene, scene->film.xres,
@@ -232,6 +282,9 @@ int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& gr
                "dermis: warning: {} paths were truncated (random-walk step cap or interface-crossing guard); their "
                "energy is missing from the image\n",
                r.truncated);
+  if (!a.checkpoint.empty() && !a.quiet)
+    fmt::print(stderr, "dermis: checkpoint {} holds {}..{} samples per pixel (continue with --resume {})\n",
+               a.checkpoint, r.min_spp, r.max_spp, a.checkpoint);
   if (r.interrupted) {
     fmt::print(stderr, "dermis: interrupted: the image holds the samples finished so far ({}..{} per pixel of {})\n",
                r.min_spp, r.max_spp, spp);

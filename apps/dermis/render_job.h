@@ -25,6 +25,8 @@ struct RenderArgs {
   bool quiet = false, no_png = false;
   int64_t points = 0;
   std::string save_pointcloud, load_pointcloud;
+  std::string checkpoint, resume;  // film state files (render/checkpoint.h)
+  double checkpoint_interval = 60;
 };
 
 // Adds the options of `render` to a subcommand.

@@ -29,6 +29,8 @@ int tile_owner(std::size_t tile, std::size_t tiles, const ProcessGroup& group, T
   return group.size() - 1;
 }
 
+int group_size(const RenderOptions& opt) { return opt.group ? opt.group->size() : 1; }
+
 }  // namespace
 
 RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
@@ -40,6 +42,12 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
   const PixelBounds bounds = film_pixel_bounds(sc.film);
   const int x_begin = bounds.x0, y_begin = bounds.y0, w = bounds.width(), h = bounds.height();
   Film film(w, h);
+  if (opt.resume) {
+    if (opt.resume->width != w || opt.resume->height != h)
+      throw std::invalid_argument("render_image: the film to resume has another size than the image");
+    if (group_size(opt) > 1) throw std::invalid_argument("render_image: resuming is for one process only");
+    film = *opt.resume;
+  }
   FilterSampler filter(sc.film.filter);
 
   // This process's tiles: the same ones in every pass (a pixel's samples are summed
@@ -59,7 +67,12 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
     return opt.time_limit > 0 && std::chrono::duration<double>(Clock::now() - start).count() >= opt.time_limit;
   };
 
-  auto render_tile = [&](const Tile& t, int first_sample, int n_samples) {
+  // Samples [first, up_to) of each pixel of the tile, where `first` is what its pixels
+  // have (every pixel of a tile has the same count).
+  auto render_tile = [&](const Tile& t, int up_to) {
+    const int first_sample = int(film.samples[std::size_t(t.y0) * w + t.x0]);
+    const int n_samples = up_to - first_sample;
+    if (n_samples <= 0) return;
     PathCounters counters;
     uint64_t bad = 0;
     for (int y = t.y0; y < t.y1; ++y)
@@ -97,8 +110,11 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
 
   // Passes of 1, 1, 2, 4, ... samples per pixel (at most 16), so that an interrupt or
   // the time limit leaves every pixel with a similar number of samples.
-  int done = 0, pass_size = 1;
+  // A resumed film goes on from its fewest samples; tiles that have more skip ahead.
+  int done = opt.resume ? int(*std::min_element(film.samples.begin(), film.samples.end())) : 0;
+  int pass_size = std::clamp(done, 1, 16);
   double busy = 0;
+  auto last_checkpoint = Clock::now();
   while (done < opt.spp && !stop) {
     int n = std::min({pass_size, opt.spp - done, 16});
     pass_samples = 0;
@@ -116,12 +132,17 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
           time_limited = true;
           return;
         }
-        render_tile(tiles[i], done, n);
+        render_tile(tiles[i], done + n);
       });
     });
     busy += std::chrono::duration<double>(Clock::now() - pass_start).count();
     done += n;
     if (done > 1) pass_size = std::min(pass_size * 2, 16);
+    if (opt.checkpoint && !stop && done < opt.spp &&
+        std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= opt.checkpoint_interval) {
+      opt.checkpoint(film);
+      last_checkpoint = Clock::now();
+    }
     if (group.size() > 1) {
       // The pass boundary: all processes stop together, and the progress learns the
       // others' samples.
@@ -141,6 +162,7 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
     group.sum_to_root(std::span<uint32_t>(film.samples));
     group.sum_to_root(std::span<uint64_t>(counts));
   }
+  if (opt.checkpoint) opt.checkpoint(film);  // the state at the end: resumable to more samples
   result.process_seconds.assign(std::size_t(group.size()), 0.0);
   group.gather_to_root(busy, result.process_seconds);
 

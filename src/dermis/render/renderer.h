@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "dermis/core/sampler.h"
+#include "dermis/render/film.h"
 #include "dermis/render/process_group.h"
 #include "dermis/render/render_scene.h"
 
@@ -38,12 +39,20 @@ struct RenderOptions {
   // rank 0: only rank 0's result holds the image and the totals.
   ProcessGroup* group = nullptr;
   TileAssignment tile_assignment = TileAssignment::Interleaved;
+  // Continue from this film (a checkpoint of the same scene, seed and sampler; the
+  // crop window's size): each pixel goes on from the samples it has, in sample order,
+  // so the result is bit-identical to a render never stopped. One process only.
+  const Film* resume = nullptr;
+  // Called between passes (on the calling thread, the film consistent) once at least
+  // checkpoint_interval seconds passed since the last call, and once at the end.
+  std::function<void(const Film&)> checkpoint;
+  double checkpoint_interval = 60;
 };
 
 struct RenderResult {
   int width = 0, height = 0;
   std::vector<float> rgb;     // linear, row-major, top row first
-  uint64_t samples = 0;       // pixel samples taken
+  uint64_t samples = 0;       // pixel samples in the image (a resumed film's included)
   uint64_t nonfinite = 0;     // samples that were NaN or infinite (counted as zero)
   uint64_t rays = 0;
   uint64_t truncated = 0;
