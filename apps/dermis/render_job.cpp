@@ -146,6 +146,8 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
     prep.cancel = &g_interrupted;
     prep.group = &group;
     preparation = prepare_scene(*scene, prep);
+    if (root)
+      for (const std::string& w : preparation.point_clouds.warnings) fmt::print(stderr, "{}\n", w);
   } catch (const Interrupted&) {
     if (root) fmt::print(stderr, "{}: interrupted while preparing the scene; nothing written\n", program);
     return 130;

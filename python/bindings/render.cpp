@@ -67,7 +67,9 @@ std::shared_ptr<RenderScene> prepared_scene(Scene& s, uint64_t seed, SamplerKind
         prep.point_clouds.seed = seed;
         prep.point_clouds.sampler = sampler;
         prep.cancel = &cancel;
-        prepare_scene(*built, prep);
+        const PreparationReport report = prepare_scene(*built, prep);
+        diag.warnings.insert(diag.warnings.end(), report.point_clouds.warnings.begin(),
+                             report.point_clouds.warnings.end());
       },
       cancel, nullptr);
   if (error) throw *error;

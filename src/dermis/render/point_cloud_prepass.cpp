@@ -75,9 +75,21 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
       std::vector<uint32_t> indices;
       object_triangles(sc, shapes, positions, indices);
       double area = pc::mesh_area(positions, indices);
-      std::size_t count = options.points > 0
-                              ? options.points
-                              : pc::point_count_for_density(area, m.min_mean_free_path(), params.point_density);
+      std::size_t count = options.points;
+      if (count == 0) {
+        // Points per mfp^2 (pointdensity) up to the budget (maxpoints): the density alone
+        // grows without bound with area / mfp^2.
+        const double mfp = m.min_mean_free_path();
+        const double wanted = pc::point_count_for_density(area, mfp, params.point_density);
+        count = std::size_t(std::min(wanted, double(params.max_points)));
+        if (wanted > double(params.max_points))
+          report.warnings.push_back(fmt::format(
+              "{}: warning: point cloud of object {}: \"pointdensity\" {} asks for {:.3g} points (area {:.3g}, mfp {:.3g}); "
+              "using the \"maxpoints\" budget of {} (spacing {:.3g} instead of {:.3g}). Raise \"maxpoints\" or "
+              "--points for a finer cloud",
+              params.loc.str(), k, params.point_density, wanted, area, mfp, params.max_points,
+              std::sqrt(area / double(count)), mfp / std::sqrt(params.point_density)));
+      }
       count = std::max<std::size_t>(count, 16);
       cloud.points = pc::distribute_points(positions, indices, count, mix64(options.seed ^ (0x9e37 + object)));
       cloud.irradiance.resize(cloud.points.size());

@@ -27,6 +27,7 @@ struct PointCloudReport {
   std::size_t clouds = 0, points = 0, memory_bytes = 0, file_bytes = 0;
   double prepass_seconds = 0;  // point distribution and irradiance (or loading)
   double build_seconds = 0;    // octrees and local disk tables
+  std::vector<std::string> warnings;  // e.g. a cloud capped at its "maxpoints" budget
 };
 
 // Computes the clouds of the scene's point-cloud objects (the scene's other subsurface

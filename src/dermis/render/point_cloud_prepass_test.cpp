@@ -7,6 +7,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "dermis/materials/fresnel.h"
 #include "dermis/render/scene_assembly.h"
@@ -80,6 +82,30 @@ TEST(PointCloudRender, SavedCloudLoadsAndRendersTheSame) {
   PointCloudOptions missing;
   missing.load_path = path;
   EXPECT_THROW(build_render_scene(parse_scene_string(slab(true)), diag, missing), std::runtime_error);
+}
+
+// The density asks for area * pointdensity / mfp^2 points: the slab (area ~4.3e4, mfp 1)
+// at density 1 asks for ~4.3e4; a "maxpoints" budget of 2000 caps it, with a warning
+// that gives both spacings; within the budget there is no warning.
+TEST(PointCloudRender, TheCloudIsCappedAtItsBudgetWithAWarning) {
+  auto points_with = [](const std::string& extra, std::vector<std::string>* warnings) {
+    std::string text = slab(true);
+    const std::string samples = "\"integer irradiancesamples\" 4";
+    text.replace(text.find(samples), samples.size(), "\"integer irradiancesamples\" 1 " + extra);
+    Diagnostics diag;
+    auto sc = assemble_scene(parse_scene_string(text), diag);
+    const PreparationReport r = prepare_scene(*sc, {});
+    *warnings = r.point_clouds.warnings;
+    return r.point_clouds.points;
+  };
+  std::vector<std::string> warnings;
+  EXPECT_EQ(points_with("\"integer maxpoints\" 2000", &warnings), 2000u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("<string>:7:1: warning: point cloud of object 1: \"pointdensity\" 1 asks for 4.32e+04 points"),
+            std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("budget of 2000"), std::string::npos) << warnings[0];
+  EXPECT_EQ(points_with("\"integer maxpoints\" 2000 \"float pointdensity\" 0.04", &warnings), 1728u);  // 0.04 * 43200
+  EXPECT_TRUE(warnings.empty());
 }
 
 }  // namespace

@@ -77,6 +77,7 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"albedoinversion", "string", "exact", "(reflectance, mfp) to coefficients: exact or fit"},
     {"pointdensity", "float", "1", "point cloud: points per mean free path squared"},
     {"irradiancesamples", "integer", "64", "point cloud: irradiance samples per point"},
+    {"maxpoints", "integer", "250000", "point cloud: the most points per object (a budget: fewer when the density asks more, with a warning)"},
     {"epsilon", "float", "0.05", "point cloud: the octree's solid-angle criterion"},
     {"localdisk", "bool", "true", "point cloud: the local disk integral"},
     {"sssgroup", "string", "none", "materials with the same group form one subsurface object"},
@@ -180,6 +181,12 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
       if (v.size() != 1 || !(v[0] >= 1) || v[0] != std::floor(v[0]) || v[0] > (1 << 20))
         throw SceneError(p.value_loc, "\"irradiancesamples\" must be one integer in [1, 1048576]");
       s.irradiance_samples = int(v[0]);
+    }
+    else if (n == "maxpoints") {
+      const auto& v = p.param.numbers;
+      if (p.type != "integer" || v.size() != 1 || !(v[0] >= 16) || v[0] > 1e8)
+        throw SceneError(p.value_loc, "\"maxpoints\" must be one integer in [16, 100000000]");
+      s.max_points = int(v[0]);
     }
     else if (n == "sssgroup") {
       if (p.type != "string" || p.param.strings.size() != 1)

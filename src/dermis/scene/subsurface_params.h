@@ -55,6 +55,10 @@ struct SubsurfaceParams {
   bool local_disk = true;
   float point_density = 1.0f;
   int irradiance_samples = 64;
+  // The most points per object: the density above asks for area * density / mfp^2,
+  // which grows without bound for a large object of short mfp; the local disk integral
+  // keeps a sparser cloud usable (Langlands & Mertens), so the count is capped (warned).
+  int max_points = 250000;
   // Materials with the same non-empty group form one subsurface object with every shape
   // that uses them; otherwise the object is the shapes sharing this material (pbrt-v4).
   std::string group;

@@ -139,12 +139,11 @@ double mesh_area(const std::vector<Vec3>& positions, const std::vector<uint32_t>
   return sum;
 }
 
-std::size_t point_count_for_density(double area, double mean_free_path, double points_per_mfp2) {
+double point_count_for_density(double area, double mean_free_path, double points_per_mfp2) {
   if (!(area > 0) || !(mean_free_path > 0) || !(points_per_mfp2 > 0))
-    throw std::invalid_argument("point_count_for_density: area, mean free path and points per mfp^2 must be positive");
-  const double n = std::ceil(area * points_per_mfp2 / (mean_free_path * mean_free_path));
-  if (!(n < 1e9)) throw std::invalid_argument("point_count_for_density: more than 1e9 points requested");
-  return std::max<std::size_t>(1, std::size_t(n));
+    throw std::invalid_argument("point cloud: the object's area, its mean free path and \"pointdensity\" must be "
+                                "positive");
+  return std::max(1.0, std::ceil(area * points_per_mfp2 / (mean_free_path * mean_free_path)));
 }
 
 std::vector<SurfacePoint> uniform_random_points(const std::vector<Vec3>& positions,

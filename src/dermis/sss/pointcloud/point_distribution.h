@@ -20,9 +20,10 @@ struct SurfacePoint {
 // Total area of the triangles (indices: three per triangle into positions).
 double mesh_area(const std::vector<Vec3>& positions, const std::vector<uint32_t>& indices);
 
-// The number of points for a density given as points per mean free path squared:
-// ceil(area * points_per_mfp2 / mfp^2), at least 1.
-std::size_t point_count_for_density(double area, double mean_free_path, double points_per_mfp2);
+// The number of points a density given as points per mean free path squared asks for:
+// ceil(area * points_per_mfp2 / mfp^2), at least 1 (a double: it may exceed any budget,
+// which the caller applies).
+double point_count_for_density(double area, double mean_free_path, double points_per_mfp2);
 
 struct DistributionOptions {
   int candidates_per_point = 5;  // candidates = this x count (Yuksel uses 5)
