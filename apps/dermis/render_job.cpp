@@ -168,6 +168,11 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
       error = fmt::format("{}: {}: unsupported output format '{}' (use .exr, .png, .hdr, .tif or .jpg)", program, out, ext);
     else if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path()))
       error = fmt::format("{}: {}: output directory '{}' does not exist", program, out, out_path.parent_path().string());
+    else if (const auto png = std::filesystem::path(out).replace_extension(".png");
+             std::filesystem::is_directory(out_path) || (ext == ".exr" && !a.no_png && std::filesystem::is_directory(png)))
+      // Refused before rendering: failing at the write would leave the .exr without its preview.
+      error = fmt::format("{}: {}: the output {} is a directory", program, out,
+                          std::filesystem::is_directory(out_path) ? "path" : fmt::format("preview '{}'", png.string()));
   }
   if (failed_somewhere(group, error)) return 2;
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -62,6 +63,35 @@ OutputFormat output_format(const std::string& path) {
                                        ext, kSupportedExtensions));
 }
 
+// What a header may claim before its pixels are read: at most kMaxImagePixels pixels, and,
+// for formats whose compression ratio is bounded (PNG's deflate, HDR's run lengths, most
+// OpenEXR compressions), no more bytes of pixels than the file could inflate to. A lying header is refused here
+// rather than allocated (a 100-byte PNG claiming 65535 x 65535 used to take 1.8 GB).
+constexpr std::size_t kMaxImagePixels = std::size_t(1) << 27;  // 16384 x 8192
+constexpr std::uintmax_t kMaxDeflateRatio = 1032;              // deflate's largest expansion
+
+template <class Fail>
+void check_image_size(const OIIO::ImageSpec& spec, const std::string& format, const std::string& path, Fail fail) {
+  const std::size_t pixels = std::size_t(spec.width) * std::size_t(spec.height);
+  if (pixels > kMaxImagePixels)
+    throw fail(fmt::format("the header claims {}x{} pixels, more than the {} a texture may have", spec.width,
+                           spec.height, kMaxImagePixels));
+  // OpenEXR: zip/zips/pxr24 (deflate after at most 4:3), piz, rle, b44 stay within twice
+  // deflate's ratio; DWAA/DWAB (DCT then deflate) have no such bound and are not checked.
+  std::uintmax_t ratio = 0;
+  if (format == "png" || format == "hdr") ratio = kMaxDeflateRatio;
+  if (format == "openexr" && lower(spec.get_string_attribute("compression")).rfind("dwa", 0) != 0)
+    ratio = 2 * kMaxDeflateRatio;
+  if (ratio == 0) return;
+  std::error_code ec;
+  const std::uintmax_t file_bytes = std::filesystem::file_size(path, ec);
+  const std::uintmax_t pixel_bytes = std::uintmax_t(pixels) * std::uintmax_t(spec.pixel_bytes());
+  if (!ec && pixel_bytes / ratio > file_bytes)
+    throw fail(fmt::format("the header claims {}x{} pixels ({} bytes) but the file holds only {} bytes: a corrupt "
+                           "or truncated file",
+                           spec.width, spec.height, pixel_bytes, file_bytes));
+}
+
 }  // namespace
 
 Image::Image(int w, int h, RGB fill) : width(w), height(h) {
@@ -91,9 +121,11 @@ Image read_image(const std::string& path) {
     throw fail(why.empty() ? "unknown error" : why);
   }
   const OIIO::ImageSpec& spec = in->spec();
-  const int nc = spec.nchannels;
-  if (spec.width <= 0 || spec.height <= 0 || nc <= 0)
-    throw fail(fmt::format("empty image ({}x{}, {} channels)", spec.width, spec.height, nc));
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    throw fail(fmt::format("empty image ({}x{}, {} channels)", spec.width, spec.height, spec.nchannels));
+  check_image_size(spec, in->format_name(), path, fail);
+  // Only the channels used are read (a header may claim thousands).
+  const int nc = std::min(spec.nchannels, 3);
   std::vector<float> raw(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(nc));
   if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, raw.data())) {
     std::string why = in->geterror();

@@ -1,7 +1,10 @@
 #include "dermis/render/scene_assembly.h"
 
+#include "dermis/render/scene_extent.h"
+
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
@@ -169,6 +172,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
   sc->camera = PerspectiveCamera(desc.camera.camera_to_world, desc.camera.fov, desc.camera.lens_radius,
                                  desc.camera.focal_distance, desc.film.xres, desc.film.yres,
                                  desc.camera.screen_window ? &*desc.camera.screen_window : nullptr);
+  check_scene_point(desc.camera.camera_to_world.point(Vec3(0, 0, 0)), desc.camera.loc, "the camera");
 
   for (const TextureDesc& t : desc.textures) sc->textures.push_back(make_texture(t));
   for (const MaterialDesc& m : desc.materials) sc->materials.push_back(make_material(m, diag));
@@ -214,6 +218,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
   std::vector<int> top_level;
   for (const ShapeDesc& d : desc.shapes) {
     Shape s = make_shape(d, d.object_to_world, default_material);
+    check_shape_extent(s, Transform(), d.loc);
     fill_subsurface(s, d);
     int id = int(sc->shapes.size());
     if (d.area_light) {
@@ -255,20 +260,39 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
   }
 
   std::vector<std::vector<int>> objects;
+  std::vector<std::pair<Vec3, Vec3>> object_bounds;  // in object space, for the instances' extent check
   for (const ObjectDesc& o : desc.objects) {
     std::vector<int> ids;
+    Vec3 lo(INFINITY, INFINITY, INFINITY), hi(-INFINITY, -INFINITY, -INFINITY);
+    auto grow = [&lo, &hi](const Vec3& p) {
+      lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
+      hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
+    };
     for (const ShapeDesc& d : o.shapes) {
       if (d.area_light) diag.warn(d.loc, "area lights inside object instances are not supported (as in pbrt-v4); ignored");
       Shape s = make_shape(d, d.object_to_world, default_material);
+      check_shape_extent(s, Transform(), d.loc);
+      if (s.type == Shape::Type::Sphere) {
+        grow(s.center - Vec3(s.radius, s.radius, s.radius));
+        grow(s.center + Vec3(s.radius, s.radius, s.radius));
+      }
+      for (const Vec3& p : s.positions) grow(p);
       fill_subsurface(s, d);
       if (sc->materials[s.material].is_interface()) sc->has_interfaces = true;
       ids.push_back(int(sc->shapes.size()));
       sc->shapes.push_back(std::move(s));
     }
     objects.push_back(std::move(ids));
+    object_bounds.emplace_back(lo, hi);
   }
   std::vector<Instance> instances;
-  for (const InstanceDesc& i : desc.instances) instances.push_back({i.object, i.object_to_world});
+  for (const InstanceDesc& i : desc.instances) {
+    if (i.object >= 0 && std::size_t(i.object) < object_bounds.size() &&
+        object_bounds[std::size_t(i.object)].first.x <= object_bounds[std::size_t(i.object)].second.x)
+      check_box_extent(object_bounds[std::size_t(i.object)].first, object_bounds[std::size_t(i.object)].second,
+                       i.object_to_world, i.loc, "the instanced object");
+    instances.push_back({i.object, i.object_to_world});
+  }
   for (std::size_t o = 0; o < objects.size(); ++o)
     for (int id : objects[o]) sc->shapes[id].instance = int(o);
 
@@ -284,6 +308,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
       case LightDesc::Type::Point:
         l.type = Light::Type::Point;
         l.position = d.light_to_world.point(d.from);
+        check_scene_point(l.position, d.loc, "the point light");
         break;
       case LightDesc::Type::Spot: {
         l.type = Light::Type::Spot;

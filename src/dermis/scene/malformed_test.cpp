@@ -46,7 +46,7 @@ void expect_scene_error(const std::string& text, int line, int column, const std
 const Case kCases[] = {
     // Negative or overflowing light: negative or infinite pixels.
     {"WorldBegin\nLightSource \"point\" \"rgb I\" @[1 -1 1]\n", "\"I\" must be finite and >= 0"},
-    {"WorldBegin\nAreaLightSource \"diffuse\" \"rgb L\" @[1e39 1 1]\nShape \"sphere\"\n", "\"L\" must be finite"},
+    {"WorldBegin\nAreaLightSource \"diffuse\" \"rgb L\" [@1e39 1 1]\nShape \"sphere\"\n", "beyond the range of 32-bit floats"},
     {"WorldBegin\nLightSource \"infinite\" \"float scale\" @-2\n", "\"scale\" must be finite and >= 0"},
     // As in pbrt-v4, an unknown directive is an error (what follows it would be misread);
     // a near miss gets a suggestion, anything else a hint (a file that is not a scene).
@@ -87,6 +87,8 @@ const Case kCases[] = {
     {"Translate 1 2@\n", "Translate expects 3 numbers, found the end of the file"},
     {"Film \"rgb\" \"integer xresolution\" @-5\n", "xresolution must be positive"},
     {"Film \"rgb\" \"integer yresolution\" @0\n", "yresolution must be positive"},
+    {"Film \"rgb\" \"integer xresolution\" @100000000 \"integer yresolution\" 10\n", "a film of 100000000x10 pixels is too large"},
+    {"Film \"rgb\" \"integer yresolution\" 65536 \"integer xresolution\" @65536\n", "too large"},
     {"Scale 1 @0 1\n", "Scale by zero"},
     {"  @LookAt 0 0 0  0 0 0  0 1 0\n", "degenerate LookAt"},
     {"@LookAt 0 0 0  0 1 0  0 1 0\n", "parallel"},
@@ -165,7 +167,7 @@ TEST(MalformedScenes, BrokenPlyFileNamesTheFileAndTheReason) {
   expect_scene_error("WorldBegin\nShape \"plymesh\" \"string filename\" \"bad.ply\"\n", 2, 1,
                      "references vertex 7 but the file has 3 vertices", dir.path());
   expect_scene_error("WorldBegin\nShape \"plymesh\" \"string filename\" \"short.ply\"\n", 2, 1,
-                     "ends before all elements were read", dir.path());
+                     "3 'vertex' elements of at least 6 bytes each, but only 10 bytes follow the header", dir.path());
 }
 
 TEST(MalformedScenes, BrokenGzipFilesNameTheFile) {

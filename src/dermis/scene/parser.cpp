@@ -408,6 +408,19 @@ void SceneParser::film(const Token& d, TokenStream& ts) {
       throw SceneError(p->value_loc, "cropwindow must be [x0 x1 y0 y1] with 0 <= x0 < x1 <= 1 and 0 <= y0 < y1 <= 1");
     f.crop = {float(c[0]), float(c[1]), float(c[2]), float(c[3])};
   }
+  {
+    // The film holds 28 bytes per pixel: a resolution that cannot be allocated is an error
+    // here, at the value, not a std::bad_alloc later (--res is checked again by the app).
+    constexpr double kMaxFilmPixels = double(1u << 28);
+    const double pixels = std::ceil(double(f.xres) * (f.crop[1] - f.crop[0])) * std::ceil(double(f.yres) * (f.crop[3] - f.crop[2]));
+    if (pixels > kMaxFilmPixels) {
+      const ParsedParam* at = pl.find("xresolution") ? pl.find("xresolution") : pl.find("yresolution");
+      throw SceneError(at ? at->value_loc : loc,
+                       fmt::format("a film of {}x{} pixels is too large (it would need {:.0f} GiB; at most {} pixels, "
+                                   "e.g. 16384x16384): lower xresolution/yresolution or set a cropwindow",
+                                   f.xres, f.yres, pixels * 28 / double(1u << 30), kMaxFilmPixels));
+    }
+  }
   // pbrt-v4's default sensor: pixel values are scaled by iso / 100 times the exposure time (1).
   const float iso = pl.get_float("iso", 100);
   if (!(iso > 0) || !std::isfinite(iso)) throw SceneError(pl.find("iso")->value_loc, "iso must be positive");

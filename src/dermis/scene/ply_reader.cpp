@@ -5,11 +5,13 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "dermis/scene/diagnostics.h"
 #include "dermis/scene/gzip_file.h"
 
 namespace dermis {
@@ -62,6 +64,31 @@ class BodyReader {
   // The body is `data` from `start` on.
   BodyReader(std::string data, size_t start, Format format) : data_(std::move(data)), format_(format), pos_(start) {}
 
+  // Bytes of the body not read yet.
+  size_t remaining() const { return data_.size() - pos_; }
+
+  // The fewest bytes one value of type `t` takes: its size in binary; in ASCII a digit and
+  // a separator (the last value may lack its separator: see fits()).
+  size_t min_bytes(ScalarType t) const { return format_ == Format::Ascii ? 2 : type_size(t); }
+
+  // Whether `count` records of `record_bytes` (min_bytes sums) can fit in the bytes left:
+  // checked before anything is allocated or looped over, so that a header or a list
+  // count cannot claim more than the file holds.
+  bool fits(size_t count, size_t record_bytes) const {
+    if (count == 0 || record_bytes == 0) return true;
+    const size_t room = remaining() + (format_ == Format::Ascii ? 1 : 0);
+    return count <= room / record_bytes;
+  }
+
+  // A list's length: a non-negative integer whose values fit in the rest of the file.
+  size_t read_count(const Property& p, const char* what, size_t which) {
+    const double v = read(p.count_type);
+    if (!(v >= 0) || v != std::floor(v) || !fits(size_t(std::min(v, 1e18)), min_bytes(p.type)))
+      throw std::runtime_error(fmt::format("{} {}: list '{}' claims {} values, more than the {} bytes left in the file",
+                                           what, which, p.name, v, remaining()));
+    return size_t(v);
+  }
+
   double read(ScalarType t) {
     if (format_ == Format::Ascii) return read_ascii();
     size_t n = type_size(t);
@@ -107,6 +134,17 @@ class BodyReader {
   size_t pos_;
 };
 
+// Refuses an element whose count cannot be backed by the bytes left in the file (every
+// record takes at least the minimal size of its properties), before any allocation.
+void check_element_fits(const Element& e, const BodyReader& reader) {
+  size_t record = 0;
+  for (const Property& p : e.props) record += reader.min_bytes(p.is_list ? p.count_type : p.type);
+  if (!reader.fits(e.count, record))
+    throw std::runtime_error(fmt::format("the header declares {} '{}' elements of at least {} bytes each, but only {} "
+                                         "bytes follow the header: a corrupt or truncated file",
+                                         e.count, excerpt(e.name), record, reader.remaining()));
+}
+
 // The line of `data` that starts at `pos` (without its '\n'); `pos` moves past it. False at the end.
 bool next_line(const std::string& data, size_t& pos, std::string& line) {
   if (pos >= data.size()) return false;
@@ -138,13 +176,13 @@ size_t read_header(const std::string& data, Format& format, std::vector<Element>
       if (f == "ascii") format = Format::Ascii;
       else if (f == "binary_little_endian") format = Format::BinaryLE;
       else if (f == "binary_big_endian") format = Format::BinaryBE;
-      else throw std::runtime_error(fmt::format("unknown PLY format '{}'", f));
+      else throw std::runtime_error(fmt::format("unknown PLY format '{}'", excerpt(f)));
       have_format = true;
     } else if (kw == "element") {
       Element e;
       long long count = -1;
       ls >> e.name >> count;
-      if (e.name.empty() || count < 0) throw std::runtime_error(fmt::format("malformed header line '{}'", line));
+      if (!ls || e.name.empty() || count < 0) throw std::runtime_error(fmt::format("malformed header line '{}'", excerpt(line)));
       e.count = size_t(count);
       elements.push_back(e);
     } else if (kw == "property") {
@@ -157,10 +195,10 @@ size_t read_header(const std::string& data, Format& format, std::vector<Element>
         ls >> ct >> it >> p.name;
         p.is_list = true;
         if (!parse_scalar_type(ct, p.count_type) || !parse_scalar_type(it, p.type))
-          throw std::runtime_error(fmt::format("unsupported property types in '{}'", line));
+          throw std::runtime_error(fmt::format("unsupported property types in '{}'", excerpt(line)));
       } else {
         ls >> p.name;
-        if (!parse_scalar_type(t, p.type)) throw std::runtime_error(fmt::format("unsupported property type '{}'", t));
+        if (!parse_scalar_type(t, p.type)) throw std::runtime_error(fmt::format("unsupported property type '{}'", excerpt(t)));
       }
       elements.back().props.push_back(p);
     }
@@ -189,7 +227,13 @@ TriangleMeshDesc read_ply(const std::string& path) {
   size_t nverts = 0;
   bool have_vertices = false;
   for (const Element& e : elements) {
+    check_element_fits(e, reader);
+    // An element with no properties takes no bytes: nothing to read, however many it claims.
+    if (e.props.empty() && e.name != "vertex") continue;
     if (e.name == "vertex") {
+      if (have_vertices) throw std::runtime_error("the header declares two 'vertex' elements");
+      if (e.count > std::numeric_limits<uint32_t>::max())
+        throw std::runtime_error(fmt::format("{} vertices: more than 32-bit indices can address", e.count));
       have_vertices = true;
       nverts = e.count;
       int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, iu = -1, iv = -1;
@@ -211,13 +255,13 @@ TriangleMeshDesc read_ply(const std::string& path) {
         for (size_t i = 0; i < e.props.size(); ++i) {
           const Property& p = e.props[i];
           if (p.is_list) {
-            size_t n = size_t(reader.read(p.count_type));
+            size_t n = reader.read_count(p, "vertex", k);
             for (size_t j = 0; j < n; ++j) reader.read(p.type);
           } else {
             vals[i] = reader.read(p.type);
           }
         }
-        Vec3 pos(float(vals[ix]), float(vals[iy]), float(vals[iz]));
+        const Vec3 pos{float(vals[ix]), float(vals[iy]), float(vals[iz])};  // braces: not a vexing parse
         if (!std::isfinite(pos.x) || !std::isfinite(pos.y) || !std::isfinite(pos.z))
           throw std::runtime_error(fmt::format("vertex {} has a non-finite coordinate", k));
         mesh.positions[k] = pos;
@@ -234,7 +278,7 @@ TriangleMeshDesc read_ply(const std::string& path) {
             reader.read(p.type);
             continue;
           }
-          size_t n = size_t(reader.read(p.count_type));
+          size_t n = reader.read_count(p, e.name.c_str(), k);
           bool wanted = p.name == "vertex_indices" || p.name == "vertex_index";
           poly.clear();
           if (!wanted) {
@@ -271,7 +315,7 @@ TriangleMeshDesc read_ply(const std::string& path) {
     } else {
       for (size_t k = 0; k < e.count; ++k)
         for (const Property& p : e.props) {
-          size_t n = p.is_list ? size_t(reader.read(p.count_type)) : 1;
+          size_t n = p.is_list ? reader.read_count(p, "element", k) : 1;
           for (size_t j = 0; j < n; ++j) reader.read(p.type);
         }
     }

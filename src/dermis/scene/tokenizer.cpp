@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <cstdlib>
 
 #include <fmt/format.h>
@@ -131,6 +132,12 @@ class Lexer {
       throw SceneError(at(t), fmt::format("invalid number '{}'", excerpt(t.text)));
     if (!std::isfinite(v))
       throw SceneError(at(t), fmt::format("number '{}' is not finite", excerpt(t.text)));
+    // Geometry, transforms and colours are 32-bit floats: a larger number would become
+    // infinity there, silently (an object translated by 1e39 vanishes).
+    if (std::abs(v) > double(std::numeric_limits<float>::max()))
+      throw SceneError(at(t), fmt::format("number '{}' is beyond the range of 32-bit floats (3.4e38) in which the "
+                                          "scene is stored",
+                                          excerpt(t.text)));
     return v;
   }
 

@@ -75,6 +75,8 @@ TEST(Tokenizer, Errors) {
   expect_error("Translate 1 2x 3", 1, 13, "invalid number '2x'");
   expect_error("Scale 1 -nan 1", 1, 9, "not finite");
   expect_error("Scale 1 1e999 1", 1, 9, "not finite");
+  expect_error("Scale 1 1e39 1", 1, 9, "beyond the range of 32-bit floats");
+  expect_error("Translate 0 -3.5e38 0", 1, 13, "beyond the range of 32-bit floats");
   expect_error("Shape @", 1, 7, "unexpected character '@'");
 }
 
