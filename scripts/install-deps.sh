@@ -11,7 +11,7 @@ packages=(
   libassimp-dev zlib1g-dev
   libcli11-dev libfmt-dev libpcg-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3-numpy python3-matplotlib
+  python3-numpy python3-matplotlib python3-pil python3-openimageio
   python3-dev pybind11-dev python3-pytest
   libopenmpi-dev openmpi-bin
 )

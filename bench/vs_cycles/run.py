@@ -37,7 +37,7 @@ sys.path.insert(0, os.path.dirname(HERE))
 
 import pbrt_writer  # noqa: E402
 import scenes as S  # noqa: E402
-from sss_methods import LIMIT_RE, RENDER_RE, strip, write_png  # noqa: E402  (shared helpers)
+from dermis_output import LIMIT_RE, RENDER_RE, strip, write_png  # noqa: E402
 
 HUGE_SPP = 1000000
 DOC = os.path.join(ROOT, "docs", "results-vs-cycles.md")

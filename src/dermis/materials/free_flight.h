@@ -52,4 +52,50 @@ inline FreeFlight sample_free_flight(const HomogeneousMedium& m, const RGB& beta
   return f;
 }
 
+// A point of the segment [0, t_max) for next-event estimation, drawn whatever the free
+// flight does (decoupled direct lighting: the path gathers direct light on every segment it
+// crosses, also on those it passes through without scattering).
+struct SegmentPoint {
+  bool valid = false;  // false: no channel scatters on this segment
+  float t = 0;
+  RGB weight;          // sigma_s T(t) / p(t): multiplies the in-scattered radiance at t
+};
+
+// The distance is drawn from the channel's exponential truncated to the segment, the channel
+// in proportion to |beta| among the channels that scatter; the weight is the one-sample balance
+// heuristic over the channels (Veach 1997 eq. 9.10), so the estimate of
+// int_0^t_max sigma_s T(t) L(t) dt stays unbiased in every channel.
+inline SegmentPoint sample_segment_point(const HomogeneousMedium& m, const RGB& beta, float t_max, float u_channel,
+                                         float u_distance) {
+  SegmentPoint sp;
+  if (!(t_max > 0)) return sp;
+  float q[3], captured[3], qsum = 0;
+  for (int c = 0; c < 3; ++c) {
+    const bool scatters = m.sigma_s[c] > 0 && m.sigma_t[c] > 0;
+    qsum += q[c] = scatters ? std::abs(beta[c]) : 0.0f;
+    // 1 - T_c(t_max): the probability that the channel's free flight ends on the segment.
+    captured[c] = std::isinf(t_max) ? 1.0f : -std::expm1(-m.sigma_t[c] * t_max);
+  }
+  if (!(qsum > 0)) return sp;
+  for (float& v : q) v /= qsum;
+  int c = 0;  // the first channel whose cumulative share exceeds u (the last one that scatters, at worst)
+  for (float cdf = 0; int k : {0, 1, 2}) {
+    if (q[k] == 0) continue;
+    c = k;
+    if (u_channel < (cdf += q[k])) break;
+  }
+  // Inversion of the truncated exponential: t = -ln(1 - u (1 - T_c(t_max))) / sigma_t,c.
+  const float t = std::min(-std::log1p(-u_distance * captured[c]) / m.sigma_t[c], std::nextafter(t_max, 0.0f));
+  // p(t) = sum_k q_k sigma_t,k T_k(t) / (1 - T_k(t_max)).
+  const RGB tr = m.transmittance(t);
+  float pdf = 0;
+  for (int k = 0; k < 3; ++k)
+    if (q[k] > 0) pdf += q[k] * m.sigma_t[k] * tr[k] / captured[k];
+  if (!(pdf > 0) || !std::isfinite(pdf)) return sp;
+  sp.valid = true;
+  sp.t = t;
+  sp.weight = m.sigma_s * tr / pdf;
+  return sp;
+}
+
 }  // namespace dermis

@@ -177,6 +177,29 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     if (medium >= 0) {
       const HomogeneousMedium& m = sc.media[medium];
       const float u_channel = sampler.get1d(), u_distance = sampler.get1d();
+      // Direct light in-scattered anywhere on the segment, at a point drawn for it alone
+      // (decoupled from the free flight below, as Cycles' volume integrator does): the path
+      // gathers it also where it passes through, and its scattering events do no next-event
+      // estimation of their own. A path that finds a light by phase sampling weighs itself
+      // against this estimate at its own scattering point: the two weights sum to one at every
+      // point, so any distance distribution of either strategy keeps the sum unbiased.
+      const Vec2 u_segment = sampler.get2d();
+      if (sc.medium_sees_lights[medium] && depth < max_depth) {
+        const SegmentPoint sp = sample_segment_point(m, beta, t_hit, u_segment.x, u_segment.y);
+        if (sp.valid) {
+          const Vec3 wo = -ray.d;
+          const float g = m.g;
+          L += beta * sp.weight *
+               estimate_direct(sc, ray.o + ray.d * sp.t, Vec3(0, 0, 0), medium, sampler, counters, [&](Vec3 wi) {
+                 float ph = henyey_greenstein(dot(-wo, wi), g);
+                 return std::pair{RGB(ph), ph};
+               });
+        } else {
+          sampler.get2d();  // the light sample's two dimensions, so that those after it do not shift
+        }
+      } else if (sc.medium_sees_lights[medium]) {
+        sampler.get2d();
+      }
       const FreeFlight flight = sample_free_flight(m, beta, t_hit, u_channel, u_distance);
       if (!flight.valid) break;
       beta *= flight.weight;
@@ -185,13 +208,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         // Scattering event in the medium.
         Vec3 p = ray.o + ray.d * flight.t;
         if (depth++ >= max_depth) break;
-        Vec3 wo = -ray.d;
         const float g = m.g;
-        if (sc.medium_sees_lights[medium])
-          L += beta * estimate_direct(sc, p, Vec3(0, 0, 0), medium, sampler, counters, [&](Vec3 wi) {
-                 float ph = henyey_greenstein(dot(-wo, wi), g);
-                 return std::pair{RGB(ph), ph};
-               });
         // Sample the phase function about the propagation direction (weight 1).
         const Vec2 u_phase = sampler.get2d();
         float cos_theta = sample_henyey_greenstein_cos(u_phase.x, g);

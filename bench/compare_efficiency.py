@@ -1,0 +1,80 @@
+#!/usr/bin/python3
+"""Efficiency of two dermis builds on the same scenes: per-pixel variance over seeds x CPU time,
+run interleaved in one session (the machine is shared and noisy: only ratios measured in one
+run mean anything).
+
+  /usr/bin/python3 bench/compare_efficiency.py OLD_DERMIS NEW_DERMIS SCENE.pbrt [SCENE ...]
+      [--spp 16] [--res 96x96] [--seeds 6] [--threads 1]
+
+For each build and scene: --seeds renders (seeds 1..N, the two builds alternating); the
+variance of each pixel over the seeds, averaged over the pixels with a non-zero mean (the
+object; the background's variance is zero), and the CPU time of the process (user + system,
+from the kernel: less sensitive to other load than wall time; it includes parsing and scene
+preparation, so render enough samples that those are small). Efficiency = 1 / (variance x CPU).
+The mean images of the two builds are compared too: |mean difference| in standard errors,
+averaged over those pixels (≈ 0.8 for two unbiased builds of the same estimand; a build that
+changed the image shows much more).
+"""
+import argparse
+import os
+import resource
+import statistics
+import subprocess
+import tempfile
+
+import numpy as np
+import OpenImageIO as oiio
+
+
+def render(binary, scene, seed, args, out):
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run([binary, "render", scene, "--spp", str(args.spp), "--res", args.res, "--seed", str(seed),
+                    "--threads", str(args.threads), "-q", "--no-png", "-o", out], check=True,
+                   stderr=subprocess.DEVNULL)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    inp = oiio.ImageInput.open(out)  # not ImageBuf: its cache would return the file's first contents again
+    img = inp.read_image(format="float")[:, :, :3].astype(np.float64)
+    inp.close()
+    os.remove(out)
+    return img, cpu
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("old")
+    ap.add_argument("new")
+    ap.add_argument("scenes", nargs="+")
+    ap.add_argument("--spp", type=int, default=16)
+    ap.add_argument("--res", default="96x96")
+    ap.add_argument("--seeds", type=int, default=6)
+    ap.add_argument("--threads", type=int, default=1)
+    args = ap.parse_args()
+    work = tempfile.mkdtemp(prefix="dermis-efficiency-")
+    print("| scene | variance new/old | CPU new/old | **efficiency new/old** | mean diff (std. errors) |")
+    print("|---|---|---|---|---|")
+    for scene in args.scenes:
+        images = {"old": [], "new": []}
+        cpu = {"old": [], "new": []}
+        for seed in range(1, args.seeds + 1):
+            for name, binary in (("old", args.old), ("new", args.new)) if seed % 2 else (("new", args.new),
+                                                                                       ("old", args.old)):
+                img, t = render(binary, scene, seed, args, os.path.join(work, f"{name}-{seed}.exr"))
+                images[name].append(img)
+                cpu[name].append(t)
+        stats = {}
+        for name in ("old", "new"):
+            a = np.array(images[name])
+            stats[name] = (a.mean(axis=0), a.var(axis=0, ddof=1))
+        covered = (stats["old"][0].mean(axis=2) > 0) & (stats["new"][0].mean(axis=2) > 0)
+        var = {k: stats[k][1].mean(axis=2)[covered].mean() for k in stats}
+        t = {k: statistics.median(cpu[k]) for k in cpu}
+        se = np.sqrt((stats["old"][1] + stats["new"][1]) / args.seeds).mean(axis=2)[covered]
+        z = (np.abs(stats["old"][0] - stats["new"][0]).mean(axis=2)[covered] / np.maximum(se, 1e-30)).mean()
+        eff = var["old"] * t["old"] / (var["new"] * t["new"])
+        print(f"| {os.path.basename(scene)} | {var['new'] / var['old']:.3f} | {t['new'] / t['old']:.3f} "
+              f"| **{eff:.2f}** | {z:.2f} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,65 @@
+#include "dermis/geometry/embree_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dermis/core/rng.h"
+#include "dermis/geometry/sphere_tessellation.h"
+
+namespace dermis {
+namespace {
+
+// The fast hit record (meshes with neither normals nor uvs: Embree's Ng, the point on the ray)
+// against the one computed from the shape's own arrays, on a tessellated sphere hit by random
+// rays from outside and from inside, placed at the top level, reversed, and through an instance.
+void expect_hits_match_the_shape(bool flip, bool instanced) {
+  Shape mesh;
+  tessellate_sphere(1.5f, 12, mesh.positions, mesh.indices);
+  for (Vec3& v : mesh.positions) v = v + Vec3(0.3f, -0.2f, 0.1f);
+  mesh.flip_normals = flip;
+  ASSERT_TRUE(mesh.normals.empty());
+  ASSERT_TRUE(mesh.uvs.empty());
+  std::vector<Shape> shapes{mesh};
+  EmbreeScene scene;
+  const Transform to_world = instanced ? Transform::translate(Vec3d(5, 0, 0)) : Transform();
+  if (instanced)
+    scene.build(shapes, {}, {{0}}, {Instance{0, to_world}});
+  else
+    scene.build(shapes, {0}, {}, {});
+  Rng rng(3, 9);
+  int hits = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 center = to_world.point(Vec3(0.3f, -0.2f, 0.1f));
+    const bool inside = i % 2 == 1;
+    Vec3 d = normalize(Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f));
+    Vec3 o = inside ? center + Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 0.5f : center - d * 10.0f +
+                      Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, 0.0f);
+    SurfaceHit h;
+    if (!scene.intersect(Ray{o, d}, h)) continue;
+    ++hits;
+    const Shape& s = shapes[h.shape];
+    // The reference: the shape's triangle, its barycentric point and normal.
+    const uint32_t* tri = &s.indices[3 * std::size_t(h.prim)];
+    const Vec3 p0 = to_world.point(s.positions[tri[0]]), p1 = to_world.point(s.positions[tri[1]]),
+               p2 = to_world.point(s.positions[tri[2]]);
+    const Vec3 ng = normalize(to_world.normal(s.triangle_normal(h.prim, 0, 0)));
+    EXPECT_GT(dot(h.ng, ng), 0.99999f) << "ray " << i;
+    EXPECT_EQ(h.ns.x, h.ng.x);
+    // On the triangle's plane to float precision (1e-5 of the scene's size), inside its edges.
+    EXPECT_NEAR(dot(h.p - p0, ng), 0.0f, 1e-5f * 10);
+    const float area = length(cross(p1 - p0, p2 - p0));
+    const float b1 = length(cross(h.p - p0, p2 - p0)) / area, b2 = length(cross(p1 - p0, h.p - p0)) / area;
+    EXPECT_NEAR(b1 + b2 + length(cross(p1 - h.p, p2 - h.p)) / area, 1.0f, 1e-3f);
+    EXPECT_NEAR(h.uv.x, b1 + b2, 1e-3f);
+    EXPECT_NEAR(h.uv.y, b2, 1e-3f);
+  }
+  EXPECT_GT(hits, 1500);
+}
+
+TEST(EmbreeScene, FastHitRecordMatchesTheShapesTriangle) { expect_hits_match_the_shape(false, false); }
+TEST(EmbreeScene, FastHitRecordMatchesTheShapesTriangleReversed) { expect_hits_match_the_shape(true, false); }
+TEST(EmbreeScene, FastHitRecordMatchesTheShapesTriangleInstanced) { expect_hits_match_the_shape(false, true); }
+
+}  // namespace
+}  // namespace dermis
