@@ -45,6 +45,10 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   try {
     exit_code = dermis::app::run_render(args, job);
+  } catch (const dermis::app::RankCannotContinue& e) {
+    // The message names the program and the problem; the others may be inside a collective.
+    fmt::print(stderr, "{} (rank {}); aborting the job\n", e.what(), group.rank());
+    MPI_Abort(MPI_COMM_WORLD, 2);
   } catch (const std::exception& e) {
     // Only this rank knows: stop the whole job rather than leave the others waiting.
     fmt::print(stderr, "dermis-mpi render: rank {}: {}; aborting the job\n", group.rank(), e.what());

@@ -2,7 +2,8 @@
 # The tests of dermis-mpi (registered by apps/dermis-mpi/CMakeLists.txt):
 #   mpi_test.sh CHECK DERMIS DERMIS_MPI MPIEXEC
 # walk, pointcloud: `mpirun -n 2` renders the image of `dermis render`, bit for bit;
-# timelimit: both ranks stop and rank 0 writes; badscene: one message, exit status 2.
+# timelimit: both ranks stop and rank 0 writes; badscene: one message, exit status 2;
+# rankfails: a rank that fails alone while preparing ends the job (MPI_Abort), status 2.
 set -u
 check=$1 dermis=$2 dermis_mpi=$3 mpiexec=$4
 dir=$(mktemp -d)
@@ -79,6 +80,26 @@ SCENE
     [ $rc = 2 ] || { cat "$dir/log"; fail "exit status $rc, not 2"; }
     [ "$(grep -c 'dermis-mpi render:' "$dir/log")" = 1 ] || { cat "$dir/log"; fail "not one message"; }
     [ ! -e "$dir/b.exr" ] || fail "an image was written"
+    ;;
+  rankfails)
+    # One rank fails while preparing (its --load-pointcloud file is missing, as on a node
+    # without the shared disk) while the other goes on: the job ends, with that rank's
+    # message and exit status 2, no image, and no wait (ctest's timeout would catch one).
+    cat > "$dir/s.pbrt" <<SCENE
+$header
+Material "subsurface" "rgb reflectance" [0.7 0.5 0.3] "rgb mfp" [0.2 0.2 0.2] "string method" "pointcloud"
+Shape "sphere" "float radius" 0.9
+SCENE
+    "$dermis" render "$dir/s.pbrt" -q --no-png --spp 1 --points 2000 --save-pointcloud "$dir/pc.bin" -o "$dir/one.exr" \
+      || fail "dermis render --save-pointcloud"
+    common=(render "$dir/s.pbrt" -q --no-png --spp 1 -o "$dir/two.exr")
+    timeout 60 "$mpiexec" --oversubscribe -n 1 "$dermis_mpi" "${common[@]}" --load-pointcloud "$dir/pc.bin" \
+      : -n 1 "$dermis_mpi" "${common[@]}" --load-pointcloud "$dir/missing.bin" > "$dir/log" 2>&1
+    rc=$?
+    [ $rc = 2 ] || { cat "$dir/log"; fail "exit status $rc, not 2"; }
+    grep -q "dermis-mpi render: point cloud '$dir/missing.bin': cannot open the file (rank 1); aborting the job" \
+      "$dir/log" || { cat "$dir/log"; fail "no message naming the file and the rank"; }
+    [ ! -e "$dir/two.exr" ] || fail "an image was written"
     ;;
   *) fail "unknown check $check" ;;
 esac

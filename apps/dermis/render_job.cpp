@@ -156,6 +156,10 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   } catch (const std::exception& e) {
     error = fmt::format("{}: {}", program, e.what());
   }
+  // A process that failed while preparing cannot rejoin the others: they may be waiting in
+  // one of the preparation's exchanges (table or point-cloud shares), not in the agreement
+  // below, and would wait for ever. With more than one process the job stops here.
+  if (error && group.size() > 1) throw RankCannotContinue(*error);
   if (failed_somewhere(group, error)) return 2;
 
   // The output: rank 0 writes it.

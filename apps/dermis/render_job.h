@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,12 @@ struct RenderArgs {
 
 // Adds the options of `render` to a subcommand.
 void add_render_options(CLI::App& cmd, RenderArgs& args);
+
+// Thrown by run_render when this process failed where the others of its group may be
+// inside a collective step: the caller must stop the whole job (dermis-mpi: MPI_Abort).
+struct RankCannotContinue : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 struct RenderJob {
   std::string program = "dermis render";  // the prefix of error messages
