@@ -3,6 +3,7 @@
 #include "cli_checks.h"
 
 #include <fmt/format.h>
+#include <oneapi/tbb/global_control.h>
 
 #include <atomic>
 #include <csignal>
@@ -93,6 +94,10 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   auto restore_signals = [&] {
     for (int s : stop_signals) std::signal(s, SIG_DFL);
   };
+  // --threads bounds every stage, not only the render: the BVH build (Embree), the albedo
+  // tables and the point-cloud pre-pass all run on TBB's pool.
+  std::optional<tbb::global_control> thread_limit;
+  if (a.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(a.threads));
   SceneDesc desc;
   std::unique_ptr<RenderScene> scene;
   PreparationReport preparation;
