@@ -59,6 +59,16 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
                                "supported; use another method for instanced objects");
     objects[sc.object_of_shape[i]].push_back(int(i));
   }
+  if (objects.empty()) {
+    // Said rather than ignored: a wrong scene or a misspelt method would otherwise pass unseen.
+    for (const auto& [option, path] : {std::pair{"--load-pointcloud", &options.load_path},
+                                       std::pair{"--save-pointcloud", &options.save_path}})
+      if (!path->empty())
+        report.warnings.push_back(fmt::format("warning: {} {}: the scene has no object whose subsurface method is "
+                                              "\"pointcloud\"; no point cloud was {}",
+                                              option, *path, option[2] == 'l' ? "read" : "written"));
+    return report;
+  }
   int k = 0;
   for (const auto& [object, shapes] : objects) {
     const Material& mat = sc.materials[sc.shapes[shapes[0]].material];

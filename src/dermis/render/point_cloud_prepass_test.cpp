@@ -84,6 +84,25 @@ TEST(PointCloudRender, SavedCloudLoadsAndRendersTheSame) {
   EXPECT_THROW(build_render_scene(parse_scene_string(slab(true)), diag, missing), std::runtime_error);
 }
 
+// Asked to read or write a cloud for a scene that has none: a warning for each option, nothing read.
+TEST(PointCloudRender, CloudFilesForASceneWithoutCloudsAreWarnedAbout) {
+  Diagnostics diag;
+  auto sc = assemble_scene(parse_scene_string("WorldBegin\nLightSource \"infinite\"\n"
+                                              "Material \"subsurface\" \"string method\" \"disk\"\nShape \"sphere\"\n"),
+                           diag);
+  PreparationOptions prep;
+  prep.point_clouds.load_path = "/nonexistent/cloud.bin";
+  prep.point_clouds.save_path = "saved.bin";
+  const PreparationReport r = prepare_scene(*sc, prep);
+  EXPECT_EQ(r.point_clouds.clouds, 0u);
+  ASSERT_EQ(r.point_clouds.warnings.size(), 2u);
+  EXPECT_EQ(r.point_clouds.warnings[0], "warning: --load-pointcloud /nonexistent/cloud.bin: the scene has no object "
+                                        "whose subsurface method is \"pointcloud\"; no point cloud was read");
+  EXPECT_EQ(r.point_clouds.warnings[1], "warning: --save-pointcloud saved.bin: the scene has no object whose "
+                                        "subsurface method is \"pointcloud\"; no point cloud was written");
+  EXPECT_FALSE(std::filesystem::exists("saved.bin"));
+}
+
 // The density asks for area * pointdensity / mfp^2 points: the slab (area ~4.3e4, mfp 1)
 // at density 1 asks for ~4.3e4; a "maxpoints" budget of 2000 caps it, with a warning
 // that gives both spacings; within the budget there is no warning.
