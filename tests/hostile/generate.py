@@ -78,7 +78,10 @@ def truncations(text, tag, whole_lines=True, every=1):
             cut = start + len('"'.join(parts[:4])) + 1
             case(f"trunc_{tag}_l{i}_param_without_value", {"scene.pbrt": text[:cut]}, 2)
         if whole_lines and start >= world_at:
-            case(f"trunc_{tag}_l{i}_whole_lines", {"scene.pbrt": text[:offset]}, 0)
+            # Cut inside an AttributeBegin block: an error, as in pbrt-v4 (the block is left open).
+            kept = [l.split("#")[0].split() for l in lines[:i + 1]]
+            open_blocks = sum(1 for w in kept if w[:1] == ["AttributeBegin"]) - sum(1 for w in kept if w[:1] == ["AttributeEnd"])
+            case(f"trunc_{tag}_l{i}_whole_lines", {"scene.pbrt": text[:offset]}, 2 if open_blocks else 0)
 
 
 truncations(BASE, "base")
@@ -348,8 +351,8 @@ for i in range(6):  # scene text with random bytes flipped in its middle
     case(f"mutated_{i}", {"scene.pbrt": bytes(b)}, 2)
 case("nul_bytes", {"scene.pbrt": HEAD.encode() + b"\0" * 100}, 2)
 case("utf8_bom", {"scene.pbrt": b"\xef\xbb\xbf" + BASE.encode()}, 2)
-case("empty_scene", {"scene.pbrt": ""}, 0, note="pbrt-v4 renders an empty file (default camera, no lights)")
-case("only_comments", {"scene.pbrt": "# nothing\n" * 10}, 0)
+case("empty_scene", {"scene.pbrt": ""}, 2, note="no WorldBegin: an error, as in pbrt-v4")
+case("only_comments", {"scene.pbrt": "# nothing\n" * 10}, 2)
 case("only_world", {"scene.pbrt": "WorldBegin\n"}, 0)
 TEN_MB = 10 * 1024 * 1024
 world("A" * TEN_MB + "\n", "token_10mb_identifier", 2)

@@ -126,13 +126,20 @@ void SceneParser::run(TokenStream& ts, const std::string& dir) {
   }
 }
 
-void SceneParser::finish(const std::string& main_file) {
+void SceneParser::finish(const std::string& main_file, const std::string& name) {
+  // As pbrt-v4 (BasicSceneBuilder::EndOfFiles): a scene without WorldBegin, or with a block
+  // left open, is an error. Both are what a file cut short looks like (a download or a copy
+  // that stopped), and rendering it would hide that.
+  if (!in_world_)
+    throw SceneError({name, 1, 1}, "the scene ends before WorldBegin: a scene describes its camera and film, then "
+                                   "WorldBegin, then its lights and shapes (is the file empty or cut short?)");
   if (open_object_ >= 0)
     throw SceneError(s_.objects[open_object_].loc,
                      fmt::format("ObjectBegin \"{}\" has no matching ObjectEnd", s_.objects[open_object_].name));
   for (const Block& b : blocks_)
-    s_.diagnostics.warn(b.loc, b.kind == BlockKind::Attribute ? "AttributeBegin has no matching AttributeEnd"
-                                                              : "TransformBegin has no matching TransformEnd");
+    throw SceneError(b.loc, b.kind == BlockKind::Attribute
+                                ? "AttributeBegin has no matching AttributeEnd (is the file cut short?)"
+                                : "TransformBegin has no matching TransformEnd (is the file cut short?)");
   for (const PendingInstance& p : pending_instances_) {
     auto it = objects_.find(p.name);
     if (it == objects_.end()) {
@@ -507,7 +514,7 @@ SceneDesc parse_scene_file(const std::string& path) {
   SceneDesc scene;
   SceneParser parser(scene);
   parser.parse_file(path, nullptr);
-  parser.finish(path);
+  parser.finish(path, path);
   return scene;
 }
 
@@ -516,7 +523,7 @@ SceneDesc parse_scene_string(const std::string& text, const std::string& name, c
   scene.base_directory = resolve_path(".", base_dir);
   SceneParser parser(scene);
   parser.parse_text(text, name, base_dir);
-  parser.finish("");
+  parser.finish("", name);
   return scene;
 }
 

@@ -142,9 +142,28 @@ TEST(ParserBlocks, ReverseOrientationXorHandedness) {
   EXPECT_FALSE(s.shapes[3].reverse_orientation);
 }
 
-TEST(ParserBlocks, UnclosedAttributeBeginWarns) {
-  SceneDesc s = parse_world("AttributeBegin\n");
-  EXPECT_TRUE(has_warning(s, "test.pbrt:2:1: warning: AttributeBegin has no matching AttributeEnd"));
+// Both are what a file cut short looks like; pbrt-v4 refuses them too.
+TEST(ParserBlocks, UnclosedAttributeBeginIsAnError) {
+  try {
+    parse_world("AttributeBegin\nShape \"sphere\"\n");
+    FAIL() << "expected a SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_STREQ(e.what(), "test.pbrt:2:1: error: AttributeBegin has no matching AttributeEnd (is the file cut short?)");
+  }
+  EXPECT_NO_THROW(parse_world("AttributeBegin\nShape \"sphere\"\nAttributeEnd\n"));
+}
+
+TEST(ParserBlocks, ASceneWithoutWorldBeginIsAnError) {
+  for (const std::string text : {"", "# only a comment\n", "Camera \"perspective\"\n"}) {
+    try {
+      test::parse_text(text);
+      FAIL() << "expected a SceneError for '" << text << "'";
+    } catch (const SceneError& e) {
+      EXPECT_STREQ(e.what(), "test.pbrt:1:1: error: the scene ends before WorldBegin: a scene describes its camera "
+                             "and film, then WorldBegin, then its lights and shapes (is the file empty or cut short?)");
+    }
+  }
+  EXPECT_NO_THROW(test::parse_text("WorldBegin\n"));
 }
 
 TEST(ParserOptions, CameraParameters) {

@@ -23,7 +23,7 @@ class SceneParser {
   void parse_file(const std::string& path, const SourceLoc* from);
   void parse_text(const std::string& text, const std::string& name, const std::string& base_dir);
   // After the last file: resolves ObjectInstance names, reports unclosed blocks.
-  void finish(const std::string& main_file);
+  void finish(const std::string& main_file, const std::string& name);
   // `old` (a material of this scene) re-read with the parameters in `params_text`
   // (pbrt parameter text) replacing those of the same name. Throws SceneError.
   MaterialDesc rebuild_material(const MaterialDesc& old, const std::string& params_text,
