@@ -54,6 +54,9 @@ const char* material_type_name(MaterialDesc::Type t) {
     case MaterialDesc::Type::Interface: return "interface";
     case MaterialDesc::Type::Subsurface: return "subsurface";
     case MaterialDesc::Type::CoatedDiffuse: return "coateddiffuse";
+    case MaterialDesc::Type::CoatedConductor: return "coatedconductor";
+    case MaterialDesc::Type::DiffuseTransmission: return "diffusetransmission";
+    case MaterialDesc::Type::Mix: return "mix";
   }
   return "?";
 }

@@ -63,6 +63,11 @@ class Sampler {
     return mix64(parent ^ mix64(uint64_t(tag) + 0x7e610000ull)) & ~uint64_t(0xffffffffu);
   }
 
+  // A 64-bit hash of (seed, pixel, sample index, key) that takes no dimension: the seed of
+  // a stochastic query whose own random stream is not worth stratifying (the walks of
+  // a layered BSDF, the choice of a mix material; key: the path vertex's block).
+  uint64_t sample_hash(uint64_t key) const { return mix64(mix64(pixel_seed_ ^ (uint64_t(index_) << 32)) ^ key); }
+
   // The next dimension as a 32-bit fraction of one.
   uint32_t next_fraction() {
     if (kind_ == SamplerKind::Independent || dim_ >= stratified_end_) return rng_.next_u32();

@@ -1,6 +1,7 @@
 #include "dermis/materials/bsdf.h"
 
 #include "dermis/core/frame.h"
+#include "dermis/core/rng.h"
 #include "dermis/core/fresnel.h"
 #include "dermis/core/warp.h"
 #include "dermis/materials/microfacet_bsdf.h"
@@ -46,6 +47,24 @@ std::optional<BSDFSample> rough_sample(const BSDF& b, Vec3 wo, float u_lobe, Vec
   return s;
 }
 
+// Lambertian reflection and transmission: the lobe chosen in proportion to the largest
+// channel of R and of T (pbrt-v4's DiffuseTransmissionBxDF does the same).
+float reflection_probability(const BSDF& b) {
+  const float r = b.albedo.max(), t = b.transmittance.max();
+  return r + t > 0 ? r / (r + t) : 0;
+}
+
+// The coated stack in the local frame of n.
+RGB coated_eval_world(const BSDF& b, Vec3 wo, Vec3 wi) {
+  const Frame f(b.n);
+  return coated_eval(b.coat, f.to_local(wo), f.to_local(wi), b.seed);
+}
+
+float coated_pdf_world(const BSDF& b, Vec3 wo, Vec3 wi, uint64_t seed) {
+  const Frame f(b.n);
+  return coated_pdf(b.coat, f.to_local(wo), f.to_local(wi), seed);
+}
+
 }  // namespace
 
 RGB bsdf_eval(const BSDF& b, Vec3 wo, Vec3 wi) {
@@ -55,8 +74,13 @@ RGB bsdf_eval(const BSDF& b, Vec3 wo, Vec3 wi) {
     if (ci <= 0) return RGB(0);
     return RGB((1 - fresnel_dielectric(ci, b.eta)) / (b.sw_norm * kPi) * ci);
   }
-  if (b.type != BSDF::Type::Diffuse) return RGB(0);
+  if (b.type == BSDF::Type::Coated) return coated_eval_world(b, wo, wi);
   float co = dot(wo, b.n), ci = dot(wi, b.n);
+  if (b.type == BSDF::Type::DiffuseTransmission) {
+    if (co == 0 || ci == 0) return RGB(0);
+    return (co * ci > 0 ? b.albedo : b.transmittance) * (std::abs(ci) * kInvPi);  // R/pi, T/pi times |cos|
+  }
+  if (b.type != BSDF::Type::Diffuse) return RGB(0);
   if (co * ci <= 0) return RGB(0);  // Lambert reflects on the side of wo only
   return b.albedo * (std::abs(ci) * kInvPi);
 }
@@ -64,8 +88,15 @@ RGB bsdf_eval(const BSDF& b, Vec3 wo, Vec3 wi) {
 float bsdf_pdf(const BSDF& b, Vec3 wo, Vec3 wi) {
   if (b.is_rough()) return rough_pdf(b, wo, wi);
   if (b.type == BSDF::Type::SubsurfaceExit) return cosine_hemisphere_pdf(dot(wi, b.n));
-  if (b.type != BSDF::Type::Diffuse) return 0;
+  // A fresh stream for each density estimate (the seed's pdf stream, layered_bsdf.cpp).
+  if (b.type == BSDF::Type::Coated) return coated_pdf_world(b, wo, wi, b.seed);
   float co = dot(wo, b.n), ci = dot(wi, b.n);
+  if (b.type == BSDF::Type::DiffuseTransmission) {
+    if (co == 0 || ci == 0) return 0;
+    const float pr = reflection_probability(b);
+    return (co * ci > 0 ? pr : 1 - pr) * cosine_hemisphere_pdf(std::abs(ci));
+  }
+  if (b.type != BSDF::Type::Diffuse) return 0;
   if (co * ci <= 0) return 0;
   return cosine_hemisphere_pdf(std::abs(ci));
 }
@@ -82,9 +113,33 @@ std::optional<BSDFSample> bsdf_sample(const BSDF& b, Vec3 wo, float u_lobe, Vec2
     s.weight = RGB((1 - fresnel_dielectric(local.z, b.eta)) / b.sw_norm);
     return s;
   }
+  if (b.type == BSDF::Type::Coated) {
+    const Frame f(b.n);
+    const auto c = coated_sample(b.coat, f.to_local(wo), u_lobe, u, b.seed);
+    if (!c) return std::nullopt;
+    s.wi = f.to_world(c->wi);
+    s.weight = c->weight;
+    s.specular = c->specular;
+    // For MIS: a density estimate independent of the walk that chose wi (bsdf.h, BSDF::seed).
+    s.pdf = c->specular ? 1 : coated_pdf_world(b, wo, s.wi, mix64(b.seed ^ 0x5a3b1e0fu));
+    return s;
+  }
   float co = dot(wo, b.n);
   if (co == 0) return std::nullopt;
   switch (b.type) {
+    case BSDF::Type::DiffuseTransmission: {
+      const float pr = reflection_probability(b);
+      if (pr <= 0 && b.transmittance.is_black()) return std::nullopt;
+      const bool reflect = u_lobe < pr;
+      const Vec3 n = (co > 0) == reflect ? b.n : -b.n;
+      const Vec3 local = sample_cosine_hemisphere(u);
+      if (local.z <= 0) return std::nullopt;
+      s.wi = Frame(n).to_world(local);
+      s.pdf = (reflect ? pr : 1 - pr) * cosine_hemisphere_pdf(local.z);
+      s.weight = (reflect ? b.albedo / pr : b.transmittance / (1 - pr));  // (R/pi) cos / (pr cos/pi)
+      s.transmission = !reflect;
+      return s;
+    }
     case BSDF::Type::Diffuse: {
       Vec3 n = co > 0 ? b.n : -b.n;
       Vec3 local = sample_cosine_hemisphere(u);
@@ -122,6 +177,7 @@ std::optional<BSDFSample> bsdf_sample(const BSDF& b, Vec3 wo, float u_lobe, Vec2
       return s;
     }
     case BSDF::Type::SubsurfaceExit:
+    case BSDF::Type::Coated:  // above
       break;
   }
   return std::nullopt;

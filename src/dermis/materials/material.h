@@ -1,9 +1,11 @@
 // Materials as the renderer holds them; bsdf_at() makes the BSDF at a hit.
 #pragma once
 
+#include <bit>
 #include <vector>
 
 #include "dermis/core/rgb.h"
+#include "dermis/core/rng.h"
 #include "dermis/geometry/ray.h"
 #include "dermis/materials/bsdf.h"
 #include "dermis/materials/texture.h"
@@ -11,10 +13,18 @@
 namespace dermis {
 
 struct Material {
-  enum class Type { Diffuse, Dielectric, Conductor, Interface, Subsurface };
+  enum class Type { Diffuse, Dielectric, Conductor, Interface, Subsurface, Coated, DiffuseTransmission, Mix };
   Type type = Type::Diffuse;
-  RGB reflectance{0.5f, 0.5f, 0.5f};
+  RGB reflectance{0.5f, 0.5f, 0.5f};  // Diffuse, DiffuseTransmission; Coated: a diffuse base's
   int reflectance_texture = -1;
+  RGB transmittance{0.25f, 0.25f, 0.25f};  // DiffuseTransmission
+  int transmittance_texture = -1;
+  float scale = 1;  // DiffuseTransmission: factor of both, pbrt-v4's "scale"
+  CoatedLayer coat;  // Coated: the stack (its base reflectance from `reflectance` above)
+  // Mix: the two materials (indices), the second chosen with probability `amount`.
+  int mix[2] = {-1, -1};
+  float amount = 0.5f;
+  int amount_texture = -1;  // a float texture for amount, or -1
   float eta = 1.5f;
   RGB cond_eta, cond_k;
   // Dielectric, Conductor: Trowbridge-Reitz alpha along the two tangent axes (after
@@ -26,10 +36,55 @@ struct Material {
   bool is_interface() const { return type == Type::Interface; }
 };
 
+// The material a hit uses: a mix material (pbrt-v4's MixMaterial) chooses one of its two
+// per hit, the second with probability amount (amount <= 0: the first, >= 1: the
+// second), by a uniform number hashed from the hit point, wo and `sample_key` (the pixel
+// sample and path vertex: Sampler::sample_hash), nested mixes in turn. An unbiased
+// one-sample estimate of (1 - amount) f_1 + amount f_2 that adds no dimension; the pixel
+// sample enters the hash so that the samples of a pixel-centre ray do not all choose alike.
+inline int resolve_material(const std::vector<Material>& materials, const std::vector<Texture>& textures, int index,
+                            const SurfaceHit& hit, Vec3 wo, uint64_t sample_key) {
+  auto bits = [](Vec3 v) {
+    return mix64((uint64_t(std::bit_cast<uint32_t>(v.x)) << 32 | std::bit_cast<uint32_t>(v.y)) ^
+                 mix64(std::bit_cast<uint32_t>(v.z)));
+  };
+  for (uint64_t level = 0; level < 64 && materials[index].type == Material::Type::Mix; ++level) {
+    const Material& m = materials[index];
+    const float a = m.amount_texture >= 0 ? evaluate_texture(textures, m.amount_texture, hit.uv)[0] : m.amount;
+    const float u = float(mix64(sample_key ^ bits(hit.p) ^ mix64(bits(wo) + level)) >> 40) * 0x1p-24f;
+    index = a <= 0 ? m.mix[0] : a >= 1 ? m.mix[1] : (u < a ? m.mix[1] : m.mix[0]);
+  }
+  return index;
+}
+
 inline BSDF bsdf_at(const Material& m, const std::vector<Texture>& textures, const SurfaceHit& hit) {
   BSDF b;
   b.n = hit.ng;
   switch (m.type) {
+    case Material::Type::Coated:
+      b.type = BSDF::Type::Coated;
+      b.coat = m.coat;
+      if (m.coat.base == CoatedLayer::Base::Diffuse) {
+        RGB r = m.reflectance_texture >= 0 ? evaluate_texture(textures, m.reflectance_texture, hit.uv) : m.reflectance;
+        for (int c = 0; c < 3; ++c) r[c] = std::clamp(r[c], 0.0f, 1.0f);
+        b.coat.base_reflectance = r;
+      }
+      break;
+    case Material::Type::DiffuseTransmission: {
+      b.type = BSDF::Type::DiffuseTransmission;
+      RGB r = m.reflectance_texture >= 0 ? evaluate_texture(textures, m.reflectance_texture, hit.uv) : m.reflectance;
+      RGB t = m.transmittance_texture >= 0 ? evaluate_texture(textures, m.transmittance_texture, hit.uv)
+                                           : m.transmittance;
+      for (int c = 0; c < 3; ++c) {  // pbrt-v4 clamps scale * R and scale * T to [0, 1]
+        b.albedo[c] = std::clamp(m.scale * r[c], 0.0f, 1.0f);
+        b.transmittance[c] = std::clamp(m.scale * t[c], 0.0f, 1.0f);
+      }
+      break;
+    }
+    case Material::Type::Mix:  // resolved by resolve_material(); only a cyclic mix gets here: black
+      b.type = BSDF::Type::Diffuse;
+      b.albedo = RGB(0);
+      break;
     case Material::Type::Diffuse:
     case Material::Type::Interface:
     case Material::Type::Subsurface:  // handled by the integrator before any BSDF

@@ -250,7 +250,9 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       }
     }
 
-    const Material& mat = sc.materials[s.material];
+    // A mix material resolves to one of its materials here, once per hit (material.h).
+    const Material& mat = sc.materials[resolve_material(sc.materials, sc.textures, s.material, hit, -ray.d,
+                                                        sampler.sample_hash(vertex_dimension))];
     if (mat.is_interface()) {
       // An index-matched boundary: change medium, keep going in the same direction.
       if (++crossings > kMaxInterfaceCrossings * 16) {
@@ -378,6 +380,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     }
 
     BSDF bsdf = bsdf_at(mat, sc.textures, hit);
+    // The random streams of a layered BSDF's estimates: fresh for every vertex (bsdf.h).
+    if (bsdf.type == BSDF::Type::Coated) bsdf.seed = sampler.sample_hash(vertex_dimension ^ 0xc0a7edull);
     // Shadow rays leave on the side of the light; the medium there is the one the path
     // is in, since Lambertian reflection stays on the side of wo.
     const Vec3 p_out = offset_ray_origin(hit.p, hit.ng, wo);
@@ -385,8 +389,22 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     // Lights are sampled from the side of wo only: not at rough glass, whose transmitted
     // light would be missed (its emission is then found by the sampled direction alone).
     const bool nee = !bsdf.is_specular() && bsdf.type != BSDF::Type::Dielectric;
+    // Diffuse transmission samples the lights on both sides, each from a point and
+    // normal on its own side, each counting only the directions of its side: a direction
+    // sampled into either side then meets its emission MIS-weighted against the light
+    // sampling of that side (prev_p, prev_n below).
+    const bool two_sided_nee = bsdf.type == BSDF::Type::DiffuseTransmission;
+    const Vec3 p_back = two_sided_nee ? offset_ray_origin(hit.p, hit.ng, -wo) : p_out;
     if (nee) {
       L += beta * estimate_direct(sc, p_out, surface_n, medium, sampler, counters, [&](Vec3 wi) {
+             if (two_sided_nee && dot(wi, surface_n) <= 0) return std::pair{RGB(0), 0.0f};
+             return std::pair{bsdf_eval(bsdf, wo, wi), bsdf_pdf(bsdf, wo, wi)};
+           });
+    }
+    if (two_sided_nee) {
+      const int medium_behind = medium_after_crossing(s, -wo, hit.ng, medium);
+      L += beta * estimate_direct(sc, p_back, -surface_n, medium_behind, sampler, counters, [&](Vec3 wi) {
+             if (dot(wi, surface_n) >= 0) return std::pair{RGB(0), 0.0f};
              return std::pair{bsdf_eval(bsdf, wo, wi), bsdf_pdf(bsdf, wo, wi)};
            });
     }
@@ -420,8 +438,9 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     eta_scale *= bs->eta_scale;
     specular = bs->specular || !nee;  // no light sampling here: emission counts in full
     prev_pdf = bs->pdf;
-    prev_p = p_out;
-    prev_n = surface_n;
+    const bool behind = two_sided_nee && bs->transmission;
+    prev_p = behind ? p_back : p_out;
+    prev_n = behind ? -surface_n : surface_n;
     if (bs->transmission) medium = medium_after_crossing(s, bs->wi, hit.ng, medium);
     ray = Ray{offset_ray_origin(hit.p, hit.ng, bs->wi), bs->wi};
     if (!beta.is_finite() || beta.is_black()) break;

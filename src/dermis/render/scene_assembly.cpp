@@ -27,7 +27,7 @@ bool similarity_scale(const Transform& t, float& scale) {
          std::abs(dot(x, z)) < tol * lx && std::abs(dot(y, z)) < tol * lx;
 }
 
-Material make_material(const MaterialDesc& d, Diagnostics& diag) {
+Material make_material(const MaterialDesc& d, [[maybe_unused]] Diagnostics& diag) {
   Material m;
   m.reflectance = d.reflectance.value;
   m.reflectance_texture = d.reflectance.texture;
@@ -57,8 +57,47 @@ Material make_material(const MaterialDesc& d, Diagnostics& diag) {
       m.type = Material::Type::Interface;
       break;
     case MaterialDesc::Type::CoatedDiffuse:
-      diag.warn(d.loc, "coateddiffuse is rendered as its diffuse base (no coating yet)");
-      m.type = Material::Type::Diffuse;
+    case MaterialDesc::Type::CoatedConductor: {
+      m.type = Material::Type::Coated;
+      CoatedLayer& c = m.coat;
+      c.eta = d.eta;
+      c.interface_alpha_x = roughness_to_alpha(d.uroughness, d.remap_roughness);
+      c.interface_alpha_y = roughness_to_alpha(d.vroughness, d.remap_roughness);
+      c.thickness = d.thickness;
+      c.albedo = d.albedo;
+      c.g = d.g;
+      c.max_depth = d.max_depth;
+      c.n_samples = d.n_samples;
+      if (d.type == MaterialDesc::Type::CoatedDiffuse) {
+        c.base = CoatedLayer::Base::Diffuse;  // its reflectance at the hit: bsdf_at()
+      } else {
+        c.base = CoatedLayer::Base::Conductor;
+        c.conductor_eta = d.conductor_eta;
+        c.conductor_k = d.conductor_k;
+        if (d.has_reflectance) {
+          c.conductor_eta = RGB(1);  // as the conductor's "reflectance" below
+          for (int i = 0; i < 3; ++i) {
+            const float r = std::clamp(d.reflectance.value[i], 0.0f, 0.9999f);
+            c.conductor_k[i] = 2 * std::sqrt(r) / std::sqrt(1 - r);
+          }
+        }
+        c.base_alpha_x = roughness_to_alpha(d.conductor_uroughness, d.remap_roughness);
+        c.base_alpha_y = roughness_to_alpha(d.conductor_vroughness, d.remap_roughness);
+      }
+      break;
+    }
+    case MaterialDesc::Type::DiffuseTransmission:
+      m.type = Material::Type::DiffuseTransmission;
+      m.transmittance = d.transmittance.value;
+      m.transmittance_texture = d.transmittance.texture;
+      m.scale = d.scale;
+      break;
+    case MaterialDesc::Type::Mix:
+      m.type = Material::Type::Mix;
+      m.mix[0] = d.mix_materials[0];
+      m.mix[1] = d.mix_materials[1];
+      m.amount = d.amount;
+      m.amount_texture = d.amount_texture;
       break;
     case MaterialDesc::Type::Subsurface:
       // Completed by assemble_scene(), which needs the scene's media.

@@ -82,29 +82,13 @@ RGBTexture SceneParser::spectrum_or_texture(const ParamList& pl, const std::stri
 MaterialDesc SceneParser::build_material(const std::string& type, const ParamList& pl, const SourceLoc& loc) {
   MaterialDesc m;
   m.loc = loc;
-  auto roughness = [&](const char* what) {
-    float r = 0;
-    for (const char* name : {"roughness", "uroughness", "vroughness"}) {
-      const ParsedParam* p = pl.find(name);
-      if (!p) continue;
-      if (p->type == "texture") {
-        p->used = true;
-        s_.diagnostics.warn(p->param.loc, fmt::format("textured {} ignored: {} is rendered smooth", name, what));
-        continue;
-      }
-      r = std::max(r, pl.get_float(name, 0));
-    }
-    if (const ParsedParam* p = pl.find("remaproughness")) pl.expect_type(*p, {"bool"});
-    if (r > 0)
-      s_.diagnostics.warn(loc, fmt::format("{} roughness {} ignored: only smooth surfaces are rendered (rendered smooth)",
-                                           what, r));
-    m.roughness = r;
-  };
   // dielectric, conductor: pbrt-v4's microfacet roughness. "roughness" sets both axes,
   // "uroughness" / "vroughness" override one each; textured values are not supported
   // (warned; the constant fallback is used). The renderer maps roughness to alpha.
-  auto microfacet_roughness = [&](const char* what) {
-    auto constant = [&](const char* name, float fallback) {
+  // The coated materials' interface and conductor read the same names with a prefix
+  // ("interface.", "conductor.").
+  auto microfacet_roughness = [&](const std::string& prefix, const char* what, float& u, float& v) {
+    auto constant = [&](const std::string& name, float fallback) {
       const ParsedParam* p = pl.find(name);
       if (!p) return fallback;
       if (p->type == "texture") {
@@ -116,11 +100,48 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
       if (!(r >= 0)) throw SceneError(p->value_loc, fmt::format("{} must be >= 0, got {}", name, r));
       return r;
     };
-    const float r = constant("roughness", 0);
-    m.uroughness = constant("uroughness", r);
-    m.vroughness = constant("vroughness", r);
+    const float r = constant(prefix + "roughness", 0);
+    u = constant(prefix + "uroughness", r);
+    v = constant(prefix + "vroughness", r);
     m.remap_roughness = pl.get_bool("remaproughness", true);
-    m.roughness = std::max(m.uroughness, m.vroughness);
+    m.roughness = std::max({m.roughness, u, v});
+  };
+  // A constant parameter of the coating; a texture is warned and the default used.
+  auto constant_float = [&](const char* name, float def) {
+    const ParsedParam* p = pl.find(name);
+    if (p && p->type == "texture") {
+      p->used = true;
+      s_.diagnostics.warn(p->param.loc, fmt::format("textured \"{}\" is not supported; {} is used", name, def));
+      return def;
+    }
+    return pl.get_float(name, def);
+  };
+  // pbrt-v4's coating parameters, common to coateddiffuse and coatedconductor.
+  auto coating = [&]() {
+    m.thickness = constant_float("thickness", 0.01f);
+    if (!(m.thickness >= 0) || !std::isfinite(m.thickness))
+      throw SceneError(pl.find("thickness")->value_loc, fmt::format("thickness must be finite and >= 0, got {}",
+                                                                    m.thickness));
+    m.g = constant_float("g", 0);
+    if (!(m.g > -1 && m.g < 1))
+      throw SceneError(pl.find("g")->value_loc, fmt::format("g must lie in (-1, 1), got {}", m.g));
+    if (const ParsedParam* p = pl.find("albedo"); p && p->type == "texture") {
+      p->used = true;
+      s_.diagnostics.warn(p->param.loc, "textured \"albedo\" is not supported; 0 is used");
+    } else {
+      m.albedo = rgb_param(pl, "albedo", RGB(0), s_.diagnostics);
+      for (int c = 0; c < 3; ++c)
+        if (!(m.albedo[c] >= 0 && m.albedo[c] <= 1))
+          throw SceneError(p->value_loc, fmt::format("albedo must lie in [0, 1], got {}", m.albedo[c]));
+    }
+    m.max_depth = pl.get_int("maxdepth", 10);
+    if (m.max_depth < 1 || m.max_depth > 100000)
+      throw SceneError(pl.find("maxdepth")->value_loc, fmt::format("maxdepth must lie in [1, 100000], got {}",
+                                                                   m.max_depth));
+    m.n_samples = pl.get_int("nsamples", 1);
+    if (m.n_samples < 1 || m.n_samples > 1024)
+      throw SceneError(pl.find("nsamples")->value_loc, fmt::format("nsamples must lie in [1, 1024], got {}",
+                                                                   m.n_samples));
   };
   if (type == "diffuse") {
     m.type = MaterialDesc::Type::Diffuse;
@@ -129,7 +150,7 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
     if (type == "thindielectric") s_.diagnostics.warn(loc, "thindielectric is rendered as dielectric");
     m.type = MaterialDesc::Type::Dielectric;
     if (const ParsedParam* p = pl.find("eta")) m.eta = ior_param(*p, s_.diagnostics);
-    microfacet_roughness("dielectric");
+    microfacet_roughness("", "dielectric", m.uroughness, m.vroughness);
   } else if (type == "conductor") {
     m.type = MaterialDesc::Type::Conductor;
     if (pl.has("reflectance")) {
@@ -145,14 +166,82 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
       m.conductor_eta = rgb_param(pl, "eta", m.conductor_eta, s_.diagnostics);
       m.conductor_k = rgb_param(pl, "k", m.conductor_k, s_.diagnostics);
     }
-    microfacet_roughness("conductor");
+    microfacet_roughness("", "conductor", m.uroughness, m.vroughness);
   } else if (type == "interface" || type == "" || type == "none") {
     m.type = MaterialDesc::Type::Interface;
   } else if (type == "coateddiffuse") {
     m.type = MaterialDesc::Type::CoatedDiffuse;
     m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));
     if (const ParsedParam* p = pl.find("eta")) m.eta = ior_param(*p, s_.diagnostics);
-    roughness("coateddiffuse");
+    microfacet_roughness("", "coateddiffuse", m.uroughness, m.vroughness);
+    coating();
+  } else if (type == "coatedconductor") {
+    m.type = MaterialDesc::Type::CoatedConductor;
+    if (const ParsedParam* p = pl.find("interface.eta")) m.eta = ior_param(*p, s_.diagnostics);
+    microfacet_roughness("interface.", "coatedconductor's interface", m.uroughness, m.vroughness);
+    microfacet_roughness("conductor.", "coatedconductor's conductor", m.conductor_uroughness, m.conductor_vroughness);
+    if (const ParsedParam* p = pl.find("reflectance")) {
+      m.has_reflectance = true;
+      if (p->type == "texture") {
+        p->used = true;
+        s_.diagnostics.warn(p->param.loc, "coatedconductor: textured \"reflectance\" is not supported; 1 is used");
+        m.reflectance.value = RGB(1);
+      } else {
+        m.reflectance.value = rgb_param(pl, "reflectance", RGB(1), s_.diagnostics);
+      }
+      for (const char* ignored : {"conductor.eta", "conductor.k"})
+        if (const ParsedParam* q = pl.find(ignored)) {
+          q->used = true;
+          s_.diagnostics.warn(q->param.loc, fmt::format("coatedconductor: \"reflectance\" given, so \"{}\" is ignored",
+                                                        ignored));
+        }
+    } else {
+      m.conductor_eta = rgb_param(pl, "conductor.eta", *named_spectrum_rgb("metal-Cu-eta"), s_.diagnostics);
+      m.conductor_k = rgb_param(pl, "conductor.k", *named_spectrum_rgb("metal-Cu-k"), s_.diagnostics);
+    }
+    coating();
+  } else if (type == "diffusetransmission") {
+    m.type = MaterialDesc::Type::DiffuseTransmission;
+    m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.25f));
+    m.transmittance = spectrum_or_texture(pl, "transmittance", RGB(0.25f));
+    m.scale = constant_float("scale", 1);
+    if (!(m.scale >= 0) || !std::isfinite(m.scale))
+      throw SceneError(pl.find("scale")->value_loc, fmt::format("scale must be finite and >= 0, got {}", m.scale));
+  } else if (type == "mix") {
+    m.type = MaterialDesc::Type::Mix;
+    const ParsedParam* p = pl.find("materials");
+    if (!p) throw SceneError(loc, "mix material needs \"string materials\" [ \"first\" \"second\" ]");
+    pl.expect_type(*p, {"string"});
+    if (p->param.strings.size() != 2)
+      throw SceneError(p->value_loc, fmt::format("\"materials\" of a mix must name two materials, got {}",
+                                                 p->param.strings.size()));
+    for (int i = 0; i < 2; ++i) {
+      const std::string& name = p->param.strings[std::size_t(i)];
+      auto it = named_materials_.find(name);
+      if (it == named_materials_.end())
+        throw SceneError(p->value_at(std::size_t(i)),
+                         fmt::format("mix: unknown named material \"{}\" (a mix names materials made before it by "
+                                     "MakeNamedMaterial; defined: {})",
+                                     name, names_of(named_materials_)));
+      const MaterialDesc& named = s_.materials[std::size_t(it->second)];
+      if (named.type == MaterialDesc::Type::Interface || named.type == MaterialDesc::Type::Subsurface)
+        throw SceneError(p->value_at(std::size_t(i)),
+                         fmt::format("mix: material \"{}\" is {}; a mix of {} materials is not supported", name,
+                                     named.type_name, named.type_name));
+      m.mix_materials[std::size_t(i)] = it->second;
+    }
+    if (const ParsedParam* a = pl.find("amount")) {
+      if (a->type == "texture") {
+        const std::string tex = *pl.get_texture("amount");
+        auto it = float_textures_.find(tex);
+        if (it == float_textures_.end())
+          throw SceneError(a->value_loc, fmt::format("unknown float texture \"{}\" for \"amount\" (defined: {})", tex,
+                                                     names_of(float_textures_)));
+        m.amount_texture = it->second;
+      } else {
+        m.amount = pl.get_float("amount", 0.5f);
+      }
+    }
   } else if (type == "subsurface") {
     m.type = MaterialDesc::Type::Subsurface;
     m.subsurface = read_subsurface_params(pl, loc, s_.diagnostics, [&](const ParsedParam& p) {

@@ -73,7 +73,9 @@ TEST(ParserMaterials, MicrofacetRoughness) {
   EXPECT_TRUE(has_warning(s, "test.pbrt:6:22: warning: textured roughness ignored: conductor uses 0 instead"));
   EXPECT_FALSE(has_warning(s, "dielectric roughness"));
   EXPECT_FALSE(has_warning(s, "conductor roughness"));
-  EXPECT_TRUE(has_warning(s, "test.pbrt:7:1: warning: coateddiffuse roughness 0.3 ignored"));  // no coating yet
+  EXPECT_FLOAT_EQ(s.materials[4].uroughness, 0.3f);  // coateddiffuse's interface, rendered rough
+  EXPECT_FLOAT_EQ(s.materials[4].vroughness, 0.3f);
+  EXPECT_FALSE(has_warning(s, "coateddiffuse"));
   EXPECT_FALSE(has_warning(s, "unused"));
   EXPECT_THROW(parse_world("Material \"dielectric\" \"float uroughness\" -0.1\n"), SceneError);
   EXPECT_THROW(parse_world("Material \"conductor\" \"float remaproughness\" 1\n"), SceneError);

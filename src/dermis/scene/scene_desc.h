@@ -94,21 +94,40 @@ struct RGBTexture {
 };
 
 struct MaterialDesc {
-  enum class Type { Diffuse, Dielectric, Conductor, Interface, Subsurface, CoatedDiffuse };
+  enum class Type {
+    Diffuse, Dielectric, Conductor, Interface, Subsurface, CoatedDiffuse, CoatedConductor, DiffuseTransmission, Mix
+  };
   Type type = Type::Diffuse;
   std::string name;            // MakeNamedMaterial name, or empty
-  RGBTexture reflectance;      // diffuse, coateddiffuse; conductor when has_reflectance
-  float eta = 1.5f;            // dielectric, subsurface, coateddiffuse
+  RGBTexture reflectance;      // diffuse, coateddiffuse, diffusetransmission; conductor and
+                               // coatedconductor when has_reflectance
+  float eta = 1.5f;            // dielectric, subsurface, coateddiffuse, coatedconductor's interface.eta
   RGB conductor_eta{0.2f, 0.92f, 1.1f};  // conductor, RGB approximation (default: metal-Cu-eta)
   RGB conductor_k{3.9f, 2.45f, 2.14f};   // conductor, RGB approximation (default: metal-Cu-k)
   bool has_reflectance = false;          // conductor given "reflectance" instead of eta/k
   float roughness = 0;         // largest of roughness, uroughness, vroughness as written
-                               // (coateddiffuse: rendered smooth, warned if > 0)
-  // dielectric, conductor: pbrt-v4's Trowbridge-Reitz roughness per tangent axis
-  // ("roughness" sets both, "uroughness" / "vroughness" override one each) and
-  // "remaproughness" (alpha = sqrt(roughness) when true; materials/microfacet.h).
+  // dielectric, conductor, the coated materials' interface: pbrt-v4's Trowbridge-Reitz
+  // roughness per tangent axis ("roughness" sets both, "uroughness" / "vroughness"
+  // override one each) and "remaproughness" (alpha = sqrt(roughness) when true;
+  // materials/microfacet.h). coatedconductor: the conductor's in conductor_*roughness.
   float uroughness = 0, vroughness = 0;
+  float conductor_uroughness = 0, conductor_vroughness = 0;
   bool remap_roughness = true;
+  // coateddiffuse, coatedconductor: the layer between interface and base
+  // (materials/layered_bsdf.h), pbrt-v4's parameters and defaults.
+  float thickness = 0.01f;
+  RGB albedo{0, 0, 0};
+  float g = 0;
+  int max_depth = 10;
+  int n_samples = 1;
+  // diffusetransmission: "transmittance" and "scale" (reflectance above, default 0.25).
+  RGBTexture transmittance{RGB(0.25f), -1};
+  float scale = 1;
+  // mix: the two named materials (indices into SceneDesc::materials) and "amount", the
+  // probability of the second: a value, or a float texture (index) when >= 0.
+  std::array<int, 2> mix_materials{-1, -1};
+  float amount = 0.5f;
+  int amount_texture = -1;
   SubsurfaceParams subsurface;  // subsurface: every parameter, read once (subsurface_params.h)
   // The material as written, so that it can be re-read with some parameters changed
   // (set_material_parameters in parser.h): its type and every parameter (params.h).
