@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -12,6 +13,45 @@ namespace {
 
 void embree_error(void*, RTCError code, const char* str) {
   throw std::runtime_error(fmt::format("Embree error {}: {}", int(code), str ? str : ""));
+}
+
+// (u, v) at a hit: interpolated vertex uvs, pbrt's default triangle parameterisation, or
+// the sphere's (phi / 2 pi, 1 - theta / pi) from the direction `l` (unit, object space).
+Vec2 surface_uv(const Shape& s, unsigned prim, float b1, float b2, Vec3 l) {
+  if (s.type == Shape::Type::Mesh) {
+    if (s.uvs.empty()) return Vec2(b1 + b2, b2);  // pbrt: (0,0), (1,0), (1,1) at the three vertices
+    const uint32_t* tri = &s.indices[3 * std::size_t(prim)];
+    return s.uvs[tri[0]] * (1 - b1 - b2) + s.uvs[tri[1]] * b1 + s.uvs[tri[2]] * b2;
+  }
+  const float theta = std::acos(std::clamp(l.z, -1.0f, 1.0f));
+  float phi = std::atan2(l.y, l.x);
+  if (phi < 0) phi += 2 * kPi;
+  return Vec2(phi * kInv2Pi, 1 - theta * kInvPi);  // pbrt-v4: v = 0 at z = -r, 1 at z = +r
+}
+
+// Embree intersection and occlusion filter of the geometries with alpha: rejects the
+// hits alpha_cuts_hit cuts away.
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* g = static_cast<const EmbreeScene::AlphaGeometry*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    RTCHitN* hit = args->hit;
+    RTCRayN* ray = args->ray;
+    const unsigned N = args->N;
+    float alpha = g->shape->alpha;
+    const unsigned prim = RTCHitN_primID(hit, N, i);
+    if (g->shape->alpha_texture >= 0) {
+      const Vec3 ng(RTCHitN_Ng_x(hit, N, i), RTCHitN_Ng_y(hit, N, i), RTCHitN_Ng_z(hit, N, i));
+      const float l = length(ng);
+      const Vec2 uv = surface_uv(*g->shape, prim, RTCHitN_u(hit, N, i), RTCHitN_v(hit, N, i), l > 0 ? ng / l : ng);
+      alpha = g->lookup.evaluate(g->lookup.context, g->shape->alpha_texture, uv);
+    }
+    if (alpha >= 1) continue;
+    const Vec3 o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
+    const Vec3 d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
+    const float hash = alpha <= 0 ? 0 : alpha_hash(o, d, RTCRayN_tfar(ray, N, i), RTCHitN_geomID(hit, N, i), prim);
+    if (alpha_cuts_hit(alpha, hash)) args->valid[i] = 0;
+  }
 }
 
 }  // namespace
@@ -56,6 +96,12 @@ RTCScene EmbreeScene::make_scene(const std::vector<int>& shape_ids, std::vector<
       v[2] = s.center.z;
       v[3] = s.radius;
     }
+    if (s.has_alpha()) {
+      alpha_geometries_.push_back(std::make_unique<AlphaGeometry>(AlphaGeometry{&s, alpha_lookup_}));
+      rtcSetGeometryUserData(g, alpha_geometries_.back().get());
+      rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
+      rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
+    }
     rtcCommitGeometry(g);
     unsigned gid = rtcAttachGeometry(scene, g);
     rtcReleaseGeometry(g);
@@ -67,8 +113,13 @@ RTCScene EmbreeScene::make_scene(const std::vector<int>& shape_ids, std::vector<
 }
 
 void EmbreeScene::build(const std::vector<Shape>& shapes, const std::vector<int>& top_level,
-                        const std::vector<std::vector<int>>& objects, const std::vector<Instance>& instances) {
+                        const std::vector<std::vector<int>>& objects, const std::vector<Instance>& instances,
+                        AlphaTextureLookup alpha) {
   shapes_ = &shapes;
+  alpha_lookup_ = alpha;
+  for (const Shape& s : shapes)
+    if (s.alpha_texture >= 0 && !alpha.evaluate)
+      throw std::invalid_argument("EmbreeScene::build: a shape has an alpha texture but no texture lookup was given");
   instances_ = instances;
   object_geom_shape_.assign(objects.size(), {});
   for (std::size_t o = 0; o < objects.size(); ++o)
@@ -182,12 +233,7 @@ void EmbreeScene::fill_hit(const RTCRayHit& rh, const Ray& ray, SurfaceHit& hit)
     float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
     p = s.positions[tri[0]] * b0 + s.positions[tri[1]] * b1 + s.positions[tri[2]] * b2;
     ng = s.triangle_normal(hit.prim, b1, b2, &ns);
-    if (!s.uvs.empty()) {
-      hit.uv = s.uvs[tri[0]] * b0 + s.uvs[tri[1]] * b1 + s.uvs[tri[2]] * b2;
-    } else {
-      // pbrt's default parameterisation: (0,0), (1,0), (1,1) at the three vertices.
-      hit.uv = Vec2(b1 + b2, b2);
-    }
+    hit.uv = surface_uv(s, rh.hit.primID, b1, b2, Vec3());
   } else {
     Vec3 o = inst ? inst->object_to_world.inverse().point(ray.o) : ray.o;
     Vec3 d = inst ? inst->object_to_world.inverse().vector(ray.d) : ray.d;
@@ -196,10 +242,7 @@ void EmbreeScene::fill_hit(const RTCRayHit& rh, const Ray& ray, SurfaceHit& hit)
     p = s.center + l * s.radius;
     ng = s.flip_normals ? -l : l;
     ns = ng;
-    float theta = std::acos(std::clamp(l.z, -1.0f, 1.0f));
-    float phi = std::atan2(l.y, l.x);
-    if (phi < 0) phi += 2 * kPi;
-    hit.uv = Vec2(phi * kInv2Pi, theta * kInvPi);
+    hit.uv = surface_uv(s, 0, 0, 0, l);
   }
   if (inst) {
     p = inst->object_to_world.point(p);

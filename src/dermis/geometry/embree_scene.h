@@ -4,9 +4,11 @@
 
 #include <embree3/rtcore.h>
 
+#include <memory>
 #include <vector>
 
 #include "dermis/core/transform.h"
+#include "dermis/geometry/alpha_mask.h"
 #include "dermis/geometry/ray.h"
 #include "dermis/geometry/shape.h"
 
@@ -26,8 +28,12 @@ class EmbreeScene {
 
   // shapes: every shape; top_level: indices of shapes placed in world space;
   // objects: for each object, the indices of its shapes (in object space).
+  // Shapes with alpha (Shape::has_alpha) get an Embree filter that cuts their hits away
+  // (geometry/alpha_mask.h) for every query, closest and any hit; `alpha` evaluates
+  // their alpha textures. Shapes without alpha get no filter: they cost nothing more.
   void build(const std::vector<Shape>& shapes, const std::vector<int>& top_level,
-             const std::vector<std::vector<int>>& objects, const std::vector<Instance>& instances);
+             const std::vector<std::vector<int>>& objects, const std::vector<Instance>& instances,
+             AlphaTextureLookup alpha = {});
 
   // Closest hit with t in (0, ray.tmax). Fills hit (world space) on success.
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
@@ -38,6 +44,12 @@ class EmbreeScene {
   // World-space bounding sphere of all geometry.
   Vec3 bounds_center() const { return center_; }
   float bounds_radius() const { return radius_; }
+
+ // What the alpha filter of one geometry reads (Embree's geometry user pointer).
+  struct AlphaGeometry {
+    const Shape* shape;
+    AlphaTextureLookup lookup;
+  };
 
  private:
   RTCScene make_scene(const std::vector<int>& shape_ids, std::vector<int>& geom_to_shape);
@@ -51,6 +63,8 @@ class EmbreeScene {
   std::vector<int> top_geom_instance_;  // top-level geomID -> instance index, or -1
   std::vector<std::vector<int>> object_geom_shape_;  // per object: geomID -> shape index
   std::vector<Instance> instances_;
+  std::vector<std::unique_ptr<AlphaGeometry>> alpha_geometries_;
+  AlphaTextureLookup alpha_lookup_;
   Vec3 center_;
   float radius_ = 0;
 };

@@ -29,6 +29,10 @@ struct Shape {
   bool has_medium_interface = false;
   int first_light = -1;       // index of the area light of its first primitive, -1 if not emissive
   int instance = -1;          // instance index when the shape belongs to an instanced object
+  // Alpha cut-out (geometry/alpha_mask.h): a constant, or a float texture (-1: none).
+  float alpha = 1;
+  int alpha_texture = -1;
+  bool has_alpha() const { return alpha < 1 || alpha_texture >= 0; }
 
   std::size_t primitive_count() const { return type == Type::Sphere ? 1 : indices.size() / 3; }
 

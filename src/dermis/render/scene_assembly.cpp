@@ -9,7 +9,7 @@
 #include <map>
 #include <string>
 
-#include "dermis/geometry/sphere_tessellation.h"
+#include "dermis/scene/shape_tessellation.h"
 #include "dermis/scene/subsurface_params.h"
 #include "dermis/render/image.h"
 
@@ -175,6 +175,8 @@ Shape make_shape(const ShapeDesc& d, const Transform& xf, int default_material) 
   // The parser's reverse_orientation already includes the handedness of the shape's
   // transform (pbrt's ReverseOrientation xor SwapsHandedness).
   s.flip_normals = d.reverse_orientation;
+  s.alpha = d.alpha;
+  s.alpha_texture = d.alpha_texture;
   const bool reversed_by_user = d.reverse_orientation != xf.swaps_handedness();
   float scale;
   if (d.type == ShapeDesc::Type::Sphere && similarity_scale(xf, scale)) {
@@ -185,8 +187,12 @@ Shape make_shape(const ShapeDesc& d, const Transform& xf, int default_material) 
   }
   s.type = Shape::Type::Mesh;
   if (d.type == ShapeDesc::Type::Sphere) {
-    // An ellipsoid: tessellated finely.
-    tessellate_sphere(d.radius, 256, s.positions, s.indices);
+    // An ellipsoid: tessellated finely, with pbrt's uv and the sphere's normals (transformed below).
+    TriangleMeshDesc m = tessellate_sphere_part(d.radius, -d.radius, d.radius, 360);
+    s.positions = std::move(m.positions);
+    s.indices = std::move(m.indices);
+    s.normals = std::move(m.normals);
+    s.uvs = std::move(m.uvs);
   } else {
     s.positions = d.mesh.positions;
     s.indices = d.mesh.indices;
@@ -336,7 +342,13 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
     for (int id : objects[o]) sc->shapes[id].instance = int(o);
 
   sc->embree = std::make_unique<EmbreeScene>();
-  sc->embree->build(sc->shapes, top_level, objects, instances);
+  // Alpha textures are float textures: their first channel.
+  const AlphaTextureLookup alpha_lookup{
+      [](const void* textures, int texture, Vec2 uv) {
+        return evaluate_texture(*static_cast<const std::vector<Texture>*>(textures), texture, uv).r();
+      },
+      &sc->textures};
+  sc->embree->build(sc->shapes, top_level, objects, instances, alpha_lookup);
 
   for (const LightDesc& d : desc.lights) {
     Light l;

@@ -1,10 +1,12 @@
 // Shape, ObjectBegin, ObjectEnd, ObjectInstance.
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "dermis/scene/gzip_file.h"
+#include "dermis/scene/loop_subdivision.h"
 #include "dermis/scene/mesh_import.h"
 #include "dermis/scene/ply_reader.h"
 #include "dermis/scene/scene_parser.h"
@@ -79,18 +81,59 @@ void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir)
     s_.diagnostics.warn(loc, "area lights are not supported on instanced shapes (as in pbrt-v4); the shape is not emissive");
   }
 
+  // pbrt-v4 "alpha" on any shape: a float, or the name of a float texture.
+  if (const ParsedParam* ap = pl.find("alpha")) {
+    if (ap->type == "texture") {
+      const std::string tex = *pl.get_texture("alpha");
+      auto it = float_textures_.find(tex);
+      if (it == float_textures_.end())
+        throw SceneError(ap->value_loc, fmt::format("unknown float texture \"{}\" for \"alpha\"{}", tex,
+                                                    spectrum_textures_.count(tex) ? " (a spectrum texture has that name)" : ""));
+      sh.alpha_texture = it->second;
+    } else {
+      sh.alpha = pl.get_float("alpha", 1);
+    }
+    if (sh.area_light && (sh.alpha < 1 || sh.alpha_texture >= 0))
+      s_.diagnostics.warn(ap->param.loc, "alpha on an emissive shape: light sampling ignores the cut-outs (the "
+                                         "emission seen directly respects them)");
+  }
+
   auto mesh_error = [&](const std::string& file, const std::string& why) {
     return SceneError(loc, fmt::format("Shape \"{}\": could not read mesh file '{}': {}", type, file, why));
   };
 
   if (type == "sphere") {
-    sh.type = ShapeDesc::Type::Sphere;
-    sh.radius = pl.get_float("radius", 1);
-    if (!(sh.radius > 0)) throw SceneError(pl.find("radius")->value_loc, "sphere radius must be positive");
-    float zmin = pl.get_float("zmin", -sh.radius), zmax = pl.get_float("zmax", sh.radius);
-    float phimax = pl.get_float("phimax", 360);
-    if (zmin > -sh.radius || zmax < sh.radius || phimax < 360)
-      s_.diagnostics.warn(loc, "partial spheres (zmin/zmax/phimax) are not supported; the full sphere is rendered");
+    const float radius = pl.get_float("radius", 1);
+    if (!(radius > 0)) throw SceneError(pl.find("radius")->value_loc, "sphere radius must be positive");
+    const float zmin = pl.get_float("zmin", -radius), zmax = pl.get_float("zmax", radius);
+    const float phimax = pl.get_float("phimax", 360);
+    // pbrt-v4 clamps zmin/zmax to [-radius, radius] and phimax to [0, 360].
+    if (std::min(zmin, zmax) > -radius || std::max(zmin, zmax) < radius || phimax < 360) {
+      if (std::max(zmin, zmax) <= -radius || std::min(zmin, zmax) >= radius || !(phimax > 0))
+        throw SceneError(loc, fmt::format("partial sphere with zmin {}, zmax {}, phimax {} has no surface", zmin, zmax,
+                                          phimax));
+      sh.mesh = tessellate_sphere_part(radius, zmin, zmax, phimax);
+    } else {
+      sh.type = ShapeDesc::Type::Sphere;
+      sh.radius = radius;
+    }
+  } else if (type == "cylinder") {
+    const float radius = pl.get_float("radius", 1), zmin = pl.get_float("zmin", -1), zmax = pl.get_float("zmax", 1);
+    const float phimax = pl.get_float("phimax", 360);
+    if (!(radius > 0)) throw SceneError(pl.find("radius")->value_loc, "cylinder radius must be positive");
+    if (!(zmin != zmax)) throw SceneError(loc, fmt::format("cylinder with zmin = zmax = {} has no surface", zmin));
+    if (!(phimax > 0)) throw SceneError(pl.find("phimax")->value_loc, "cylinder phimax must be positive");
+    sh.mesh = tessellate_cylinder(radius, zmin, zmax, phimax);
+  } else if (type == "loopsubdiv") {
+    std::vector<Vec3> P = read_positions(pl, loc, type);
+    if (!pl.has("indices")) throw SceneError(loc, "Shape \"loopsubdiv\" needs \"integer indices\"");
+    std::vector<uint32_t> idx = checked_indices(pl, P.size(), 3);
+    const int levels = pl.get_int("levels", 3);
+    try {
+      sh.mesh = loop_subdivision_surface(P, idx, levels);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(loc, fmt::format("Shape \"loopsubdiv\": {}", e.what()));
+    }
   } else if (type == "trianglemesh") {
     std::vector<Vec3> P = read_positions(pl, loc, type);
     if (P.size() < 3) throw SceneError(pl.find("P")->value_loc, fmt::format("trianglemesh needs at least 3 vertices, got {}", P.size()));
@@ -127,9 +170,9 @@ void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir)
     if (!(radius > 0)) throw SceneError(pl.find("radius")->value_loc, "disk radius must be positive");
     if (inner < 0 || inner >= radius)
       throw SceneError(pl.find("innerradius")->value_loc, "innerradius must be in [0, radius)");
-    if (pl.get_float("phimax", 360) < 360)
-      s_.diagnostics.warn(loc, "partial disks (phimax) are not supported; the full disk is rendered");
-    sh.mesh = tessellate_disk(height, radius, inner);
+    const float phimax = pl.get_float("phimax", 360);
+    if (!(phimax > 0)) throw SceneError(pl.find("phimax")->value_loc, "disk phimax must be positive");
+    sh.mesh = tessellate_disk(height, radius, inner, kDiskSegments, phimax);
   } else if (type == "plymesh" || type == "objmesh") {
     const ParsedParam* fp = pl.find("filename");
     if (!fp) throw SceneError(loc, fmt::format("Shape \"{}\" needs \"string filename\"", type));

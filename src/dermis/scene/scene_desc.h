@@ -165,6 +165,10 @@ struct ShapeDesc {
   // (and pbrt's +z disk / outward sphere normal). For instanced shapes the instance
   // transform's handedness is NOT included.
   bool reverse_orientation = false;
+  // pbrt-v4 "alpha": 1 opaque, 0 cut away, between: kept with that probability per hit
+  // (geometry/alpha_mask.h); or a float texture (index into textures, -1: none).
+  float alpha = 1;
+  int alpha_texture = -1;
   SourceLoc loc;
 };
 

@@ -1,39 +1,92 @@
 #include "dermis/scene/shape_tessellation.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dermis {
 
-TriangleMeshDesc tessellate_disk(float height, float radius, float inner_radius, int segments) {
+namespace {
+
+// A surface p(u, v) over the unit square as a grid of nu x nv quads, two triangles each,
+// wound so that the geometric normal is dp/du x dp/dv. Rows whose points all coincide
+// (`pole_row`: a disk's centre, a sphere's pole) keep their nu + 1 vertices (u differs)
+// but lose the triangles that would be degenerate there.
+template <class Eval>
+TriangleMeshDesc parametric_grid(int nu, int nv, Eval eval, bool pole_row_0, bool pole_row_nv) {
   TriangleMeshDesc m;
-  const bool ring = inner_radius > 0;
-  auto v_of = [&](float r) { return (radius - r) / (radius - inner_radius); };
-  for (int i = 0; i <= segments; ++i) {  // the seam vertex is duplicated so that u runs 0..1
-    float u = float(i) / float(segments);
-    float phi = 2 * kPi * u;
-    float c = std::cos(phi), s = std::sin(phi);
-    m.positions.emplace_back(radius * c, radius * s, height);
-    m.uvs.emplace_back(u, v_of(radius));
-    if (ring) {
-      m.positions.emplace_back(inner_radius * c, inner_radius * s, height);
-      m.uvs.emplace_back(u, v_of(inner_radius));
+  for (int j = 0; j <= nv; ++j)
+    for (int i = 0; i <= nu; ++i) {
+      const float u = float(i) / float(nu), v = float(j) / float(nv);
+      Vec3 p, n;
+      eval(u, v, p, n);
+      m.positions.push_back(p);
+      m.normals.push_back(n);
+      m.uvs.emplace_back(u, v);
     }
-  }
-  if (!ring) {
-    m.positions.emplace_back(0.0f, 0.0f, height);
-    m.uvs.emplace_back(0.5f, 1.0f);
-  }
-  m.normals.assign(m.positions.size(), Vec3(0, 0, 1));
-  const uint32_t center = uint32_t(m.positions.size() - 1);
-  for (int i = 0; i < segments; ++i) {
-    if (ring) {
-      uint32_t o0 = 2 * i, i0 = 2 * i + 1, o1 = 2 * i + 2, i1 = 2 * i + 3;
-      m.indices.insert(m.indices.end(), {o0, o1, i1, o0, i1, i0});
-    } else {
-      m.indices.insert(m.indices.end(), {uint32_t(i), uint32_t(i + 1), center});
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      uint32_t a = uint32_t(j * (nu + 1) + i), b = a + 1, c = a + uint32_t(nu + 1), d = c + 1;
+      if (!(j == 0 && pole_row_0)) m.indices.insert(m.indices.end(), {a, b, d});  // a=(u,v) b=(u+,v) c=(u,v+)
+      if (!(j == nv - 1 && pole_row_nv)) m.indices.insert(m.indices.end(), {a, d, c});
     }
-  }
   return m;
+}
+
+// Segments for phi in [0, phimax] when a full turn has `segments`.
+int arc_segments(float phimax_radians, int segments) {
+  return std::max(4, int(std::ceil(float(segments) * phimax_radians / (2 * kPi) - 1e-4f)));
+}
+
+}  // namespace
+
+static float clamped_phimax_radians(float phimax_degrees) { return std::clamp(phimax_degrees, 0.0f, 360.0f) * kPi / 180; }
+
+TriangleMeshDesc tessellate_disk(float height, float radius, float inner_radius, int segments, float phimax_degrees) {
+  const float phimax = clamped_phimax_radians(phimax_degrees);
+  // pbrt-v4 disk: r = radius - v (radius - inner) at phi = u phimax, z = height.
+  auto eval = [&](float u, float v, Vec3& p, Vec3& n) {
+    const float r = v == 1 ? inner_radius : radius - v * (radius - inner_radius);
+    const float phi = u * phimax;
+    p = Vec3(r * std::cos(phi), r * std::sin(phi), height);
+    n = Vec3(0, 0, 1);
+  };
+  return parametric_grid(arc_segments(phimax, segments), 1, eval, false, inner_radius == 0);
+}
+
+TriangleMeshDesc tessellate_cylinder(float radius, float zmin, float zmax, float phimax_degrees, int segments) {
+  const float phimax = clamped_phimax_radians(phimax_degrees);
+  const float z0 = std::min(zmin, zmax), z1 = std::max(zmin, zmax);
+  auto eval = [&](float u, float v, Vec3& p, Vec3& n) {
+    const float phi = u * phimax, c = std::cos(phi), s = std::sin(phi);
+    p = Vec3(radius * c, radius * s, v == 1 ? z1 : z0 + v * (z1 - z0));
+    n = Vec3(c, s, 0);
+  };
+  return parametric_grid(arc_segments(phimax, segments), 1, eval, false, false);
+}
+
+TriangleMeshDesc tessellate_sphere_part(float radius, float zmin, float zmax, float phimax_degrees, int segments,
+                                        int rows) {
+  const float phimax = clamped_phimax_radians(phimax_degrees);
+  const float z0 = std::clamp(std::min(zmin, zmax), -radius, radius);
+  const float z1 = std::clamp(std::max(zmin, zmax), -radius, radius);
+  const float theta0 = std::acos(std::clamp(z0 / radius, -1.0f, 1.0f));  // theta at zmin (larger)
+  const float theta1 = std::acos(std::clamp(z1 / radius, -1.0f, 1.0f));
+  const bool pole0 = z0 <= -radius, pole1 = z1 >= radius;
+  const int nv = std::max(1, int(std::ceil(float(rows) * (theta0 - theta1) / kPi - 1e-4f)));
+  auto eval = [&](float u, float v, Vec3& p, Vec3& n) {
+    const float phi = u * phimax;
+    if ((v == 0 && pole0) || (v == 1 && pole1)) {
+      n = Vec3(0, 0, v == 0 ? -1.0f : 1.0f);
+    } else {
+      const float theta = v == 1 ? theta1 : theta0 + v * (theta1 - theta0);
+      const float st = std::sin(theta);
+      n = Vec3(st * std::cos(phi), st * std::sin(phi), std::cos(theta));
+    }
+    p = n * radius;
+    if (v == 0) p.z = pole0 ? -radius : z0;  // the cut planes exactly where pbrt puts them
+    if (v == 1) p.z = pole1 ? radius : z1;
+  };
+  return parametric_grid(arc_segments(phimax, segments), nv, eval, pole0, pole1);
 }
 
 namespace {
