@@ -90,6 +90,23 @@ TEST(AlphaCutout, FractionalAlphaKeepsThatFractionOfHitsDeterministically) {
   EXPECT_NEAR(double(through_two) / n, 0.25, four_sigma(0.25, n));
 }
 
+// An exact sphere whose alpha texture cuts away u < 1/2 (phi < pi: y > 0): a ray along
+// -y passes the near side and stops on the far one; along +y it stops on the near side.
+TEST(AlphaCutout, TexturedAlphaOnAnExactSphereUsesItsUv) {
+  auto sc = assemble(
+      "Texture \"half\" \"float\" \"checkerboard\" \"float uscale\" 2 \"float vscale\" 1 \"float tex1\" 0 "
+      "\"float tex2\" 1\n"
+      "Shape \"sphere\" \"texture alpha\" \"half\"\n");
+  ASSERT_EQ(sc->shapes[0].type, Shape::Type::Sphere);
+  SurfaceHit h;
+  ASSERT_TRUE(sc->embree->intersect(Ray{{0.1f, 5, 0.2f}, {0, -1, 0}}, h));
+  EXPECT_LT(h.p.y, -0.9f);
+  ASSERT_TRUE(sc->embree->intersect(Ray{{0.1f, -5, 0.2f}, {0, 1, 0}}, h));
+  EXPECT_LT(h.p.y, -0.9f);
+  EXPECT_FALSE(sc->embree->occluded(Ray{{0.1f, 5, 0.2f}, {0, -1, 0}, 5}));  // reaches y = 0 only
+  EXPECT_TRUE(sc->embree->occluded(Ray{{0.1f, 5, 0.2f}, {0, -1, 0}, 7}));
+}
+
 // An emitter (L = 1) behind a black screen of alpha 0.3, filling the view: the image is
 // 0.7 on average. Standard error from the spread of the pixels.
 TEST(AlphaCutout, LightSeenThroughAScreenIsDimmedByAlpha) {
