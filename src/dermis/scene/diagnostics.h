@@ -21,6 +21,9 @@ struct SourceLoc {
 // (a 10 MB token is not echoed into a log).
 std::string excerpt(std::string_view text, std::size_t max = 64);
 
+// Levenshtein distance, case-insensitive (short strings only), for "did you mean" hints.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+
 class SceneError : public std::runtime_error {
  public:
   SceneError(const SourceLoc& loc, const std::string& message);

@@ -121,6 +121,7 @@ ParamList ParamList::parse(TokenStream& ts) {
     const Token* v = ts.peek();
     if (!v) throw SceneError(ts.end_loc(), fmt::format("missing value of parameter \"{}\"", excerpt(decl.text)));
     p.value_loc = ts.loc(*v);
+    p.base_dir = ts.base_dir();
     if (v->kind == Token::Kind::LBracket) {
       ts.next();
       while (true) {

@@ -21,6 +21,7 @@ struct ParsedParam {
                                // normal3 rgb spectrum blackbody bool string texture
   SourceLoc value_loc;         // first token of the value ('[' or the single value)
   std::vector<std::pair<int, int>> value_pos;  // line and column of every value
+  std::string base_dir;        // where a file named in the value (a .spd spectrum) is looked for
   mutable bool used = false;
 
   size_t size() const;         // number of values of whatever kind

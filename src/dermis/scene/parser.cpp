@@ -45,23 +45,6 @@ constexpr const char* kDirectives[] = {
     "ObjectEnd", "ObjectInstance", "Material", "MakeNamedMaterial", "NamedMaterial", "Texture", "LightSource",
     "AreaLightSource", "MakeNamedMedium", "MediumInterface", "Attribute"};
 
-// Levenshtein distance, case-insensitive (short strings only).
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
 // " (did you mean 'Shape'?)" for a near miss, else a hint that the file may not be a scene.
 std::string did_you_mean(const std::string& name) {
   if (name.size() <= 40)
@@ -118,6 +101,7 @@ void SceneParser::include(const Token& d, TokenStream& ts, const std::string& di
 }
 
 void SceneParser::run(TokenStream& ts, const std::string& dir) {
+  ts.set_base_dir(dir);
   while (!ts.at_end()) {
     const Token d = ts.next();
     if (d.kind != Token::Kind::Identifier)

@@ -21,15 +21,16 @@ std::string names_of(const std::map<std::string, int>& m) {
   return s.empty() ? "none" : s;
 }
 
-RGB rgb_param(const ParamList& pl, const std::string& name, RGB def, Diagnostics& diag) {
+RGB rgb_param(const ParamList& pl, const std::string& name, RGB def, Diagnostics& diag,
+              SpectrumType type = SpectrumType::Unbounded) {
   const ParsedParam* p = pl.find(name);
-  return p ? spectrum_param_rgb(*p, diag) : def;
+  return p ? spectrum_param_rgb(*p, diag, type) : def;
 }
 
 // A light's emitted radiance or intensity: negative light would give negative pixels, and
 // a value beyond float range infinite ones; both are errors at the value.
 RGB emission_param(const ParamList& pl, const std::string& name, Diagnostics& diag) {
-  const RGB e = rgb_param(pl, name, RGB(1), diag);
+  const RGB e = rgb_param(pl, name, RGB(1), diag, SpectrumType::Illuminant);
   for (int c = 0; c < 3; ++c)
     if (!(e[c] >= 0) || !std::isfinite(e[c]))
       throw SceneError(pl.find(name)->value_loc,
@@ -269,6 +270,7 @@ MaterialDesc SceneParser::rebuild_material(const MaterialDesc& old, const std::s
   for (std::size_t i = 0; i < s_.textures.size(); ++i)
     (s_.textures[i].is_float ? float_textures_ : spectrum_textures_)[s_.textures[i].name] = int(i);
   TokenStream changes_ts(tokenize(params_text, source_name), source_name);
+  changes_ts.set_base_dir(s_.base_directory);
   ParamList changes = ParamList::parse(changes_ts);
   if (!changes_ts.at_end()) {
     const Token& t = *changes_ts.peek();
@@ -579,7 +581,8 @@ void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
     auto p = find_medium_preset(pname);
     if (!p)
       throw SceneError(preset->value_loc,
-                       fmt::format("unknown medium preset \"{}\" (valid: {})", pname, medium_preset_names()));
+                       fmt::format("unknown medium preset \"{}\"{} (valid: {})", pname, medium_preset_suggestion(pname),
+                                   medium_preset_names()));
     m.preset = p->name;
     m.sigma_a = p->sigma_a;
     m.sigma_s = p->sigma_s_prime;  // as pbrt: sigma_s' with g = 0
@@ -600,7 +603,7 @@ void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
       throw SceneError(loc, fmt::format("medium \"{}\": sigma_a and sigma_s must not be negative", name));
   m.scale = pl.get_float("scale", 1);
   if (m.scale < 0) throw SceneError(pl.find("scale")->value_loc, "scale must not be negative");
-  m.Le = rgb_param(pl, "Le", RGB(0), s_.diagnostics) * pl.get_float("Lescale", 1);
+  m.Le = rgb_param(pl, "Le", RGB(0), s_.diagnostics, SpectrumType::Illuminant) * pl.get_float("Lescale", 1);
   if (!m.Le.is_black()) s_.diagnostics.warn(loc, fmt::format("medium \"{}\": emission Le is recorded but not rendered", name));
   pl.warn_unused(s_.diagnostics, "MakeNamedMedium \"homogeneous\"");
   media_[name] = int(s_.media.size());

@@ -1,7 +1,6 @@
 // Materials, textures, lights, media and spectra as the parser records them.
 #include <gtest/gtest.h>
 
-#include "dermis/scene/medium_presets.h"
 #include "dermis/scene/parser.h"
 #include "dermis/scene/scene_test_util.h"
 #include "dermis/scene/spectra.h"
@@ -258,51 +257,6 @@ TEST(ParserMedia, PresetsExplicitCoefficientsAndInterfaces) {
   EXPECT_EQ(s.shapes[2].inside_medium, 1);  // one name: inside and outside
   EXPECT_EQ(s.shapes[2].outside_medium, 1);
   EXPECT_FALSE(s.shapes[2].has_medium_interface);
-}
-
-TEST(MediumPresets, AllTwelveOfJensenTable2AreFound) {
-  for (const char* n : {"Apple", "Chicken1", "Chicken2", "Cream", "Ketchup", "Marble", "Potato", "Skimmilk", "Skin1",
-                        "Skin2", "Spectralon", "Wholemilk", "skin 2", "WHOLE_MILK", "skim-milk"})
-    EXPECT_TRUE(find_medium_preset(n).has_value()) << n;
-  EXPECT_FALSE(find_medium_preset("Jelly").has_value());
-  // Spot values of Table 2: Ketchup sigma_a, Marble sigma_s'.
-  expect_rgb(find_medium_preset("Ketchup")->sigma_a, RGB(0.061f, 0.97f, 1.45f));
-  expect_rgb(find_medium_preset("Marble")->sigma_s_prime, RGB(2.19f, 2.62f, 3.00f));
-}
-
-TEST(Spectra, BandAveragesOfPiecewiseLinearData) {
-  // Linear ramp v = lambda / 100 over 400-700: band means are the band midpoints / 100.
-  expect_rgb(band_average_rgb({400, 700}, {4, 7}), RGB(6.5f, 5.5f, 4.5f), 1e-4f);
-  // A constant spectrum stays constant; zero outside the tabulated range (pbrt).
-  expect_rgb(band_average_rgb({300, 800}, {0.25, 0.25}), RGB(0.25f), 1e-6f);
-  expect_rgb(band_average_rgb({500, 600}, {1, 1}), RGB(0, 1, 0), 1e-3f);
-}
-
-TEST(Spectra, SampledSpectrumParameterWarnsAndAverages) {
-  SceneDesc s = parse_world("LightSource \"point\" \"spectrum I\" [300 2 800 2]\n");
-  expect_rgb(s.lights[0].spectrum, RGB(2), 1e-5f);
-  EXPECT_TRUE(has_warning(s, "test.pbrt:2:21: warning: sampled spectrum 'I' reduced to RGB"));
-}
-
-TEST(Spectra, BlackbodyColourOrderAndLuminance) {
-  RGB warm = blackbody_rgb(2700), d65ish = blackbody_rgb(6504), cool = blackbody_rgb(12000);
-  for (RGB c : {warm, d65ish, cool}) EXPECT_NEAR(c.luminance(), 1.0f, 2e-3f);  // normalized to Y = 1
-  EXPECT_GT(warm.r(), warm.g());
-  EXPECT_GT(warm.g(), warm.b());
-  EXPECT_LT(cool.r(), cool.b());
-  // A 6504 K blackbody is close to (not exactly) the D65 white: within 10% per channel.
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR(d65ish[i], 1.0f, 0.1f) << i;
-}
-
-TEST(Spectra, NamedMetalsAreBandAveragesOfPbrtTables) {
-  // Copper's reflectance edge: eta drops from ~1.16 (blue) to ~0.24 (red).
-  RGB cu = *named_spectrum_rgb("metal-Cu-eta");
-  EXPECT_NEAR(cu[0], 0.2427f, 1e-4);
-  EXPECT_NEAR(cu[2], 1.1624f, 1e-4);
-  for (const char* n : {"metal-Ag-eta", "metal-Ag-k", "metal-Al-eta", "metal-Al-k", "metal-Au-eta", "metal-Au-k",
-                        "metal-Cu-k", "metal-CuZn-eta", "metal-CuZn-k"})
-    EXPECT_TRUE(named_spectrum_rgb(n).has_value()) << n;
-  EXPECT_FALSE(named_spectrum_rgb("metal-Fe-eta").has_value());
 }
 
 // set_material_parameters: a material re-read with some parameters changed equals the

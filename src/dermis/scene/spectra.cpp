@@ -1,56 +1,116 @@
 #include "dermis/scene/spectra.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
-#include <map>
+#include <filesystem>
+#include <vector>
 
 #include <fmt/format.h>
+
+#include "dermis/scene/named_spectra_data.h"
+#include "dermis/scene/scene_parser.h"
+#include "dermis/scene/spectrum_file.h"
 
 namespace dermis {
 
 namespace {
 
-// Band averages (B 400-500, G 500-600, R 600-700 nm, stored here as R, G, B) of the
-// tabulated refractive indices that pbrt-v4 ships as named spectra (src/pbrt/util/
-// spectrum.cpp, arrays Cu_eta, Cu_k, Au_*, Ag_*, Al_*; measured data after Palik), computed
-// by integrating their piecewise-linear interpolants over each band.
-struct MetalRGB {
-  const char* name;
-  RGB rgb;
-};
-constexpr MetalRGB kMetals[] = {
-    {"metal-Cu-eta", {0.2427f, 0.8757f, 1.1624f}}, {"metal-Cu-k", {3.6046f, 2.6447f, 2.3807f}},
-    {"metal-Au-eta", {0.1761f, 0.4118f, 1.4180f}}, {"metal-Au-k", {3.3020f, 2.5955f, 1.8807f}},
-    {"metal-Ag-eta", {0.1363f, 0.1251f, 0.1501f}}, {"metal-Ag-k", {4.1272f, 3.3368f, 2.4620f}},
-    {"metal-Al-eta", {1.4869f, 0.9672f, 0.6217f}}, {"metal-Al-k", {7.7954f, 6.6799f, 5.4706f}},
+// Spectra are integrated at 1 nm over the range of the CIE 1931 observer table.
+constexpr int kLambdaMin = 360, kLambdaMax = 830;
+constexpr int kSamples = kLambdaMax - kLambdaMin + 1;
+
+// The piecewise-linear function through (lambda[i], value[i]), read at increasing x.
+class PiecewiseLinear {
+ public:
+  PiecewiseLinear(std::span<const double> lambda, std::span<const double> value, SpectrumEnds ends)
+      : lambda_(lambda), value_(value), ends_(ends) {}
+  // x must not decrease from one call to the next.
+  double at(double x) {
+    if (lambda_.empty()) return 0;
+    if (x < lambda_.front()) return ends_ == SpectrumEnds::Extend ? value_.front() : 0;
+    if (x > lambda_.back()) return ends_ == SpectrumEnds::Extend ? value_.back() : 0;
+    while (i_ + 1 < lambda_.size() && lambda_[i_ + 1] < x) ++i_;
+    if (i_ + 1 == lambda_.size()) return value_[i_];
+    const double t = (x - lambda_[i_]) / (lambda_[i_ + 1] - lambda_[i_]);
+    return value_[i_] + t * (value_[i_ + 1] - value_[i_]);
+  }
+
+ private:
+  std::span<const double> lambda_, value_;
+  SpectrumEnds ends_;
+  size_t i_ = 0;
 };
 
-// Mean over 400-700 nm of pbrt-v4's glass tables (from refractiveindex.info, Schott
-// Sellmeier fits; pbrt's "glass-F5/F10/F11" are the SF5/SF10/SF11 tables).
-struct GlassIor {
-  const char* name;
-  float ior;
+struct Pairs {
+  std::vector<double> lambda, value;
 };
-constexpr GlassIor kGlasses[] = {
-    {"glass-BK7", 1.5196f}, {"glass-BAF10", 1.6752f}, {"glass-FK51A", 1.4886f}, {"glass-LASF9", 1.8601f},
-    {"glass-F5", 1.6805f},  {"glass-F10", 1.7379f},   {"glass-F11", 1.7964f},
-};
+Pairs split(std::span<const double> interleaved) {
+  Pairs p;
+  for (size_t i = 0; i + 1 < interleaved.size(); i += 2) {
+    p.lambda.push_back(interleaved[i]);
+    p.value.push_back(interleaved[i + 1]);
+  }
+  return p;
+}
 
-// Wyman, Sloan & Shirley 2013, "Simple Analytic Approximations to the CIE XYZ Color
-// Matching Functions", JCGT 2(2), eq. 2 (multi-lobe piecewise Gaussian fit).
-double piecewise_gaussian(double x, double mu, double sigma_below, double sigma_above) {
-  double s = x < mu ? sigma_below : sigma_above;
-  double t = (x - mu) / s;
-  return std::exp(-0.5 * t * t);
+const NamedSpectrumTable* find_table(const std::string& name) {
+  for (const NamedSpectrumTable& t : named_spectrum_tables())
+    if (name == t.name) return &t;
+  return nullptr;
 }
-double cie_x(double l) {
-  return 1.056 * piecewise_gaussian(l, 599.8, 37.9, 31.0) + 0.362 * piecewise_gaussian(l, 442.0, 16.0, 26.7) -
-         0.065 * piecewise_gaussian(l, 501.1, 20.4, 26.2);
+
+// The CIE 1931 observer and illuminant D65 at 1 nm.
+struct Observer {
+  std::array<double, kSamples> x, y, z, d65;
+  double d65_y = 0;  // sum of d65 * y
+};
+const Observer& observer() {
+  static const Observer o = [] {
+    Observer o;
+    std::vector<double> l, x, y, z;
+    for (const CieObserverSample& s : cie_1931_observer()) {
+      l.push_back(s.lambda);
+      x.push_back(s.x);
+      y.push_back(s.y);
+      z.push_back(s.z);
+    }
+    PiecewiseLinear fx(l, x, SpectrumEnds::Zero), fy(l, y, SpectrumEnds::Zero), fz(l, z, SpectrumEnds::Zero);
+    const Pairs d65 = split(find_table("stdillum-D65")->pairs);
+    PiecewiseLinear fd(d65.lambda, d65.value, SpectrumEnds::Extend);
+    for (int i = 0; i < kSamples; ++i) {
+      const double lambda = kLambdaMin + i;
+      o.x[i] = fx.at(lambda);
+      o.y[i] = fy.at(lambda);
+      o.z[i] = fz.at(lambda);
+      o.d65[i] = fd.at(lambda);
+      o.d65_y += o.d65[i] * o.y[i];
+    }
+    return o;
+  }();
+  return o;
 }
-double cie_y(double l) {
-  return 0.821 * piecewise_gaussian(l, 568.8, 46.9, 40.5) + 0.286 * piecewise_gaussian(l, 530.9, 16.3, 31.1);
+
+// CIE XYZ to linear sRGB: IEC 61966-2-1:1999, eq. (F.7) (D65 white); out-of-gamut
+// components clamped to zero.
+RGB xyz_to_srgb(double X, double Y, double Z) {
+  const double r = 3.2404542 * X - 1.5371385 * Y - 0.4985314 * Z;
+  const double g = -0.9692660 * X + 1.8760108 * Y + 0.0415560 * Z;
+  const double b = 0.0556434 * X - 0.2040259 * Y + 1.0572252 * Z;
+  return RGB(float(std::max(0.0, r)), float(std::max(0.0, g)), float(std::max(0.0, b)));
 }
-double cie_z(double l) {
-  return 1.217 * piecewise_gaussian(l, 437.0, 11.8, 36.0) + 0.681 * piecewise_gaussian(l, 459.0, 26.0, 13.8);
+
+// Sum over 1 nm steps of s(lambda) * y-bar(lambda) / sum of y-bar: a spectrum's luminance
+// relative to the equal-energy spectrum, the normalization pbrt-v4 gives named illuminants.
+double relative_luminance(std::span<const double> lambda, std::span<const double> value, SpectrumEnds ends) {
+  const Observer& o = observer();
+  PiecewiseLinear f(lambda, value, ends);
+  double sy = 0, y = 0;
+  for (int i = 0; i < kSamples; ++i) {
+    sy += f.at(kLambdaMin + i) * o.y[i];
+    y += o.y[i];
+  }
+  return sy / y;
 }
 
 // Planck's law, spectral radiance per unit wavelength (lambda in nm), up to a constant.
@@ -60,72 +120,76 @@ double planck(double lambda_nm, double kelvin) {
   return 2 * h * c * c / (std::pow(l, 5) * (std::exp(h * c / (l * kb * kelvin)) - 1));
 }
 
-double piecewise_linear(const std::vector<double>& lambda, const std::vector<double>& value, double x) {
-  if (lambda.empty() || x < lambda.front() || x > lambda.back()) return 0;
-  size_t i = 0;
-  while (i + 1 < lambda.size() && lambda[i + 1] < x) ++i;
-  if (i + 1 == lambda.size()) return value[i];
-  double t = (x - lambda[i]) / (lambda[i + 1] - lambda[i]);
-  return value[i] + t * (value[i + 1] - value[i]);
-}
-
-double band_mean(const std::vector<double>& lambda, const std::vector<double>& value, double a, double b) {
-  // Midpoint rule at 0.1 nm: exact to ~1e-6 relative for piecewise-linear data.
+// Mean of a piecewise-linear function over [a, b] nm (midpoint rule at 0.1 nm: exact to ~1e-6
+// relative for piecewise-linear data).
+double mean_over(std::span<const double> lambda, std::span<const double> value, SpectrumEnds ends, double a,
+                 double b) {
+  PiecewiseLinear f(lambda, value, ends);
   const int n = int((b - a) * 10);
   double sum = 0;
-  for (int i = 0; i < n; ++i) sum += piecewise_linear(lambda, value, a + (i + 0.5) * (b - a) / n);
+  for (int i = 0; i < n; ++i) sum += f.at(a + (i + 0.5) * (b - a) / n);
   return sum / n;
 }
 
 }  // namespace
 
-RGB band_average_rgb(const std::vector<double>& lambda, const std::vector<double>& value) {
-  return RGB(float(band_mean(lambda, value, kBandEdgesNm[2], kBandEdgesNm[3])),
-             float(band_mean(lambda, value, kBandEdgesNm[1], kBandEdgesNm[2])),
-             float(band_mean(lambda, value, kBandEdgesNm[0], kBandEdgesNm[1])));
+RGB spectrum_rgb(std::span<const double> lambda, std::span<const double> value, SpectrumType type, SpectrumEnds ends) {
+  const Observer& o = observer();
+  PiecewiseLinear f(lambda, value, ends);
+  double X = 0, Y = 0, Z = 0;
+  for (int i = 0; i < kSamples; ++i) {
+    // Object colours: X = k * sum S R x-bar, k = 1 / sum S y-bar, with S = D65 (CIE 015:2004,
+    // eqs. 7.1-7.3); light sources: X = sum Le x-bar, then divided by Y (pbrt-v4's lights).
+    const double s = f.at(kLambdaMin + i) * (type == SpectrumType::Unbounded ? o.d65[i] : 1.0);
+    X += s * o.x[i];
+    Y += s * o.y[i];
+    Z += s * o.z[i];
+  }
+  const double k = type == SpectrumType::Unbounded ? 1 / o.d65_y : (Y > 0 ? 1 / Y : 0);
+  return xyz_to_srgb(X * k, Y * k, Z * k);
 }
 
-std::optional<RGB> named_spectrum_rgb(const std::string& name) {
-  for (const MetalRGB& m : kMetals)
-    if (name == m.name) return m.rgb;
-  // pbrt-v4's brass table is not bundled; copper is the closest documented stand-in.
-  if (name == "metal-CuZn-eta") return kMetals[0].rgb;
-  if (name == "metal-CuZn-k") return kMetals[1].rgb;
-  // D65 is the white point of Rec.709: the RGB white.
-  if (name == "stdillum-D65") return RGB(1, 1, 1);
-  return std::nullopt;
+std::optional<RGB> named_spectrum_rgb(const std::string& name, SpectrumType type) {
+  const NamedSpectrumTable* t = find_table(name);
+  if (!t) return std::nullopt;
+  Pairs p = split(t->pairs);
+  if (t->kind == NamedSpectrumKind::Illuminant) {
+    // pbrt-v4 scales its named illuminants to luminance 1 (PiecewiseLinearSpectrum::FromInterleaved).
+    const double lum = relative_luminance(p.lambda, p.value, SpectrumEnds::Extend);
+    for (double& v : p.value) v /= lum;
+  }
+  return spectrum_rgb(p.lambda, p.value, type, SpectrumEnds::Extend);
 }
 
 std::optional<float> named_glass_ior(const std::string& name) {
-  for (const GlassIor& g : kGlasses)
-    if (name == g.name) return g.ior;
-  return std::nullopt;
+  const NamedSpectrumTable* t = find_table(name);
+  if (!t || t->kind != NamedSpectrumKind::GlassIndex) return std::nullopt;
+  const Pairs p = split(t->pairs);
+  return float(mean_over(p.lambda, p.value, SpectrumEnds::Extend, 400, 700));
+}
+
+bool is_camera_sensor_spectrum(const std::string& name) {
+  for (const char* camera : camera_sensor_names())
+    for (const char* channel : {"_r", "_g", "_b"})
+      if (name == std::string(camera) + channel) return true;
+  return false;
 }
 
 std::string named_spectrum_list() {
   std::string s;
-  for (const MetalRGB& m : kMetals) s += std::string(m.name) + ", ";
-  s += "metal-CuZn-eta, metal-CuZn-k, stdillum-D65";
-  for (const GlassIor& g : kGlasses) s += ", " + std::string(g.name);
+  for (const NamedSpectrumTable& t : named_spectrum_tables()) s += (s.empty() ? "" : ", ") + std::string(t.name);
+  s += "; camera sensor curves (Film \"sensor\" only):";
+  for (const char* camera : camera_sensor_names()) s += fmt::format(" {}_{{r,g,b}}", camera);
   return s;
 }
 
 RGB blackbody_rgb(double kelvin) {
-  double X = 0, Y = 0, Z = 0;
-  for (double l = 360; l <= 830; l += 1) {
-    double b = planck(l, kelvin);
-    X += b * cie_x(l);
-    Y += b * cie_y(l);
-    Z += b * cie_z(l);
+  std::array<double, kSamples> lambda, value;
+  for (int i = 0; i < kSamples; ++i) {
+    lambda[i] = kLambdaMin + i;
+    value[i] = planck(lambda[i], kelvin);
   }
-  X /= Y;
-  Z /= Y;
-  Y = 1;
-  // CIE XYZ to linear Rec.709 / sRGB (IEC 61966-2-1, D65 white).
-  double r = 3.2404542 * X - 1.5371385 * Y - 0.4985314 * Z;
-  double g = -0.9692660 * X + 1.8760108 * Y + 0.0415560 * Z;
-  double b = 0.0556434 * X - 0.2040259 * Y + 1.0572252 * Z;
-  return RGB(float(std::max(0.0, r)), float(std::max(0.0, g)), float(std::max(0.0, b)));
+  return spectrum_rgb(lambda, value, SpectrumType::Illuminant);
 }
 
 namespace {
@@ -141,16 +205,36 @@ void check_pairs(const ParsedParam& p) {
                                                   p.param.name, v[i], v[i - 2]));
 }
 
-void split_pairs(const std::vector<double>& v, std::vector<double>& lambda, std::vector<double>& value) {
-  for (size_t i = 0; i + 1 < v.size(); i += 2) {
-    lambda.push_back(v[i]);
-    value.push_back(v[i + 1]);
-  }
+// A spectrum given by name: pbrt-v4 looks the name up among its named spectra first, then
+// reads it as a spectrum file (relative to the scene's directory).
+std::string unknown_spectrum_message(const std::string& name, const std::string& path) {
+  std::string hint;
+  std::size_t best = 4;  // the nearest name at most 3 edits away
+  for (const NamedSpectrumTable& t : named_spectrum_tables())
+    if (const std::size_t d = edit_distance(name, t.name); d < best) {
+      best = d;
+      hint = fmt::format(" (did you mean '{}'?)", t.name);
+    }
+  return fmt::format("unknown named spectrum '{}'{} and no spectrum file '{}'; named spectra: {}", name, hint, path,
+                     named_spectrum_list());
+}
+
+Pairs spectrum_file_pairs(const ParsedParam& p) {
+  const std::string& name = p.param.strings[0];
+  if (is_camera_sensor_spectrum(name))
+    throw SceneError(p.value_loc, fmt::format("'{}' is a camera sensor curve, which pbrt-v4 uses only through Film "
+                                              "\"string sensor\"; Dermis's film records linear sRGB",
+                                              name));
+  const std::string path = resolve_path(name, p.base_dir);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw SceneError(p.value_loc, unknown_spectrum_message(name, path));
+  SampledSpectrum f = read_spectrum_file(path, p.value_loc);
+  return {std::move(f.lambda), std::move(f.value)};
 }
 
 }  // namespace
 
-RGB spectrum_param_rgb(const ParsedParam& p, Diagnostics& diag) {
+RGB spectrum_param_rgb(const ParsedParam& p, Diagnostics& diag, SpectrumType type) {
   p.used = true;
   if (p.type == "rgb") {
     if (p.param.numbers.size() != 3)
@@ -170,28 +254,22 @@ RGB spectrum_param_rgb(const ParsedParam& p, Diagnostics& diag) {
     if (v.size() == 2) rgb *= float(v[1]);  // pbrt-v3's [T scale]
     return rgb;
   }
+  const char* how = type == SpectrumType::Illuminant
+                        ? "its chromaticity at luminance 1, as pbrt-v4 normalizes light spectra; \"scale\" sets the "
+                          "brightness"
+                        : "its colour under D65, CIE 1931 observer";
   if (p.type == "spectrum") {
     if (!p.param.strings.empty()) {
-      const std::string& name = p.param.strings[0];
-      if (auto rgb = named_spectrum_rgb(name)) {
-        if (name.rfind("metal-CuZn", 0) == 0)
-          diag.warn(p.param.loc, fmt::format("'{}' is approximated by copper's RGB values (brass data not "
-                                             "bundled)",
-                                             name));
-        return *rgb;
-      }
-      if (auto ior = named_glass_ior(name)) return RGB(*ior);
-      throw SceneError(p.value_loc, fmt::format("unknown named spectrum '{}' (spectrum files are not supported); "
-                                                "valid names: {}",
-                                                name, named_spectrum_list()));
+      if (auto rgb = named_spectrum_rgb(p.param.strings[0], type)) return *rgb;
+      const Pairs f = spectrum_file_pairs(p);
+      diag.warn(p.param.loc, fmt::format("spectrum file '{}' for '{}' reduced to RGB ({})", p.param.strings[0],
+                                         p.param.name, how));
+      return spectrum_rgb(f.lambda, f.value, type);
     }
     check_pairs(p);
-    std::vector<double> lambda, value;
-    split_pairs(p.param.numbers, lambda, value);
-    diag.warn(p.param.loc, fmt::format("sampled spectrum '{}' reduced to RGB by averaging over 600-700, "
-                                       "500-600 and 400-500 nm",
-                                       p.param.name));
-    return band_average_rgb(lambda, value);
+    const Pairs s = split(p.param.numbers);
+    diag.warn(p.param.loc, fmt::format("sampled spectrum '{}' reduced to RGB ({})", p.param.name, how));
+    return spectrum_rgb(s.lambda, s.value, type);
   }
   throw SceneError(p.param.loc, fmt::format("parameter '{}' has type '{}', expected rgb, spectrum or blackbody",
                                             p.param.name, p.param.type));
@@ -205,18 +283,23 @@ float ior_param(const ParsedParam& p, Diagnostics& diag) {
     return float(p.param.numbers[0]);
   }
   if (p.type == "spectrum") {
+    Pairs s;
     if (!p.param.strings.empty()) {
       if (auto ior = named_glass_ior(p.param.strings[0])) return *ior;
-      throw SceneError(p.value_loc, fmt::format("unknown named spectrum '{}' for an index of refraction; valid "
-                                                "names: glass-BK7, glass-BAF10, glass-FK51A, glass-LASF9, "
-                                                "glass-F5, glass-F10, glass-F11",
-                                                p.param.strings[0]));
+      if (find_table(p.param.strings[0]))
+        throw SceneError(p.value_loc, fmt::format("named spectrum '{}' is not an index of refraction; valid names: "
+                                                  "glass-BK7, glass-BAF10, glass-FK51A, glass-LASF9, glass-F5, "
+                                                  "glass-F10, glass-F11, or a spectrum file",
+                                                  p.param.strings[0]));
+      s = spectrum_file_pairs(p);
+      diag.warn(p.param.loc, fmt::format("spectrum file '{}' for '{}' reduced to its mean over 400-700 nm",
+                                         p.param.strings[0], p.param.name));
+    } else {
+      check_pairs(p);
+      s = split(p.param.numbers);
+      diag.warn(p.param.loc, fmt::format("sampled spectrum '{}' reduced to its mean over 400-700 nm", p.param.name));
     }
-    check_pairs(p);
-    std::vector<double> lambda, value;
-    split_pairs(p.param.numbers, lambda, value);
-    diag.warn(p.param.loc, fmt::format("sampled spectrum '{}' reduced to its mean over 400-700 nm", p.param.name));
-    return float(band_mean(lambda, value, kBandEdgesNm[0], kBandEdgesNm[3]));
+    return float(mean_over(s.lambda, s.value, SpectrumEnds::Zero, 400, 700));
   }
   throw SceneError(p.param.loc, fmt::format("parameter '{}' has type '{}', expected float or spectrum",
                                             p.param.name, p.param.type));

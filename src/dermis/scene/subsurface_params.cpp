@@ -235,9 +235,11 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
     if (name->param.strings.size() != 1) throw SceneError(name->value_loc, "\"name\" needs one string");
     auto preset = find_medium_preset(name->param.strings[0]);
     if (!preset)
-      throw SceneError(name->value_loc, fmt::format("unknown subsurface preset \"{}\" (valid: {})",
-                                                    name->param.strings[0], medium_preset_names()));
-    // Jensen et al. 2001 values are per mm, used per scene unit as pbrt does; scale converts.
+      throw SceneError(name->value_loc, fmt::format("unknown subsurface preset \"{}\"{} (valid: {})",
+                                                    name->param.strings[0],
+                                                    medium_preset_suggestion(name->param.strings[0]),
+                                                    medium_preset_names()));
+    // The measured values are per mm, used per scene unit as pbrt does; scale converts.
     s.sigma_a = preset->sigma_a * scale;
     s.sigma_s = preset->sigma_s_prime * scale;
     s.g = 0;

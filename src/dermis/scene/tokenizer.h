@@ -41,6 +41,9 @@ class TokenStream {
   const Token* peek() const { return at_end() ? nullptr : &tokens_[pos_]; }
   const Token& next() { return tokens_[pos_++]; }
   const std::string& file() const { return file_; }
+  // The directory relative file names in parameter values resolve against.
+  const std::string& base_dir() const { return base_dir_; }
+  void set_base_dir(std::string dir) { base_dir_ = std::move(dir); }
   SourceLoc loc(const Token& t) const { return {file_, t.line, t.column}; }
   // Where the end of the file is (just after the last token), for "unexpected end" errors.
   SourceLoc end_loc() const;
@@ -48,6 +51,7 @@ class TokenStream {
  private:
   std::vector<Token> tokens_;
   std::string file_;
+  std::string base_dir_;
   size_t pos_ = 0;
 };
 
