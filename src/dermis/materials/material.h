@@ -89,7 +89,7 @@ inline BSDF bsdf_at(const Material& m, const std::vector<Texture>& textures, con
     case Material::Type::Interface:
     case Material::Type::Subsurface:  // handled by the integrator before any BSDF
       b.type = BSDF::Type::Diffuse;
-      b.albedo = m.reflectance_texture >= 0 ? evaluate_texture(textures, m.reflectance_texture, hit.uv) : m.reflectance;
+      b.albedo = m.reflectance_texture >= 0 ? evaluate_texture(textures, m.reflectance_texture, texture_context(hit)) : m.reflectance;
       for (int c = 0; c < 3; ++c) b.albedo[c] = std::clamp(b.albedo[c], 0.0f, 1.0f);
       break;
     case Material::Type::Dielectric:

@@ -136,5 +136,51 @@ TEST(PbrtV4Scenes, GaneshaRendersItsTexturedStatue) {
   EXPECT_GT(cool, 200);
 }
 
+// sssdragon at scale 50: lit by its environment map alone, whose stand-in holds a sun in
+// the world direction (0.682, 0.731, 0.5) (make_standins.py, through pbrt-v4's equal-area
+// mapping and the scene's light transform). The blob's limb toward the sun, as the camera
+// sees it, is brighter than the limb away from it; read as lat-long, or with the light
+// transform ignored, the sun would be elsewhere.
+TEST(PbrtV4Scenes, SssDragon50IsLitFromTheSunsSide) {
+  SceneDesc d = parse_scene_file(std::string(DERMIS_SOURCE_DIR) + "/scenes/pbrt-v4/sssdragon/dragon_50.pbrt");
+  for (const std::string& w : d.diagnostics.warnings) EXPECT_NE(w.find("Sampler \"halton\""), std::string::npos) << w;
+  d.film.xres = 136;
+  d.film.yres = 102;
+  Diagnostics diag;
+  auto sc = build_render_scene(d, diag);
+  RenderOptions o;
+  o.spp = 16;
+  RenderResult r = render_image(*sc, o);
+  ASSERT_EQ(r.nonfinite, 0u);
+  const Vec3 centre(0.2f, 0.3f, 0.78f);  // the blob's centre (its Translate); radius 0.5 +- 15%
+  const Vec3 sun = normalize(Vec3(0.682f, 0.731f, 0.5f));
+  const Vec3 eye = sc->camera.generate_ray({68, 51}, {0.5f, 0.5f}).o;
+  const Vec3 view = normalize(centre - eye);
+  const Vec3 across = normalize(sun - view * dot(sun, view));
+  // The pixel whose camera ray points most nearly at q.
+  auto pixel_of = [&](Vec3 q) {
+    const Vec3 to = normalize(q - eye);
+    int best = 0;
+    float best_cos = -2;
+    for (int y = 0; y < r.height; ++y)
+      for (int x = 0; x < r.width; ++x) {
+        const float c = dot(normalize(sc->camera.generate_ray({x + 0.5f, y + 0.5f}, {0.5f, 0.5f}).d), to);
+        if (c > best_cos) best_cos = c, best = y * r.width + x;
+      }
+    return best;
+  };
+  auto mean_around = [&](int p) {
+    const int px = p % r.width, py = p / r.width;
+    double sum = 0;
+    for (int y = py - 1; y <= py + 1; ++y)
+      for (int x = px - 1; x <= px + 1; ++x) sum += r.rgb[3 * (std::size_t(y) * r.width + x) + 1];
+    return sum / 9;
+  };
+  const int lit_px = pixel_of(centre + across * 0.3f), dark_px = pixel_of(centre - across * 0.3f);
+  EXPECT_GT(std::abs(lit_px % r.width - dark_px % r.width) + std::abs(lit_px / r.width - dark_px / r.width), 6);
+  const double lit = mean_around(lit_px), dark = mean_around(dark_px);
+  EXPECT_GT(lit, 2 * dark) << "lit " << lit << " dark " << dark;
+}
+
 }  // namespace
 }  // namespace dermis

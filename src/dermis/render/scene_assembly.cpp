@@ -116,32 +116,43 @@ Texture make_texture(const TextureDesc& d) {
   t.value = d.value;
   t.scale = d.scale;
   t.invert = d.invert;
-  t.uscale = d.uscale;
-  t.vscale = d.vscale;
-  t.udelta = d.udelta;
-  t.vdelta = d.vdelta;
+  TextureMapping& m = t.mapping;
+  m.kind = d.mapping == "spherical"     ? TextureMapping::Kind::Spherical
+           : d.mapping == "cylindrical" ? TextureMapping::Kind::Cylindrical
+           : d.mapping == "planar"      ? TextureMapping::Kind::Planar
+           : d.mapping == "3d"          ? TextureMapping::Kind::Point3D
+                                        : TextureMapping::Kind::UV;
+  m.su = d.uscale;
+  m.sv = d.vscale;
+  m.du = d.udelta;
+  m.dv = d.vdelta;
+  m.texture_from_world = d.texture_from_world;
+  m.vs = d.v1;
+  m.vt = d.v2;
   t.base = d.base;
+  t.value2 = d.value2;
+  t.tex1 = d.tex1;
+  t.tex2 = d.tex2;
+  t.amount = d.amount;
+  t.amount_texture = d.amount_texture;
+  t.dir = d.dir;
+  t.corners = d.corners;
+  t.octaves = d.octaves;
+  t.omega = d.roughness;
+  t.variation = d.variation;
   t.wrap = d.wrap == "black" ? Texture::Wrap::Black : d.wrap == "clamp" ? Texture::Wrap::Clamp : Texture::Wrap::Repeat;
   switch (d.type) {
-    case TextureDesc::Type::Constant:
-      t.type = Texture::Type::Constant;
-      break;
-    case TextureDesc::Type::Scale:
-      t.type = Texture::Type::Scale;
-      break;
-    case TextureDesc::Type::Checkerboard:
-    case TextureDesc::Type::Mix:
-      t.type = d.type == TextureDesc::Type::Mix ? Texture::Type::Mix : Texture::Type::Checkerboard;
-      t.value2 = d.value2;
-      t.tex1 = d.tex1;
-      t.tex2 = d.tex2;
-      t.amount = d.amount;
-      t.amount_texture = d.amount_texture;
-      break;
-    case TextureDesc::Type::Bilerp:
-      t.type = Texture::Type::Bilerp;
-      t.corners = d.corners;
-      break;
+    case TextureDesc::Type::Constant: t.type = Texture::Type::Constant; break;
+    case TextureDesc::Type::Scale: t.type = Texture::Type::Scale; break;
+    case TextureDesc::Type::Checkerboard: t.type = Texture::Type::Checkerboard; break;
+    case TextureDesc::Type::Mix: t.type = Texture::Type::Mix; break;
+    case TextureDesc::Type::DirectionMix: t.type = Texture::Type::DirectionMix; break;
+    case TextureDesc::Type::Bilerp: t.type = Texture::Type::Bilerp; break;
+    case TextureDesc::Type::Dots: t.type = Texture::Type::Dots; break;
+    case TextureDesc::Type::FBm: t.type = Texture::Type::FBm; break;
+    case TextureDesc::Type::Wrinkled: t.type = Texture::Type::Wrinkled; break;
+    case TextureDesc::Type::Windy: t.type = Texture::Type::Windy; break;
+    case TextureDesc::Type::Marble: t.type = Texture::Type::Marble; break;
     case TextureDesc::Type::ImageMap: {
       t.type = Texture::Type::Image;
       Image img;
@@ -225,7 +236,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
   sc->materials.push_back(Material{});  // pbrt's default: diffuse, reflectance 0.5
 
   for (const MediumDesc& m : desc.media) {
-    if (!m.Le.is_black()) diag.warn(m.loc, "medium emission (Le) is not rendered");
+    // Emission (Le) is not rendered: the parser has warned about it, once.
     sc->media.push_back(HomogeneousMedium::from_coefficients(m.sigma_a, m.sigma_s, m.scale, m.g));
   }
 

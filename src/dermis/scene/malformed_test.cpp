@@ -75,8 +75,10 @@ const Case kCases[] = {
     {"WorldBegin\nShape \"sphere\" @\"radius\" 1\n", "\"type name\""},
     {"WorldBegin\nNamedMaterial @\"gold\"\n", "unknown named material \"gold\""},
     {"WorldBegin\nMaterial \"diffuse\" \"texture reflectance\" @\"wood\"\n", "unknown spectrum texture \"wood\""},
-    {"MediumInterface @\"smoke\"\n", "unknown medium \"smoke\""},
-    {"MakeNamedMedium \"a\" \"string type\" \"homogeneous\"\nMediumInterface \"a\" @\"b\"\n", "unknown medium \"b\""},
+    // Resolved at use (pbrt-v4): the error is at the name once a shape needs it.
+    {"MediumInterface @\"smoke\"\nWorldBegin\nShape \"sphere\"\n", "unknown medium \"smoke\""},
+    {"MakeNamedMedium \"a\" \"string type\" \"homogeneous\"\nMediumInterface \"a\" @\"b\"\nWorldBegin\nShape \"sphere\"\n",
+     "unknown medium \"b\""},
     {"WorldBegin\nObjectInstance @\"tree\"\n", "unknown object \"tree\""},
     {"WorldBegin\n@AttributeEnd\n", "AttributeEnd without a matching AttributeBegin"},
     {"WorldBegin\nAttributeBegin\n@TransformEnd\n", "closes the AttributeBegin"},

@@ -62,16 +62,19 @@ std::string describe(const Token* t) {
 
 // ---------------------------------------------------------------- files
 
-void SceneParser::parse_file(const std::string& path, const SourceLoc* from) {
+// The tokens of a scene file (main, Included or Imported), with a precise error when it
+// cannot be read, would close a cycle, or nests too deep.
+std::vector<Token> SceneParser::read_scene_file(const std::string& path, const SourceLoc* from,
+                                                const std::vector<std::string>& chain) {
   std::string canonical = resolve_path(path, ".");
-  if (std::find(include_stack_.begin(), include_stack_.end(), canonical) != include_stack_.end()) {
-    std::string chain;
-    for (const std::string& f : include_stack_) chain += f + " -> ";
-    throw SceneError(*from, fmt::format("Include cycle: {}{}", chain, canonical));
+  if (std::find(chain.begin(), chain.end(), canonical) != chain.end()) {
+    std::string text;
+    for (const std::string& f : chain) text += f + " -> ";
+    throw SceneError(*from, fmt::format("Include cycle: {}{}", text, canonical));
   }
   // A chain of Includes deeper than any real scene needs ends here, not in a stack overflow.
   constexpr std::size_t kMaxIncludeDepth = 64;
-  if (from && include_stack_.size() >= kMaxIncludeDepth)
+  if (from && chain.size() >= kMaxIncludeDepth)
     throw SceneError(*from, fmt::format("Include nested more than {} files deep (at '{}'); is the scene generating "
                                         "its own includes?",
                                         kMaxIncludeDepth, canonical));
@@ -81,23 +84,67 @@ void SceneParser::parse_file(const std::string& path, const SourceLoc* from) {
     if (from) throw SceneError(*from, fmt::format("could not read included file '{}': {}", canonical, why));
     throw SceneError({path, 1, 1}, fmt::format("could not read scene file '{}': {}", path, why));
   }
-  include_stack_.push_back(canonical);
-  TokenStream ts(tokenize(text, path), path);
-  run(ts, fs::path(canonical).parent_path().string());
-  include_stack_.pop_back();
+  return tokenize(text, from ? canonical : path);
+}
+
+void SceneParser::parse_file(const std::string& path, const SourceLoc* from) {
+  // pbrt-v4 (SetSearchDirectory in ParseFiles) resolves every relative path against the
+  // directory of the main scene file, in included files too.
+  main_dir_ = fs::path(resolve_path(path, ".")).parent_path().string();
+  TokenStream ts(read_scene_file(path, from, {}), path);
+  run(ts, main_dir_);
 }
 
 void SceneParser::parse_text(const std::string& text, const std::string& name, const std::string& base_dir) {
+  main_dir_ = resolve_path(".", base_dir);
   TokenStream ts(tokenize(text, name), name);
-  run(ts, resolve_path(".", base_dir));
+  run(ts, main_dir_);
 }
 
-void SceneParser::include(const Token& d, TokenStream& ts, const std::string& dir) {
+std::string SceneParser::scene_path(const std::string& file, const SourceLoc& at) {
+  const std::string main = resolve_path(file, main_dir_);
+  std::error_code ec;
+  if (fs::path(file).is_absolute() || fs::exists(main, ec)) return main;
+  // Not where pbrt-v4 looks. Scenes written for Dermis before it followed pbrt-v4 (or for
+  // renderers that resolve against the including file) may name it relative to the file
+  // that names it: accepted with a warning.
+  const std::string beside = resolve_path(file, fs::path(resolve_path(at.file, ".")).parent_path().string());
+  if (beside != main && fs::exists(beside, ec)) {
+    s_.diagnostics.warn(at, fmt::format("'{}' is not in the main scene file's directory ('{}'), where pbrt-v4 looks; "
+                                        "using '{}' beside the file that names it",
+                                        file, main_dir_, beside));
+    return beside;
+  }
+  return main;
+}
+
+void SceneParser::include(const Token& d, TokenStream& ts) {
   SourceLoc loc;
   std::string file = string_arg(ts, d, &loc);
-  std::string path = resolve_path(file, dir);
-  // Messages about the included file name it as resolved.
-  parse_file(path, &loc);
+  const std::string path = scene_path(file, loc);
+  std::vector<std::string> chain = outer_files_;
+  for (const std::string& f : ts.open_files()) chain.push_back(resolve_path(f, "."));
+  if (d.text == "Include") {
+    // pbrt-v4: the included tokens continue this stream (a parameter list may run on
+    // past the end of the included file), sharing the graphics state.
+    std::vector<Token> tokens = read_scene_file(path, &loc, chain);
+    ts.include(std::move(tokens), path);
+    return;
+  }
+  // Import (pbrt-v4: world block only): a separate stream whose graphics state does not
+  // leak out; what it defines (shapes, named materials, textures, media, lights) does.
+  require_world(d, ts);
+  std::vector<Token> tokens = read_scene_file(path, &loc, chain);
+  TokenStream imported(std::move(tokens), path);
+  const GraphicsState saved = gs_;
+  const std::size_t blocks = blocks_.size();
+  std::swap(outer_files_, chain);
+  run(imported, main_dir_);
+  std::swap(outer_files_, chain);
+  if (blocks_.size() != blocks)
+    throw SceneError(blocks_.size() > blocks ? blocks_.back().loc : loc,
+                     "an Imported file must close the AttributeBegin blocks it opens and close no others");
+  gs_ = saved;
 }
 
 void SceneParser::run(TokenStream& ts, const std::string& dir) {
@@ -110,6 +157,19 @@ void SceneParser::run(TokenStream& ts, const std::string& dir) {
   }
 }
 
+int SceneParser::resolve_medium(int index) const {
+  if (index > kFirstPendingMedium) return index;
+  const PendingMedium& p = pending_media_[std::size_t(kFirstPendingMedium - index)];
+  auto it = media_.find(p.name);
+  if (it == media_.end()) {
+    std::string known;
+    for (const auto& [name, i] : media_) known += (known.empty() ? "" : ", ") + name;
+    throw SceneError(p.loc, fmt::format("unknown medium \"{}\" (no MakeNamedMedium defines it; defined: {})", p.name,
+                                        known.empty() ? "none" : known));
+  }
+  return it->second;
+}
+
 void SceneParser::finish(const std::string& main_file, const std::string& name) {
   // As pbrt-v4 (BasicSceneBuilder::EndOfFiles): a scene without WorldBegin, or with a block
   // left open, is an error. Both are what a file cut short looks like (a download or a copy
@@ -117,9 +177,27 @@ void SceneParser::finish(const std::string& main_file, const std::string& name) 
   if (!in_world_)
     throw SceneError({name, 1, 1}, "the scene ends before WorldBegin: a scene describes its camera and film, then "
                                    "WorldBegin, then its lights and shapes (is the file empty or cut short?)");
+  // Media named before their definition, resolved now that every definition has been read.
+  if (!pending_media_.empty()) {
+    s_.camera.medium = resolve_medium(s_.camera.medium);
+    for (LightDesc& l : s_.lights) l.medium = resolve_medium(l.medium);
+    for (ShapeDesc& sh : s_.shapes) {
+      if (sh.inside_medium > kFirstPendingMedium && sh.outside_medium > kFirstPendingMedium) continue;
+      sh.inside_medium = resolve_medium(sh.inside_medium);
+      sh.outside_medium = resolve_medium(sh.outside_medium);
+      sh.has_medium_interface = sh.inside_medium != sh.outside_medium;
+    }
+  }
+
   if (open_object_ >= 0)
     throw SceneError(s_.objects[open_object_].loc,
                      fmt::format("ObjectBegin \"{}\" has no matching ObjectEnd", s_.objects[open_object_].name));
+  // pbrt-v4 renders such a scene black without a word; say why once.
+  const bool lit = !s_.lights.empty() ||
+                   std::any_of(s_.shapes.begin(), s_.shapes.end(), [](const ShapeDesc& sh) { return sh.area_light.has_value(); });
+  if (!lit && in_world_)
+    s_.diagnostics.warn(world_loc_, "the scene has no lights (no supported LightSource and no shape with an "
+                                    "AreaLightSource): it renders black");
   for (const Block& b : blocks_)
     throw SceneError(b.loc, b.kind == BlockKind::Attribute
                                 ? "AttributeBegin has no matching AttributeEnd (is the file cut short?)"
@@ -286,12 +364,13 @@ void SceneParser::directive(const Token& d, TokenStream& ts, const std::string& 
   } else if (n == "WorldBegin") {
     if (in_world_) throw SceneError(loc, "WorldBegin given twice");
     in_world_ = true;
+    world_loc_ = loc;
     gs_.ctm = Transform();
     coordinate_systems_["world"] = gs_.ctm;
   } else if (n == "WorldEnd") {
     // pbrt-v3's end marker: pbrt-v4 has none; accepted silently.
   } else if (n == "Include" || n == "Import") {
-    include(d, ts, dir);
+    include(d, ts);
   } else if (n == "Shape") {
     shape(d, ts, dir);
   } else if (n == "ObjectBegin") {

@@ -47,10 +47,10 @@ float light_scale_param(const ParamList& pl) {
   return scale;
 }
 
-std::string existing_file(const ParamList& pl, const std::string& name, const std::string& dir,
+// `file` (resolved) must be a regular file; else an error at the parameter's value.
+std::string existing_file(const ParamList& pl, const std::string& name, const std::string& file,
                           const std::string& what) {
   const ParsedParam* p = pl.find(name);
-  std::string file = resolve_path(pl.get_string(name, ""), dir);
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
     throw SceneError(p->value_loc, fmt::format("{}: could not read '{}': no such file", what, file));
@@ -252,8 +252,7 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
   } else {
     s_.diagnostics.warn(loc, fmt::format("unsupported material \"{}\"; using diffuse", type));
     m.type = MaterialDesc::Type::Diffuse;
-    m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));
-    pl.mark_all_used();
+    m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));  // its other parameters are warned unused
   }
   if (m.eta <= 0) throw SceneError(pl.find("eta") ? pl.find("eta")->value_loc : loc, "eta must be positive");
   pl.warn_unused(s_.diagnostics, fmt::format("material \"{}\"", type));
@@ -361,19 +360,58 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
     index = it->second;
     return def;
   };
-  // pbrt's (u, v) texture mapping, common to all classes.
-  const std::string mapping = pl.get_string("mapping", "uv");
-  if (mapping != "uv")
-    s_.diagnostics.warn(pl.find("mapping")->param.loc,
-                        fmt::format("texture mapping \"{}\" is not supported; using \"uv\"", mapping));
-  t.uscale = pl.get_float("uscale", 1);
-  t.vscale = pl.get_float("vscale", 1);
-  t.udelta = pl.get_float("udelta", 0);
-  t.vdelta = pl.get_float("vdelta", 0);
+  // pbrt-v4's classes: which kinds they come in, and how they map the surface point.
+  const bool float_only = cls == "fbm" || cls == "wrinkled" || cls == "windy";
+  const bool spectrum_only = cls == "marble";
+  if ((float_only && !t.is_float) || (spectrum_only && t.is_float))
+    throw SceneError(type_loc, fmt::format("\"{}\" is a {} texture in pbrt-v4; declare it \"{}\"", cls,
+                                           float_only ? "float" : "spectrum", float_only ? "float" : "spectrum"));
+  // The texture's space: the CTM at this directive (pbrt-v4's renderFromTexture).
+  t.texture_from_world = gs_.ctm.inverse();
+  // pbrt-v4's 2D mappings (TextureMapping2D::Create): "uv" (uscale, vscale, udelta,
+  // vdelta), "spherical", "cylindrical" (no parameters), "planar" (v1, v2, udelta, vdelta).
+  auto mapping_2d = [&] {
+    t.mapping = pl.get_string("mapping", "uv");
+    if (t.mapping == "uv") {
+      t.uscale = pl.get_float("uscale", 1);
+      t.vscale = pl.get_float("vscale", 1);
+      t.udelta = pl.get_float("udelta", 0);
+      t.vdelta = pl.get_float("vdelta", 0);
+    } else if (t.mapping == "planar") {
+      t.v1 = pl.get_vec3("v1", {"vector3"}).value_or(t.v1);
+      t.v2 = pl.get_vec3("v2", {"vector3"}).value_or(t.v2);
+      t.udelta = pl.get_float("udelta", 0);
+      t.vdelta = pl.get_float("vdelta", 0);
+    } else if (t.mapping != "spherical" && t.mapping != "cylindrical") {
+      throw SceneError(pl.find("mapping")->value_loc,
+                       fmt::format("texture mapping must be \"uv\", \"spherical\", \"cylindrical\" or \"planar\", got "
+                                   "\"{}\"", t.mapping));
+    }
+  };
+  // A float parameter or a float texture (its index in `index`).
+  auto float_or_texture = [&](const std::string& pname, float def, int& index) {
+    const ParsedParam* p = pl.find(pname);
+    if (!p || p->type != "texture") return pl.get_float(pname, def);
+    const std::string other = *pl.get_texture(pname);
+    auto it = float_textures_.find(other);
+    if (it == float_textures_.end())
+      throw SceneError(p->value_loc, fmt::format("unknown float texture \"{}\" for \"{}\" (defined: {})", other,
+                                                 pname, names_of(float_textures_)));
+    index = it->second;
+    return def;
+  };
+  auto octaves_param = [&](const char* pname, int def) {
+    const int v = pl.get_int(pname, def);
+    if (v < 0 || v > 64)
+      throw SceneError(pl.find(pname)->value_loc, fmt::format("\"{}\" must be in [0, 64], got {}", pname, v));
+    return v;
+  };
   if (cls == "imagemap") {
     t.type = TextureDesc::Type::ImageMap;
+    mapping_2d();
     if (!pl.has("filename")) throw SceneError(loc, "imagemap texture needs \"string filename\"");
-    t.filename = existing_file(pl, "filename", dir, "imagemap texture");
+    t.filename = existing_file(pl, "filename", scene_path(pl.get_string("filename", ""), pl.find("filename")->value_loc),
+                                "imagemap texture");
     t.scale = pl.get_float("scale", 1);
     t.invert = pl.get_bool("invert", false);
     t.encoding = pl.get_string("encoding", t.encoding);
@@ -384,10 +422,11 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
     if (t.wrap != "repeat" && t.wrap != "black" && t.wrap != "clamp" && t.wrap != "octahedralsphere")
       throw SceneError(pl.find("wrap")->value_loc,
                        fmt::format("wrap must be \"repeat\", \"black\" or \"clamp\", got \"{}\"", t.wrap));
-    if (const ParsedParam* f = pl.find("filter")) {
-      f->used = true;
-      s_.diagnostics.warn(f->param.loc, "imagemap \"filter\" ignored (Dermis filters bilinearly)");
-    }
+    for (const char* ignored : {"filter", "maxanisotropy"})
+      if (const ParsedParam* f = pl.find(ignored)) {
+        f->used = true;
+        s_.diagnostics.warn(f->param.loc, fmt::format("imagemap \"{}\" ignored (Dermis filters bilinearly)", ignored));
+      }
   } else if (cls == "constant") {
     t.type = TextureDesc::Type::Constant;
     t.value = value_param("value", RGB(1));
@@ -407,40 +446,66 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
     t.type = TextureDesc::Type::Mix;
     t.value = value_or_texture("tex1", RGB(0), t.tex1);
     t.value2 = value_or_texture("tex2", RGB(1), t.tex2);
-    if (const ParsedParam* p = pl.find("amount")) {
-      if (p->type == "texture") {
-        const std::string other = *pl.get_texture("amount");
-        auto it = float_textures_.find(other);
-        if (it == float_textures_.end())
-          throw SceneError(p->value_loc, fmt::format("unknown float texture \"{}\" for \"amount\" (defined: {})", other,
-                                                     names_of(float_textures_)));
-        t.amount_texture = it->second;
-      } else {
-        t.amount = pl.get_float("amount", 0.5f);
-      }
-    }
+    t.amount = float_or_texture("amount", 0.5f, t.amount_texture);
+  } else if (cls == "directionmix") {
+    // pbrt-v4: amount = |n . dir| (dir in the texture's space); amount tex1 + (1 - amount) tex2.
+    t.type = TextureDesc::Type::DirectionMix;
+    t.value = value_or_texture("tex1", RGB(0), t.tex1);
+    t.value2 = value_or_texture("tex2", RGB(1), t.tex2);
+    const Vec3 dir = pl.get_vec3("dir", {"vector3"}).value_or(Vec3(0, 1, 0));
+    const Vec3 world = gs_.ctm.vector(dir);
+    if (!(length(world) > 0) || !std::isfinite(length(world)))
+      throw SceneError(pl.find("dir")->value_loc, "directionmix \"dir\" must be a non-zero, finite vector");
+    t.dir = normalize(world);
   } else if (cls == "bilerp") {
     // pbrt-v4: bilinear in (s, t) between the values at the corners v00, v01, v10, v11.
     t.type = TextureDesc::Type::Bilerp;
+    mapping_2d();
     t.corners = {value_param("v00", RGB(0)), value_param("v01", RGB(1)), value_param("v10", RGB(0)),
                  value_param("v11", RGB(1))};
   } else if (cls == "checkerboard") {
-    // pbrt-v4's checkerboard: tex1 where floor(s) + floor(t) is even, tex2 where odd.
+    // pbrt-v4's checkerboard: tex1 where floor(s) + floor(t) (3D: + floor(z)) is even, tex2 where odd.
     t.type = TextureDesc::Type::Checkerboard;
     t.value = value_or_texture("tex1", RGB(1), t.tex1);
     t.value2 = value_or_texture("tex2", RGB(0), t.tex2);
-    if (const ParsedParam* p = pl.find("dimension")) {
-      const int dimension = pl.get_int("dimension", 2);
-      if (dimension != 2 && dimension != 3)
-        throw SceneError(p->value_loc, fmt::format("checkerboard \"dimension\" must be 2 or 3, got {}", dimension));
-      if (dimension == 3)
-        s_.diagnostics.warn(p->param.loc, "3D checkerboard is not supported; rendered as the 2D (u, v) checkerboard");
+    const int dimension = pl.get_int("dimension", 2);
+    if (dimension != 2 && dimension != 3)
+      throw SceneError(pl.find("dimension")->value_loc,
+                       fmt::format("checkerboard \"dimension\" must be 2 or 3, got {}", dimension));
+    if (dimension == 2)
+      mapping_2d();
+    else
+      t.mapping = "3d";
+  } else if (cls == "dots") {
+    // pbrt-v4's polka dots: inside (1) in the dots, outside (0) elsewhere.
+    t.type = TextureDesc::Type::Dots;
+    mapping_2d();
+    t.value = value_or_texture("inside", RGB(1), t.tex1);
+    t.value2 = value_or_texture("outside", RGB(0), t.tex2);
+  } else if (cls == "fbm" || cls == "wrinkled" || cls == "marble") {
+    t.type = cls == "fbm" ? TextureDesc::Type::FBm : cls == "wrinkled" ? TextureDesc::Type::Wrinkled
+                                                                       : TextureDesc::Type::Marble;
+    t.mapping = "3d";
+    t.octaves = octaves_param("octaves", 8);
+    t.roughness = pl.get_float("roughness", 0.5f);
+    if (cls == "marble") {
+      t.scale = pl.get_float("scale", 1);
+      t.variation = pl.get_float("variation", 0.2f);
     }
+  } else if (cls == "windy") {
+    t.type = TextureDesc::Type::Windy;
+    t.mapping = "3d";
+  } else if (cls == "ptex") {
+    // Ptex (per-face textures) needs the Ptex library, which Dermis does not use.
+    for (const char* p : {"filename", "encoding", "scale"})
+      if (const ParsedParam* q = pl.find(p)) q->used = true;
+    s_.diagnostics.warn(loc, fmt::format("ptex textures are not supported; texture \"{}\" is the constant 1", name));
+    t.type = TextureDesc::Type::Constant;
+    t.value = RGB(1);
   } else {
     s_.diagnostics.warn(loc, fmt::format("unsupported texture class \"{}\"; texture \"{}\" is the constant 1", cls, name));
     t.type = TextureDesc::Type::Constant;
     t.value = RGB(1);
-    pl.mark_all_used();
   }
   pl.warn_unused(s_.diagnostics, fmt::format("Texture \"{}\"", cls));
   auto& table = t.is_float ? float_textures_ : spectrum_textures_;
@@ -498,7 +563,9 @@ void SceneParser::light_source(const Token& d, TokenStream& ts, const std::strin
     if (pl.has("L") && pl.has("filename"))
       throw SceneError(pl.find("filename")->param.loc, "infinite light: give either \"L\" or \"filename\", not both");
     l.spectrum = emission_param(pl, "L", s_.diagnostics);
-    if (pl.has("filename")) l.filename = existing_file(pl, "filename", dir, "infinite light");
+    if (pl.has("filename"))
+      l.filename = existing_file(pl, "filename", scene_path(pl.get_string("filename", ""), pl.find("filename")->value_loc),
+                                 "infinite light");
     // pbrt-v4 reads the image in the equal-area octahedral mapping; Dermis also takes
     // lat-long maps when asked ("string mapping" "latlong", not a pbrt-v4 parameter).
     if (const ParsedParam* p = pl.find("mapping")) {
@@ -616,12 +683,15 @@ void SceneParser::medium_interface(const Token& d, TokenStream& ts) {
   std::string inside = string_arg(ts, d, &in_loc), outside = inside;
   out_loc = in_loc;
   if (const Token* t = ts.peek(); t && t->kind == Token::Kind::String) outside = string_arg(ts, d, &out_loc);
+  // pbrt-v4 looks media up by name when the scene is built: a medium may be defined after
+  // the MediumInterface that names it. Unknown names wait as pending references (resolved,
+  // or reported at this name, by finish()).
   auto lookup = [&](const std::string& name, const SourceLoc& at) {
     if (name.empty()) return -1;
     auto it = media_.find(name);
-    if (it == media_.end())
-      throw SceneError(at, fmt::format("unknown medium \"{}\" (defined: {})", name, names_of(media_)));
-    return it->second;
+    if (it != media_.end()) return it->second;
+    pending_media_.push_back({name, at});
+    return kFirstPendingMedium - int(pending_media_.size() - 1);
   };
   int in = lookup(inside, in_loc), out = lookup(outside, out_loc);
   if (open_object_ >= 0) {

@@ -118,9 +118,13 @@ TEST(ParserMaterials, InterfaceCoatedSubsurfaceAndUnknown) {
   EXPECT_NEAR((*ss.subsurface.sigma_a)[0], 0.32f, 1e-5f);
   EXPECT_EQ(ss.subsurface.method, SubsurfaceParams::Method::Disk);
   EXPECT_EQ(ss.subsurface.loc.line, 6);
-  EXPECT_FALSE(has_warning(s, "unused parameter"));
   EXPECT_EQ(s.materials[5].type, MaterialDesc::Type::Diffuse);
   EXPECT_TRUE(has_warning(s, "test.pbrt:7:1: warning: unsupported material \"hair\""));
+  // The unsupported material's parameters are warned, each where it is; no other is unused.
+  EXPECT_TRUE(has_warning(s, "test.pbrt:7:17: warning: unused parameter \"float beta_m\""));
+  int unused = 0;
+  for (const std::string& w : s.diagnostics.warnings) unused += w.find("unused parameter") != std::string::npos;
+  EXPECT_EQ(unused, 1);
 }
 
 TEST(ParserMaterials, NamedMaterials) {
@@ -144,7 +148,7 @@ TEST(ParserTextures, ImageMapConstantScaleAndReference) {
       "Texture \"k\" \"spectrum\" \"constant\" \"rgb value\" [0.1 0.2 0.3]\n"
       "Texture \"half\" \"spectrum\" \"scale\" \"texture tex\" \"wood\" \"float scale\" 0.5\n"
       "Texture \"f\" \"float\" \"constant\" \"float value\" 0.7\n"
-      "Texture \"odd\" \"spectrum\" \"marble\"\n"
+      "Texture \"odd\" \"spectrum\" \"hyperbolic\" \"float foo\" 1\n"
       "Texture \"check\" \"spectrum\" \"checkerboard\" \"texture tex1\" \"k\" \"float uscale\" 8\n"
       "Texture \"blend\" \"spectrum\" \"mix\" \"texture tex2\" \"k\" \"texture amount\" \"f\"\n"
       "Material \"diffuse\" \"texture reflectance\" \"half\"\n",
@@ -169,7 +173,9 @@ TEST(ParserTextures, ImageMapConstantScaleAndReference) {
   EXPECT_TRUE(s.textures[3].is_float);
   expect_rgb(s.textures[3].value, RGB(0.7f));
   expect_rgb(s.textures[4].value, RGB(1));
-  EXPECT_TRUE(has_warning(s, "test.pbrt:8:1: warning: unsupported texture class \"marble\""));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:8:1: warning: unsupported texture class \"hyperbolic\""));
+  // Its parameters are read by nobody: each warned where it is.
+  EXPECT_TRUE(has_warning(s, "test.pbrt:8:39: warning: unused parameter \"float foo\""));
   const TextureDesc& c = s.textures[5];
   EXPECT_EQ(c.type, TextureDesc::Type::Checkerboard);
   EXPECT_EQ(c.tex1, 1);  // "k"
@@ -182,6 +188,91 @@ TEST(ParserTextures, ImageMapConstantScaleAndReference) {
   EXPECT_EQ(m.amount_texture, 3);  // the float texture "f"
   expect_rgb(m.value, RGB(0));     // pbrt-v4's default tex1
   EXPECT_EQ(s.materials[0].reflectance.texture, 2);
+}
+
+// pbrt-v4's parameter names and defaults for the noise textures, dots and directionmix.
+TEST(ParserTextures, NoiseDotsAndDirectionMixDefaults) {
+  SceneDesc s = parse_world(
+      "Translate 1 2 3\n"
+      "Texture \"f\" \"float\" \"fbm\"\n"
+      "Texture \"w\" \"float\" \"wrinkled\" \"integer octaves\" 3 \"float roughness\" 0.25\n"
+      "Texture \"wind\" \"float\" \"windy\"\n"
+      "Texture \"m\" \"spectrum\" \"marble\"\n"
+      "Texture \"m2\" \"spectrum\" \"marble\" \"float scale\" 4 \"float variation\" 0.5 \"integer octaves\" 2\n"
+      "Texture \"d\" \"spectrum\" \"dots\" \"texture inside\" \"m\" \"float uscale\" 6\n"
+      "Rotate 90 0 0 1\n"
+      "Texture \"dm\" \"float\" \"directionmix\" \"texture tex2\" \"f\"\n"
+      "Texture \"sph\" \"spectrum\" \"checkerboard\" \"string mapping\" \"spherical\"\n"
+      "Texture \"pl\" \"spectrum\" \"bilerp\" \"string mapping\" \"planar\" \"vector3 v1\" [0 0 1] \"float udelta\" 2\n"
+      "Texture \"c3\" \"float\" \"checkerboard\" \"integer dimension\" 3\n");
+  ASSERT_EQ(s.textures.size(), 10u);
+  const TextureDesc& f = s.textures[0];
+  EXPECT_EQ(f.type, TextureDesc::Type::FBm);
+  EXPECT_EQ(f.mapping, "3d");
+  EXPECT_EQ(f.octaves, 8);
+  EXPECT_FLOAT_EQ(f.roughness, 0.5f);
+  // The texture's space is the CTM's: world (1, 2, 3) is its origin.
+  const Vec3 o = f.texture_from_world.point(Vec3(1, 2, 3));
+  EXPECT_NEAR(length(o), 0, 1e-6f);
+  EXPECT_EQ(s.textures[1].octaves, 3);
+  EXPECT_FLOAT_EQ(s.textures[1].roughness, 0.25f);
+  EXPECT_EQ(s.textures[2].type, TextureDesc::Type::Windy);
+  const TextureDesc& m = s.textures[3];
+  EXPECT_EQ(m.type, TextureDesc::Type::Marble);
+  EXPECT_FLOAT_EQ(m.scale, 1);
+  EXPECT_FLOAT_EQ(m.variation, 0.2f);
+  EXPECT_EQ(m.octaves, 8);
+  EXPECT_FLOAT_EQ(s.textures[4].scale, 4);
+  EXPECT_FLOAT_EQ(s.textures[4].variation, 0.5f);
+  const TextureDesc& d = s.textures[5];
+  EXPECT_EQ(d.type, TextureDesc::Type::Dots);
+  EXPECT_EQ(d.tex1, 3);          // inside: "m"
+  expect_rgb(d.value2, RGB(0));  // outside: pbrt-v4's 0
+  EXPECT_EQ(d.mapping, "uv");
+  EXPECT_FLOAT_EQ(d.uscale, 6);
+  const TextureDesc& dm = s.textures[6];
+  EXPECT_EQ(dm.type, TextureDesc::Type::DirectionMix);
+  EXPECT_EQ(dm.tex2, 0);
+  expect_rgb(dm.value, RGB(0));  // tex1: pbrt-v4's 0
+  // dir (0, 1, 0) in the texture's space, rotated 90 degrees about z: world -x.
+  EXPECT_NEAR(dm.dir.x, -1, 1e-6f);
+  EXPECT_NEAR(dm.dir.y, 0, 1e-6f);
+  EXPECT_EQ(s.textures[7].mapping, "spherical");
+  EXPECT_EQ(s.textures[8].mapping, "planar");
+  EXPECT_NEAR(s.textures[8].v1.z, 1, 1e-6f);
+  EXPECT_NEAR(s.textures[8].v2.y, 1, 1e-6f);  // default v2 (0, 1, 0)
+  EXPECT_FLOAT_EQ(s.textures[8].udelta, 2);
+  EXPECT_EQ(s.textures[9].mapping, "3d");
+  EXPECT_FALSE(has_warning(s, "warning: unused"));
+  EXPECT_FALSE(has_warning(s, "unsupported"));
+}
+
+TEST(ParserTextures, ErrorsAndWarningsOfTheNewClasses) {
+  auto error_at = [](const std::string& body, int line, int column, const std::string& what) {
+    try {
+      parse_world(body);
+      ADD_FAILURE() << "no error for " << body;
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.loc().line, line) << e.what();
+      EXPECT_EQ(e.loc().column, column) << e.what();
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  // fbm, wrinkled, windy are float textures in pbrt-v4; marble a spectrum one.
+  error_at("Texture \"a\" \"spectrum\" \"fbm\"\n", 2, 13, "\"fbm\" is a float texture");
+  error_at("Texture \"a\" \"float\" \"marble\"\n", 2, 13, "\"marble\" is a spectrum texture");
+  error_at("Texture \"a\" \"float\" \"dots\" \"string mapping\" \"cubic\"\n", 2, 45, "texture mapping must be");
+  error_at("Texture \"a\" \"float\" \"fbm\" \"integer octaves\" -1\n", 2, 45, "\"octaves\" must be in [0, 64]");
+  error_at("Texture \"a\" \"float\" \"directionmix\" \"vector3 dir\" [0 0 0]\n", 2, 50, "non-zero");
+  error_at("Texture \"a\" \"float\" \"dots\" \"texture inside\" \"nope\"\n", 2, 45, "unknown float texture \"nope\"");
+  // ptex: one warning, a constant; the spherical mapping reads no uscale (warned unused).
+  SceneDesc s = parse_world(
+      "Texture \"p\" \"spectrum\" \"ptex\" \"string filename\" \"a.ptx\" \"float scale\" 2\n"
+      "Texture \"q\" \"float\" \"dots\" \"string mapping\" \"spherical\" \"float uscale\" 2\n");
+  EXPECT_EQ(s.textures[0].type, TextureDesc::Type::Constant);
+  EXPECT_TRUE(has_warning(s, "test.pbrt:2:1: warning: ptex textures are not supported"));
+  EXPECT_EQ(s.diagnostics.warnings.size(), 3u);  // ptex, uscale, no lights
+  EXPECT_TRUE(has_warning(s, "test.pbrt:3:57: warning: unused parameter \"float uscale\""));
 }
 
 TEST(ParserLights, PointSpotDistantInfinite) {

@@ -176,7 +176,7 @@ void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir)
   } else if (type == "plymesh" || type == "objmesh") {
     const ParsedParam* fp = pl.find("filename");
     if (!fp) throw SceneError(loc, fmt::format("Shape \"{}\" needs \"string filename\"", type));
-    std::string file = resolve_path(pl.get_string("filename", ""), dir);
+    std::string file = scene_path(pl.get_string("filename", ""), fp->value_loc);
     try {
       if (type == "plymesh") {
         sh.mesh = read_ply(file);
@@ -196,7 +196,7 @@ void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir)
       s_.diagnostics.warn(loc, "plymesh displacement is not supported (ignored)");
   } else {
     s_.diagnostics.warn(loc, fmt::format("unsupported Shape \"{}\" ignored", type));
-    pl.mark_all_used();
+    pl.warn_unused(s_.diagnostics, fmt::format("Shape \"{}\"", type));  // each of its parameters, where it is
     return;
   }
 

@@ -90,7 +90,7 @@ TEST(ParserTransforms, CoordinateSystemsIncludingCamera) {
 }
 
 TEST(ParserTransforms, WorldBeginResetsCtm) {
-  SceneDesc s = test::parse_text("Translate 1 2 3\nWorldBegin\nShape \"sphere\"\nWorldEnd\n");
+  SceneDesc s = test::parse_text("Translate 1 2 3\nWorldBegin\nShape \"sphere\"\nLightSource \"point\"\nWorldEnd\n");
   EXPECT_TRUE(s.shapes[0].object_to_world.is_identity());
   EXPECT_TRUE(s.diagnostics.warnings.empty());
 }
@@ -195,7 +195,7 @@ TEST(ParserOptions, FilmFilterSamplerIntegrator) {
       "Film \"rgb\" \"integer xresolution\" 320 \"integer yresolution\" 200 \"string filename\" \"out.exr\"\n"
       "PixelFilter \"box\" \"float xradius\" 0.75\n"
       "Sampler \"zsobol\" \"integer pixelsamples\" 64 \"integer seed\" 7\n"
-      "Integrator \"path\" \"integer maxdepth\" 12\nWorldBegin\n");
+      "Integrator \"path\" \"integer maxdepth\" 12\nWorldBegin\nLightSource \"point\"\n");
   EXPECT_EQ(s.film.xres, 320);
   EXPECT_EQ(s.film.yres, 200);
   EXPECT_EQ(s.film.filename, "out.exr");
@@ -212,7 +212,7 @@ TEST(ParserOptions, FilmFilterSamplerIntegrator) {
 TEST(ParserOptions, SamplerNamesMapToTheNearestSampler) {
   EXPECT_EQ(test::parse_text("Sampler \"zsobol\"\nWorldBegin\n").settings.sampler, SamplerKind::Sobol);
   EXPECT_EQ(test::parse_text("Sampler \"paddedsobol\"\nWorldBegin\n").settings.sampler, SamplerKind::Sobol);
-  SceneDesc ind = test::parse_text("Sampler \"independent\"\nWorldBegin\n");
+  SceneDesc ind = test::parse_text("Sampler \"independent\"\nWorldBegin\nLightSource \"point\"\n");
   EXPECT_EQ(ind.settings.sampler, SamplerKind::Independent);
   EXPECT_TRUE(ind.diagnostics.warnings.empty());
   SceneDesc halton = test::parse_text("Sampler \"halton\" \"integer pixelsamples\" 8\nWorldBegin\n");
@@ -264,12 +264,15 @@ TEST(ParserWarnings, IgnoredDirectives) {
   EXPECT_TRUE(has_warning(s, "test.pbrt:5:1: warning: Attribute \"shape\" ignored (parameters: radius)"));
 }
 
-TEST(ParserInclude, RelativeToTheIncludingFile) {
+// Not pbrt-v4's rule (the main file's directory), accepted with a warning at the name.
+TEST(ParserInclude, BesideTheIncludingFileIsAFallbackWithAWarning) {
   test::TempDir dir;
   dir.write("sub/inner.pbrt", "Shape \"sphere\" \"float radius\" 7\n");
   dir.write("sub/outer.pbrt", "Translate 0 1 0\nInclude \"inner.pbrt\"\n");
   std::string main = dir.write("main.pbrt", "WorldBegin\nInclude \"sub/outer.pbrt\"\nImport \"sub/inner.pbrt\"\n");
   SceneDesc s = parse_scene_file(main);
+  EXPECT_TRUE(has_warning(s, dir.path() + "/sub/outer.pbrt:2:9: warning: 'inner.pbrt' is not in the main scene file's "
+                                          "directory"));
   ASSERT_EQ(s.shapes.size(), 2u);
   EXPECT_FLOAT_EQ(s.shapes[0].radius, 7);
   // Include shares the graphics state: the Translate of outer.pbrt still applies.
@@ -371,6 +374,123 @@ TEST(ParserInclude, ChainsDeeperThanTheLimitAreAnError) {
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("Include nested more than 64 files deep"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace dermis
+
+namespace dermis {
+namespace {
+
+// pbrt-v4 (ParseFiles sets the search directory once, from the main file): a relative path
+// in an included file names a file in the main file's directory, for Include, Import and
+// file parameters alike.
+TEST(ParserInclude, RelativePathsResolveAgainstTheMainFilesDirectory) {
+  test::TempDir dir;
+  dir.write("inner.pbrt", "Shape \"sphere\" \"float radius\" 1\n");
+  dir.write("sub/inner.pbrt", "Shape \"sphere\" \"float radius\" 2\n");
+  dir.write("sky.exr", "x");
+  dir.write("sub/sky.exr", "x");
+  dir.write("sub/outer.pbrt",
+            "Include \"inner.pbrt\"\nImport \"inner.pbrt\"\nLightSource \"infinite\" \"string filename\" \"sky.exr\"\n");
+  SceneDesc s = parse_scene_file(dir.write("main.pbrt", "WorldBegin\nInclude \"sub/outer.pbrt\"\n"));
+  ASSERT_EQ(s.shapes.size(), 2u);
+  EXPECT_FLOAT_EQ(s.shapes[0].radius, 1);
+  EXPECT_FLOAT_EQ(s.shapes[1].radius, 1);
+  EXPECT_EQ(s.lights[0].filename, dir.path() + "/sky.exr");
+  EXPECT_TRUE(s.diagnostics.warnings.empty()) << s.diagnostics.warnings.front();
+}
+
+// smoke-plume (pbrt-v4-scenes) ends an included file in the middle of MakeNamedMedium's
+// parameters and continues them after the Include: one token stream, as pbrt-v4 reads it.
+TEST(ParserInclude, AParameterListContinuesAfterTheIncludedFile) {
+  test::TempDir dir;
+  dir.write("geometry/density.pbrt", "MakeNamedMedium \"smoke\" \"string type\" \"homogeneous\"\n  \"float scale\" 2\n");
+  SceneDesc s = parse_scene_file(dir.write("main.pbrt",
+                                           "WorldBegin\nAttributeBegin\nInclude \"geometry/density.pbrt\"\n"
+                                           "\t\"rgb sigma_a\" [1 2 3]\n\t\"rgb sigma_s\" [4 5 6]\n"
+                                           "MediumInterface \"smoke\" \"\"\nMaterial \"interface\"\nShape \"sphere\"\n"
+                                           "AttributeEnd\nLightSource \"point\"\n"));
+  ASSERT_EQ(s.media.size(), 1u);
+  EXPECT_FLOAT_EQ(s.media[0].sigma_a[2], 3);
+  EXPECT_FLOAT_EQ(s.media[0].sigma_s[0], 4);
+  EXPECT_FLOAT_EQ(s.media[0].scale, 2);
+  ASSERT_EQ(s.shapes.size(), 1u);
+  EXPECT_EQ(s.shapes[0].inside_medium, 0);
+  EXPECT_TRUE(s.diagnostics.warnings.empty()) << s.diagnostics.warnings.front();
+  // Errors in the continued list point into the file that holds them.
+  dir.write("bad.pbrt", "WorldBegin\nInclude \"geometry/density.pbrt\"\n  \"rgb sigma_a\" [1 2]\n");
+  try {
+    parse_scene_file(dir.path() + "/bad.pbrt");
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.loc().file, dir.path() + "/bad.pbrt") << e.what();
+    EXPECT_EQ(e.loc().line, 3) << e.what();
+  }
+}
+
+TEST(ParserInclude, ImportKeepsItsGraphicsStateToItself) {
+  test::TempDir dir;
+  dir.write("part.pbrt", "Translate 0 0 5\nShape \"sphere\"\n");
+  SceneDesc s = parse_scene_file(dir.write("main.pbrt", "WorldBegin\nImport \"part.pbrt\"\nShape \"sphere\"\n"));
+  ASSERT_EQ(s.shapes.size(), 2u);
+  EXPECT_FALSE(s.shapes[0].object_to_world.is_identity());
+  EXPECT_TRUE(s.shapes[1].object_to_world.is_identity());
+  dir.write("open.pbrt", "AttributeBegin\n");
+  EXPECT_THROW(parse_scene_file(dir.write("m2.pbrt", "WorldBegin\nImport \"open.pbrt\"\n")), SceneError);
+  EXPECT_THROW(parse_scene_file(dir.write("m3.pbrt", "Import \"part.pbrt\"\n")), SceneError);  // world only
+}
+
+// pbrt-v4 looks media up when it builds the scene: a MediumInterface may come first.
+TEST(ParserMedia, MediumInterfaceMayNameAMediumDefinedLater) {
+  SceneDesc s = test::parse_text(
+      "MediumInterface \"\" \"air\"\nCamera \"perspective\"\nWorldBegin\n"
+      "MediumInterface \"fog\" \"air\"\nShape \"sphere\"\nLightSource \"point\"\n"
+      "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n"
+      "MakeNamedMedium \"air\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [0 0 0]\n");
+  ASSERT_EQ(s.media.size(), 2u);
+  EXPECT_EQ(s.shapes[0].inside_medium, 0);
+  EXPECT_EQ(s.shapes[0].outside_medium, 1);
+  EXPECT_TRUE(s.shapes[0].has_medium_interface);
+  EXPECT_EQ(s.camera.medium, 1);
+  EXPECT_EQ(s.lights[0].medium, 1);
+  // A name never defined: an error where it is used.
+  try {
+    parse_world("Shape \"sphere\"\nMediumInterface \"fog\" \"smog\"\nShape \"sphere\"\n"
+                "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n");
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.loc().line, 3) << e.what();
+    EXPECT_EQ(e.loc().column, 23) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unknown medium \"smog\""), std::string::npos) << e.what();
+  }
+  // Named but never used by anything: nothing to resolve, as in pbrt-v4.
+  EXPECT_NO_THROW(parse_world("MediumInterface \"nowhere\"\n"));
+}
+
+TEST(ParserMessages, ASceneWithoutLightsWarnsOnce) {
+  SceneDesc dark = parse_world("Shape \"sphere\"\nShape \"sphere\"\n");
+  int count = 0;
+  for (const std::string& w : dark.diagnostics.warnings) count += w.find("no lights") != std::string::npos;
+  EXPECT_EQ(count, 1);
+  EXPECT_TRUE(has_warning(dark, "test.pbrt:1:1: warning: the scene has no lights"));
+  EXPECT_FALSE(has_warning(parse_world("AreaLightSource \"diffuse\"\nShape \"sphere\"\n"), "no lights"));
+  EXPECT_FALSE(has_warning(parse_world("LightSource \"distant\"\n"), "no lights"));
+}
+
+// Every parameter nobody read is warned at its place, for unsupported materials and shapes
+// too; the unsupported thing itself once.
+TEST(ParserMessages, ParametersOfUnsupportedMaterialsAndShapesAreWarned) {
+  SceneDesc s = parse_world(
+      "LightSource \"point\"\n"
+      "Material \"hair\" \"float eumelanin\" 1.3 \"rgb reflectance\" [0.2 0.2 0.2]\n"
+      "Shape \"hyperboloid\" \"point3 p1\" [0 0 0]\n");
+  EXPECT_TRUE(has_warning(s, "test.pbrt:3:1: warning: unsupported material \"hair\""));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:3:17: warning: unused parameter \"float eumelanin\""));
+  EXPECT_FALSE(has_warning(s, "\"rgb reflectance\""));  // read by the diffuse stand-in
+  EXPECT_TRUE(has_warning(s, "test.pbrt:4:1: warning: unsupported Shape \"hyperboloid\""));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:4:21: warning: unused parameter \"point3 p1\""));
+  EXPECT_EQ(s.diagnostics.warnings.size(), 4u);
 }
 
 }  // namespace

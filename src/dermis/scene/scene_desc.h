@@ -67,7 +67,9 @@ struct RenderSettingsDesc {
 };
 
 struct TextureDesc {
-  enum class Type { Constant, ImageMap, Scale, Checkerboard, Mix, Bilerp };
+  enum class Type {
+    Constant, ImageMap, Scale, Checkerboard, Mix, DirectionMix, Bilerp, Dots, FBm, Wrinkled, Windy, Marble
+  };
   std::string name;
   Type type = Type::Constant;
   bool is_float = false;     // declared "float" (value holds the float in all channels), else "spectrum"
@@ -77,10 +79,21 @@ struct TextureDesc {
   bool invert = false;
   std::string encoding = "sRGB";  // "sRGB", "linear" or "gamma g" for 8-bit images
   std::string wrap = "repeat";    // repeat, black, clamp
+  // pbrt-v4's mapping: "uv" (uscale, vscale, udelta, vdelta), "spherical", "cylindrical",
+  // "planar" (v1, v2, udelta, vdelta), or "3d" for the classes that map the point in 3D
+  // (fbm, wrinkled, windy, marble). All but uv use texture_from_world: the inverse of the
+  // CTM at the Texture directive.
+  std::string mapping = "uv";
   float uscale = 1, vscale = 1, udelta = 0, vdelta = 0;
+  Vec3 v1{1, 0, 0}, v2{0, 1, 0};
+  Transform texture_from_world;
+  int octaves = 8;           // fbm, wrinkled, marble
+  float roughness = 0.5f;    // fbm, wrinkled, marble (pbrt-v4's omega)
+  float variation = 0.2f;    // marble; marble's frequency is `scale` (1)
+  Vec3 dir{0, 1, 0};         // directionmix: unit, world space
   int base = -1;             // scale: texture being scaled (index), or -1 (then `value` is scaled)
-  RGB value2{0, 0, 0};       // checkerboard, mix: tex2 (value holds tex1)
-  int tex1 = -1, tex2 = -1;  // checkerboard, mix: the two textures (index), or -1 for the values
+  RGB value2{0, 0, 0};       // checkerboard, mix, directionmix: tex2 (value holds tex1); dots: outside (value: inside)
+  int tex1 = -1, tex2 = -1;  // the same as textures (index; dots: inside, outside), or -1 for the values
   float amount = 0.5f;       // mix: the weight of tex2
   int amount_texture = -1;   // mix: a float texture for it, or -1
   std::array<RGB, 4> corners{};  // bilerp: v00, v01, v10, v11

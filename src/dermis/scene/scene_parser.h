@@ -44,6 +44,14 @@ class SceneParser {
     GraphicsState saved;
     SourceLoc loc;
   };
+  // A medium named by MediumInterface before its MakeNamedMedium: stored in the graphics
+  // state as kFirstPendingMedium - (index into pending_media_).
+  struct PendingMedium {
+    std::string name;
+    SourceLoc loc;  // the name in the MediumInterface
+  };
+  static constexpr int kFirstPendingMedium = -2;
+  int resolve_medium(int index) const;
   struct PendingInstance {
     std::string name;
     size_t index;  // into s_.instances
@@ -69,7 +77,12 @@ class SceneParser {
   void pixel_filter(const Token& d, TokenStream& ts);
   void sampler(const Token& d, TokenStream& ts);
   void integrator(const Token& d, TokenStream& ts);
-  void include(const Token& d, TokenStream& ts, const std::string& dir);
+  void include(const Token& d, TokenStream& ts);
+  std::vector<Token> read_scene_file(const std::string& path, const SourceLoc* from,
+                                     const std::vector<std::string>& chain);
+  // A file named in the scene at `at`, resolved as pbrt-v4 does: against the main scene
+  // file's directory (then, with a warning, beside the file that names it).
+  std::string scene_path(const std::string& file, const SourceLoc& at);
   void block_end(const Token& d, TokenStream& ts, BlockKind kind);
 
   // parser_shapes.cpp
@@ -94,11 +107,14 @@ class SceneParser {
   GraphicsState gs_;
   std::vector<Block> blocks_;
   bool in_world_ = false;
+  SourceLoc world_loc_;  // the WorldBegin
   std::map<std::string, Transform> coordinate_systems_;
   std::map<std::string, int> named_materials_, spectrum_textures_, float_textures_, media_, objects_;
   int open_object_ = -1;  // index into s_.objects while between ObjectBegin and ObjectEnd
   std::vector<PendingInstance> pending_instances_;
-  std::vector<std::string> include_stack_;  // canonical paths of the files being read
+  std::vector<PendingMedium> pending_media_;
+  std::string main_dir_;                    // directory of the main scene file (pbrt-v4's search directory)
+  std::vector<std::string> outer_files_;    // while Importing: the files open in the importing streams
 };
 
 // An absolute, normalized path for `file` written in a scene whose directory is `dir`.

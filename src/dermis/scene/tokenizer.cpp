@@ -157,11 +157,41 @@ std::vector<Token> tokenize(const std::string& text, const std::string& file) {
 
 namespace dermis {
 
+TokenStream::TokenStream(std::vector<Token> tokens, std::string file) { include(std::move(tokens), std::move(file)); }
+
+void TokenStream::include(std::vector<Token> tokens, std::string file) {
+  const int source = int(files_.size());
+  files_.push_back(std::move(file));
+  for (Token& t : tokens) t.source = source;
+  frames_.push_back({std::move(tokens), source, 0});
+}
+
+const Token* TokenStream::peek() const {
+  for (auto f = frames_.rbegin(); f != frames_.rend(); ++f)
+    if (f->pos < f->tokens.size()) return &f->tokens[f->pos];
+  return nullptr;
+}
+
+const Token& TokenStream::next() {
+  // Finished included files are closed here (not in peek), so that a token just returned
+  // stays valid until the next call.
+  while (frames_.size() > 1 && frames_.back().pos >= frames_.back().tokens.size()) frames_.pop_back();
+  Frame& f = frames_.back();
+  return f.tokens[f.pos++];
+}
+
+std::vector<std::string> TokenStream::open_files() const {
+  std::vector<std::string> open;
+  for (const Frame& f : frames_) open.push_back(files_[f.source]);
+  return open;
+}
+
 SourceLoc TokenStream::end_loc() const {
-  if (tokens_.empty()) return {file_, 1, 1};
-  const Token& t = tokens_.back();
+  const Frame& f = frames_.back();
+  if (f.tokens.empty()) return {files_[f.source], 1, 1};
+  const Token& t = f.tokens.back();
   int width = t.kind == Token::Kind::String ? int(t.text.size()) + 2 : int(t.text.size());
-  return {file_, t.line, t.column + width};
+  return {files_[f.source], t.line, t.column + width};
 }
 
 }  // namespace dermis

@@ -15,6 +15,7 @@ struct Token {
   std::string text;    // identifier / number as written; string contents with escapes resolved
   double number = 0;   // Number tokens only
   int line = 0, column = 0;  // 1-based; the column counts bytes
+  int source = 0;            // TokenStream: which of its files the token came from
 };
 
 // Human-readable token kind ("string", "number", "'['"...), for messages.
@@ -32,27 +33,40 @@ std::vector<Token> tokenize(const std::string& text, const std::string& file);
 
 namespace dermis {
 
-// A cursor over the tokens of one file.
+// A cursor over the tokens of a scene file and the files it includes. As in pbrt-v4, an
+// included file's tokens are read in place of the Include, and the stream then goes on
+// with the including file: a parameter list may begin in one file and continue in the
+// other.
 class TokenStream {
  public:
-  TokenStream(std::vector<Token> tokens, std::string file) : tokens_(std::move(tokens)), file_(std::move(file)) {}
-  bool at_end() const { return pos_ >= tokens_.size(); }
-  // The next token, or nullptr at the end of the file.
-  const Token* peek() const { return at_end() ? nullptr : &tokens_[pos_]; }
-  const Token& next() { return tokens_[pos_++]; }
-  const std::string& file() const { return file_; }
-  // The directory relative file names in parameter values resolve against.
+  TokenStream(std::vector<Token> tokens, std::string file);
+  // Reads the tokens of `file` next, then the rest of the current one.
+  void include(std::vector<Token> tokens, std::string file);
+  bool at_end() const { return peek() == nullptr; }
+  // The next token, or nullptr at the end of the last file.
+  const Token* peek() const;
+  const Token& next();
+  // The file of the innermost open file.
+  const std::string& file() const { return files_[frames_.back().source]; }
+  SourceLoc loc(const Token& t) const { return {files_[t.source], t.line, t.column}; }
+  // The directory relative file names in parameter values resolve against (a .spd spectrum):
+  // the main scene file's, for every file of the stream, as pbrt-v4 resolves them.
   const std::string& base_dir() const { return base_dir_; }
   void set_base_dir(std::string dir) { base_dir_ = std::move(dir); }
-  SourceLoc loc(const Token& t) const { return {file_, t.line, t.column}; }
-  // Where the end of the file is (just after the last token), for "unexpected end" errors.
+  // Where the end of the innermost file is (just after its last token), for "unexpected end" errors.
   SourceLoc end_loc() const;
+  // The files being read, outermost first (the main file, then each Include in turn).
+  std::vector<std::string> open_files() const;
 
  private:
-  std::vector<Token> tokens_;
-  std::string file_;
+  struct Frame {
+    std::vector<Token> tokens;
+    int source = 0;
+    size_t pos = 0;
+  };
+  std::vector<Frame> frames_;
+  std::vector<std::string> files_;  // by Token::source; never shrinks, so that locations stay valid
   std::string base_dir_;
-  size_t pos_ = 0;
 };
 
 }  // namespace dermis

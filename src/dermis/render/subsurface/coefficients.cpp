@@ -83,12 +83,12 @@ std::unique_ptr<sss::AlbedoInversion> shared_table(const sss::AlbedoTableConfig&
 
 }  // namespace
 
-MediumAt medium_at(const SubsurfaceParams& p, const std::vector<Texture>* textures, Vec2 uv) {
+MediumAt medium_at(const SubsurfaceParams& p, const std::vector<Texture>* textures, const TextureContext& at) {
   MediumAt m{p.sigma_a, p.sigma_s, p.reflectance, p.mfp};
   if (!textures || !p.textured()) return m;
   // Lengths are divided by scale, coefficients multiplied (pbrt-v4), as for constants.
   auto texture = [&](int index, float factor, float lo, float hi) {
-    RGB v = evaluate_texture(*textures, index, uv) * factor;
+    RGB v = evaluate_texture(*textures, index, at) * factor;
     for (int c = 0; c < 3; ++c) v[c] = std::clamp(std::isfinite(v[c]) ? v[c] : lo, lo, hi);
     return v;
   };

@@ -26,9 +26,10 @@ struct MediumAt {
   std::optional<RGB> sigma_a, sigma_s, reflectance, mfp;
 };
 
-// The material's textures evaluated at uv (textures: the scene's; reflectance clamped
+// The material's textures evaluated at `at` (textures: the scene's; reflectance clamped
 // to [0, 1], lengths and coefficients kept positive). Without textures: the constants.
-MediumAt medium_at(const SubsurfaceParams& params, const std::vector<Texture>* textures = nullptr, Vec2 uv = {});
+MediumAt medium_at(const SubsurfaceParams& params, const std::vector<Texture>* textures = nullptr,
+                   const TextureContext& at = {});
 
 struct Coefficients {
   RGB sigma_a, sigma_s;

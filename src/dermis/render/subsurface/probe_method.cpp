@@ -92,7 +92,7 @@ bool ProbeMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Su
   const Vec3d p = to_d(entry.hit.p);
   if (disk_ && params_.textured()) {
     // The entry point's own parameters.
-    const sss::ProfileRGB profile = make_profile(params_, medium_at(params_, textures_, entry.hit.uv), table_);
+    const sss::ProfileRGB profile = make_profile(params_, medium_at(params_, textures_, texture_context(entry.hit)), table_);
     const sss::DiskProbeSampler disk(profile, channel_weights(profile), axes(method_));
     return sample_disk(profile, disk, entry, sampler, out);
   }

@@ -51,7 +51,7 @@ bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Sub
   if (!params_.textured()) return walk(entry, *step_, sampler, out);
   // The entry point's own medium.
   const sss::WalkMedium m =
-      walk_medium(coefficients_from(medium_at(params_, textures_, entry.hit.uv), table_), params_.g);
+      walk_medium(coefficients_from(medium_at(params_, textures_, texture_context(entry.hit)), table_), params_.g);
   for (int c = 0; c < 3; ++c)
     if (!(m.sigma_t[c] > 0) || !std::isfinite(m.sigma_t[c])) return false;  // a texture without extinction
   return walk(entry, sss::make_walk_step(m, settings_), sampler, out);
