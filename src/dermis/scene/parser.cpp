@@ -110,9 +110,13 @@ std::string SceneParser::scene_path(const std::string& file, const SourceLoc& at
   // that names it: accepted with a warning.
   const std::string beside = resolve_path(file, fs::path(resolve_path(at.file, ".")).parent_path().string());
   if (beside != main && fs::exists(beside, ec)) {
-    s_.diagnostics.warn(at, fmt::format("'{}' is not in the main scene file's directory ('{}'), where pbrt-v4 looks; "
-                                        "using '{}' beside the file that names it",
-                                        file, main_dir_, beside));
+    // One cause, one warning: the first such path is named, the others follow silently.
+    if (!warned_beside_)
+      s_.diagnostics.warn(at, fmt::format("'{}' is not in the main scene file's directory ('{}'), where pbrt-v4 looks; "
+                                          "using '{}' beside the file that names it (further paths found this way "
+                                          "are not warned)",
+                                          file, main_dir_, beside));
+    warned_beside_ = true;
     return beside;
   }
   return main;

@@ -273,6 +273,12 @@ TEST(ParserInclude, BesideTheIncludingFileIsAFallbackWithAWarning) {
   SceneDesc s = parse_scene_file(main);
   EXPECT_TRUE(has_warning(s, dir.path() + "/sub/outer.pbrt:2:9: warning: 'inner.pbrt' is not in the main scene file's "
                                           "directory"));
+  // One cause, one warning: a chain of such Includes is warned about once.
+  for (int i = 0; i < 5; ++i) dir.write("c/inc/" + std::to_string(i) + ".pbrt", "Include \"" + std::to_string(i + 1) + ".pbrt\"\n");
+  dir.write("c/inc/5.pbrt", "Shape \"sphere\"\n");
+  SceneDesc c = parse_scene_file(dir.write("c/main.pbrt", "WorldBegin\nLightSource \"point\"\nInclude \"inc/0.pbrt\"\n"));
+  EXPECT_EQ(c.shapes.size(), 1u);
+  EXPECT_EQ(c.diagnostics.warnings.size(), 1u);
   ASSERT_EQ(s.shapes.size(), 2u);
   EXPECT_FLOAT_EQ(s.shapes[0].radius, 7);
   // Include shares the graphics state: the Translate of outer.pbrt still applies.

@@ -114,6 +114,7 @@ class SceneParser {
   std::vector<PendingInstance> pending_instances_;
   std::vector<PendingMedium> pending_media_;
   std::string main_dir_;                    // directory of the main scene file (pbrt-v4's search directory)
+  bool warned_beside_ = false;              // scene_path's fallback has been warned about
   std::vector<std::string> outer_files_;    // while Importing: the files open in the importing streams
 };
 
