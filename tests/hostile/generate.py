@@ -136,7 +136,8 @@ DIRECTIVES = {  # directive: (a valid use, uses that must be refused)
     "MakeNamedMedium": ('MakeNamedMedium "f" "string type" "homogeneous"',
                         ["MakeNamedMedium", 'MakeNamedMedium "f"', ('MakeNamedMedium "f" "string type" "plasma"', 0)]),
     "MediumInterface": ('MakeNamedMedium "f" "string type" "homogeneous" MediumInterface "f" ""',
-                        ["MediumInterface", 'MediumInterface "nowhere" ""', "MediumInterface 1 2"]),
+                        # an unknown name is an error once something uses it (pbrt-v4 resolves at use)
+                        ["MediumInterface", 'MediumInterface "nowhere" "" Shape "sphere"', "MediumInterface 1 2"]),
     "ReverseOrientation": ("ReverseOrientation", ["ReverseOrientation 1"]),
     "Attribute": ('Attribute "shape" "float radius" 2', ["Attribute", ('Attribute "nothing" "float x" 1', 0)]),
     "Unknown": ('', ["Shpe \"sphere\"", "Frobnicate", "worldbegin", "]", "[ 1 2 ]", '"lonely string"', "42"]),
