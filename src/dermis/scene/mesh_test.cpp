@@ -66,7 +66,7 @@ TEST(ShapeTriangleMesh, ValuesAsWritten) {
 }
 
 TEST(ShapeSphere, RadiusAndPartialTessellated) {
-  SceneDesc s = parse_world("Shape \"sphere\" \"float radius\" 2.5\nShape \"sphere\" \"float zmax\" 0.5\n");
+  SceneDesc s = parse_world("LightSource \"point\"\nShape \"sphere\" \"float radius\" 2.5\nShape \"sphere\" \"float zmax\" 0.5\n");
   EXPECT_EQ(s.shapes[0].type, ShapeDesc::Type::Sphere);
   EXPECT_FLOAT_EQ(s.shapes[0].radius, 2.5f);
   EXPECT_EQ(s.shapes[1].type, ShapeDesc::Type::TriangleMesh);  // quadric_shapes_test.cpp

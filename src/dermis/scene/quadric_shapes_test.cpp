@@ -24,7 +24,7 @@ double phi_of(Vec3 p) {
 }
 
 TEST(ShapeCylinder, PbrtDefaultsOutwardNormalsAndUv) {
-  SceneDesc s = parse_world("Shape \"cylinder\"\n");
+  SceneDesc s = parse_world("LightSource \"point\"\nShape \"cylinder\"\n");  // lit: no "no lights" warning
   ASSERT_EQ(s.shapes.size(), 1u);
   EXPECT_TRUE(s.diagnostics.warnings.empty());
   const TriangleMeshDesc& m = s.shapes[0].mesh;
@@ -65,6 +65,7 @@ TEST(ShapeCylinder, PartialTurnAndErrors) {
 
 TEST(ShapeSphere, PartialSphereIsTheZoneArchimedesGives) {
   SceneDesc s = parse_world(
+      "LightSource \"point\"\n"
       "Shape \"sphere\" \"float radius\" 2 \"float zmin\" -1 \"float zmax\" 1.5 \"float phimax\" 270\n"
       "Shape \"sphere\" \"float radius\" 2\n");
   EXPECT_TRUE(s.diagnostics.warnings.empty());
@@ -108,7 +109,7 @@ TEST(ShapeSphere, CapsEndInASinglePole) {
 }
 
 TEST(ShapeDisk, PartialDiskCoversItsAngle) {
-  SceneDesc s = parse_world("Shape \"disk\" \"float phimax\" 180 \"float innerradius\" 0.5\n");
+  SceneDesc s = parse_world("LightSource \"point\"\nShape \"disk\" \"float phimax\" 180 \"float innerradius\" 0.5\n");
   EXPECT_TRUE(s.diagnostics.warnings.empty());
   const TriangleMeshDesc& m = s.shapes[0].mesh;
   double area = 0;
