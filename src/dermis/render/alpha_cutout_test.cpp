@@ -17,7 +17,8 @@ namespace dermis {
 namespace {
 
 std::unique_ptr<RenderScene> assemble(const std::string& world) {
-  SceneDesc d = parse_scene_string("WorldBegin\n" + world, "alpha.pbrt");
+  // A light, so that the scene is not warned as unlit; the tests trace rays only.
+  SceneDesc d = parse_scene_string("WorldBegin\nLightSource \"point\"\n" + world, "alpha.pbrt");
   EXPECT_TRUE(d.diagnostics.warnings.empty()) << d.diagnostics.warnings.front();
   Diagnostics diag;
   return assemble_scene(d, diag);

@@ -187,6 +187,7 @@ TEST(LoopSubdivision, NonManifoldMeshesAreRefused) {
 
 TEST(LoopSubdivision, ParsedAsPbrtV4Shape) {
   SceneDesc s = test::parse_world(
+      "LightSource \"point\"\n"
       "Shape \"loopsubdiv\" \"point3 P\" [1 1 1  1 -1 -1  -1 1 -1  -1 -1 1] \"integer indices\" [0 1 2 0 3 1 0 2 3 1 3 2]\n"
       "Shape \"loopsubdiv\" \"integer levels\" 1 \"point3 P\" [1 1 1  1 -1 -1  -1 1 -1  -1 -1 1] "
       "\"integer indices\" [0 1 2 0 3 1 0 2 3 1 3 2]\n");
