@@ -74,10 +74,13 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3
   }
   Vec3 start = in.p, start_n = in.ng;
   SurfaceHit last;  // the boundary the latest flight was traced to: where a walk ends
-  auto tracer = [&](Vec3 o, Vec3 d) {
+  auto tracer = [&](Vec3 o, Vec3 d, double max_t) {
     sss::BoundaryHit b;
     Ray r{o, d};
     if (o == start) r.o = offset_ray_origin(start, start_n, d);  // leave the surface we stand on
+    // Bounded by the flight's distance (random_walk.h), padded so that every crossing
+    // within max_t of o is found from the offset origin: the walk compares t itself.
+    if (std::isfinite(max_t)) r.tmax = float(max_t) * 1.0001f + length(r.o - o);
     if (!entry.tracer.first_boundary(r, last)) return b;
     b.hit = true;
     b.p = last.p;

@@ -12,7 +12,7 @@ namespace dermis::sss {
 
 // The half-space z < 0: the plane z = 0, outward normal +z.
 struct HalfspaceTracer {
-  BoundaryHit operator()(Vec3 o, Vec3 d) const {
+  BoundaryHit operator()(Vec3 o, Vec3 d, double /*max_t: exact anyway*/ = 0) const {
     if (!(d.z > 0)) return {};
     const float t = std::max(0.0f, -o.z / d.z);
     Vec3 p = o + d * t;
@@ -25,7 +25,7 @@ struct HalfspaceTracer {
 // A ray starting on one face and running along it finds nothing.
 struct SlabTracer {
   double thickness = 1;
-  BoundaryHit operator()(Vec3 of, Vec3 df) const {
+  BoundaryHit operator()(Vec3 of, Vec3 df, double /*max_t: exact anyway*/ = 0) const {
     const Vec3d o(of), d(df);
     if (d.z == 0) return {};
     const double plane = d.z > 0 ? 0.0 : -thickness;
@@ -39,7 +39,7 @@ struct SlabTracer {
 // A ball of radius r at the origin: the far root of |o + t d| = r.
 struct SphereTracer {
   double radius = 1;
-  BoundaryHit operator()(Vec3 of, Vec3 df) const {
+  BoundaryHit operator()(Vec3 of, Vec3 df, double /*max_t: exact anyway*/ = 0) const {
     const Vec3d o(of), d(df);
     const double b = dot(o, d), c = dot(o, o) - radius * radius;
     const double t = -b + std::sqrt(std::max(0.0, b * b - c));  // c <= 0 inside: the positive root

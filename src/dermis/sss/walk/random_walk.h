@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "dermis/core/frame.h"
@@ -80,7 +81,7 @@ WalkGuide make_walk_guide(const WalkSettings& settings, Vec3 entry_p, Vec3 entry
   guide.entry_p = Vec3d(entry_p);
   guide.entry_n = normalize(Vec3d(entry_n));
   if (settings.backward_guiding && settings.sampling != WalkSampling::Classical) {
-    const BoundaryHit far = tracer(entry_p, -entry_n);
+    const BoundaryHit far = tracer(entry_p, -entry_n, std::numeric_limits<double>::infinity());
     // A ray leaving the medium meets a boundary facing along it: n_far . n_entry < 0.
     if (far.hit && dot(Vec3d(far.n), guide.entry_n) < 0) {
       guide.has_far = true;
@@ -100,9 +101,12 @@ inline std::array<double, 3> channel_probabilities(const std::array<double, 3>& 
 // The walk (settings validated by make_walk_step). guide.entry_n is the outward normal at
 // the entry point (the principal axis of the guiding, as in the seed), dir_in the first
 // propagation direction (into the medium).
-// tracer(Vec3 origin, Vec3 unit_direction) -> BoundaryHit: the first boundary crossing
-// with t > 0; for the first flight the origin lies on the boundary and the tracer must
-// skip that surface (offset or ignore t ~ 0). Returns true when the walk left the
+// tracer(Vec3 origin, Vec3 unit_direction, double max_t) -> BoundaryHit: the first
+// boundary crossing with 0 < t <= max_t (a tracer may also report one farther away; the
+// walk compares); for the first flight the origin lies on the boundary and the tracer must
+// skip that surface (offset or ignore t ~ 0). max_t is the flight's sampled distance: a
+// ray query bounded by it is much cheaper than the nearest boundary along an endless ray
+// in a large mesh, and finds the same crossing whenever the flight reaches one. Returns true when the walk left the
 // medium (out filled); false when it was absorbed by Russian roulette, truncated
 // (out.truncated) or lost (no boundary along an infinite flight). A caller that
 // reflects the walk back at the boundary calls random_walk again from the exit point.
@@ -133,7 +137,7 @@ bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, c
   update_back_shares(position);
   FlightProposal flight = step.propose_flight(normalize(Vec3d(dir_in)), axes, q, rng);
   for (int steps = 0;;) {
-    const BoundaryHit hit = tracer(Vec3(position), Vec3(flight.direction));
+    const BoundaryHit hit = tracer(Vec3(position), Vec3(flight.direction), flight.distance);
     if (hit.hit && flight.distance >= double(hit.t)) {
       const std::array<double, 3> w = step.passage_weights(flight, axes, double(hit.t), q);
       for (int c = 0; c < 3; ++c) out.weight[c] = float(throughput[c] * w[c]);
