@@ -402,13 +402,22 @@ case("cli_load_pointcloud_unused", OK, 0, args=RENDER + ["--load-pointcloud", "n
      note="no material uses the pointcloud method: the option is ignored (a warning would be better)")
 
 
-def write(root):
+def shard(index, count):
+    """The names of shard `index` of `count`: every count-th case, so that each shard gets
+    some of every family (the slow ones too)."""
+    return {c["name"] for i, c in enumerate(cases) if i % count == index}
+
+
+def write(root, only=None):
+    """Writes every case (or those named in `only`) under root; returns how many."""
     root = pathlib.Path(root)
     shutil.rmtree(root, ignore_errors=True)
     names = set()
     for c in cases:
         assert c["name"] not in names, c["name"]
         names.add(c["name"])
+        if only is not None and c["name"] not in only:
+            continue
         d = root / c["name"]
         (d / "out").mkdir(parents=True)
         for rel, data in c["files"].items():
@@ -420,7 +429,7 @@ def write(root):
                 p.write_bytes(data if isinstance(data, bytes) else data.encode())
         meta = {k: c[k] for k in ("args", "expect", "kind", "note")}
         (d / "case.json").write_text(json.dumps(meta, indent=1))
-    return len(cases)
+    return len(cases) if only is None else len(only)
 
 
 if __name__ == "__main__":

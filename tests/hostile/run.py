@@ -2,10 +2,11 @@
 """Runs `dermis` on every case of the hostile corpus (generate.py) and checks each:
 no signal, the exit status the case expects (0 or 2), a message on stderr for every
 refusal, `file:line:col: error:` in every scene error, a short message (no 10 MB echo),
-no output file after a refusal, an image after a success, and no case slower than
---slow seconds. Cases run in a small thread pool. Exit 0 when every case passes.
+no output file after a refusal, an image after a success, and no case using more than
+--slow seconds of CPU (a hang: more than --timeout seconds on the clock). Cases run in a small thread pool. Exit 0 when every case passes.
+`--shard I/N` runs every N-th case from the I-th (ctest runs N shards side by side).
 
-Usage: run.py --binary build/dermis --work DIR [--jobs 3] [--only SUBSTRING]"""
+Usage: run.py --binary build/dermis --work DIR [--jobs 3] [--only SUBSTRING] [--shard I/N]"""
 import argparse
 import concurrent.futures
 import json
@@ -14,6 +15,8 @@ import pathlib
 import re
 import subprocess
 import sys
+import tempfile
+import threading
 import time
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -29,18 +32,32 @@ def listing(d):
     return sorted(str(p.relative_to(d)) for p in d.rglob("*"))
 
 
+def run(args, cwd, timeout):
+    """Runs args; returns (exit status or None when killed as a hang, stderr, CPU seconds of
+    the process). CPU time, not wall time, is what --slow bounds: a loaded machine makes
+    every case slow on the clock, only a pathological input makes one cost CPU."""
+    with tempfile.TemporaryFile() as err:
+        p = subprocess.Popen(args, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=err)
+        killed = threading.Event()
+
+        def kill():
+            killed.set()
+            p.kill()
+        timer = threading.Timer(timeout, kill)
+        timer.start()
+        _, status, usage = os.wait4(p.pid, 0)
+        timer.cancel()
+        p.returncode = os.waitstatus_to_exitcode(status)  # reaped here: Popen must not wait again
+        err.seek(0)
+        text = err.read().decode(errors="replace")
+    return (None if killed.is_set() else p.returncode), text, usage.ru_utime + usage.ru_stime
+
+
 def run_case(binary, d, timeout, slow):
     meta = json.loads((d / "case.json").read_text())
     out = d / "out"
     before = listing(out)
-    start = time.monotonic()
-    try:
-        p = subprocess.run([binary] + meta["args"], cwd=d, stdin=subprocess.DEVNULL, capture_output=True,
-                           timeout=timeout)
-        rc, err = p.returncode, p.stderr.decode(errors="replace")
-    except subprocess.TimeoutExpired as e:
-        rc, err = None, (e.stderr or b"").decode(errors="replace")
-    took = time.monotonic() - start
+    rc, err, took = run([binary] + meta["args"], d, timeout)
     problems = []
     if rc is None:
         problems.append(f"hang: killed after {timeout} s")
@@ -61,7 +78,7 @@ def run_case(binary, d, timeout, slow):
     if rc == 0 and meta["expect"] == 0 and not (out / "image.exr").exists():
         problems.append("exit 0 but no image written")
     if took > slow and rc is not None:
-        problems.append(f"took {took:.1f} s (more than {slow} s)")
+        problems.append(f"took {took:.1f} s of CPU (more than {slow} s)")
     return d.name, rc, took, err, problems, meta
 
 
@@ -70,14 +87,21 @@ def main():
     ap.add_argument("--binary", required=True)
     ap.add_argument("--work", required=True)
     ap.add_argument("--jobs", type=int, default=3)
-    ap.add_argument("--timeout", type=float, default=30, help="seconds before a case is killed as a hang")
-    ap.add_argument("--slow", type=float, default=10, help="seconds a case may take")
+    ap.add_argument("--timeout", type=float, default=60, help="seconds (wall) before a case is killed as a hang")
+    ap.add_argument("--slow", type=float, default=10, help="seconds of CPU a case may take")
     ap.add_argument("--only", default="", help="run the cases whose name contains this")
+    ap.add_argument("--shard", default="0/1", help="I/N: run shard I (from 0) of N")
     a = ap.parse_args()
+    try:
+        index, count = (int(v) for v in a.shard.split("/"))
+        assert 0 <= index < count
+    except (ValueError, AssertionError):
+        ap.error(f"--shard must be I/N with 0 <= I < N, got {a.shard!r}")
     binary = os.path.abspath(a.binary)
     cases_dir = pathlib.Path(a.work) / "cases"
-    n = generate.write(cases_dir)
-    dirs = sorted(d for d in cases_dir.iterdir() if a.only in d.name)
+    names = {name for name in generate.shard(index, count) if a.only in name}
+    n = generate.write(cases_dir, names)
+    dirs = sorted(d for d in cases_dir.iterdir())
     start = time.monotonic()
     results = []
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
@@ -85,15 +109,16 @@ def main():
             results.append(r)
     failed = [r for r in results if r[4]]
     for name, rc, took, err, problems, meta in failed:
-        print(f"FAIL {name} (exit {rc}, {took:.1f} s): {'; '.join(problems)}")
+        print(f"FAIL {name} (exit {rc}, {took:.1f} CPU-s): {'; '.join(problems)}")
         print("     args:", " ".join(meta["args"]))
         print("     stderr:", err.strip()[:300].replace("\n", "\n             "))
     refused = sum(1 for r in results if r[1] == 2)
     rendered = sum(1 for r in results if r[1] == 0)
     slowest = max(results, key=lambda r: r[2]) if results else None
-    print(f"hostile corpus: {len(results)} of {n} cases run in {time.monotonic() - start:.1f} s, "
+    print(f"hostile corpus{'' if count == 1 else f' shard {index}/{count}'}: {len(results)} of {n} cases run in {time.monotonic() - start:.1f} s, "
           f"{refused} refused with exit 2, {rendered} rendered, {len(failed)} failed"
-          + (f"; slowest {slowest[0]} {slowest[2]:.1f} s" if slowest else ""))
+          + (f"; {sum(r[2] for r in results):.1f} CPU-s in all, the most {slowest[0]} {slowest[2]:.1f} CPU-s"
+             if slowest else ""))
     return 1 if failed else 0
 
 
