@@ -242,7 +242,7 @@ void EmbreeScene::fill_hit(const RTCRayHit& rh, const Ray& ray, SurfaceHit& hit)
     p = s.center + l * s.radius;
     ng = s.flip_normals ? -l : l;
     ns = ng;
-    hit.uv = surface_uv(s, 0, 0, 0, l);
+    hit.uv = uv_needed_ ? surface_uv(s, 0, 0, 0, l) : Vec2(0, 0);
   }
   if (inst) {
     p = inst->object_to_world.point(p);

@@ -35,6 +35,10 @@ class EmbreeScene {
              const std::vector<std::vector<int>>& objects, const std::vector<Instance>& instances,
              AlphaTextureLookup alpha = {});
 
+  // Whether hits need their (u, v): only a scene with textures reads them. Without, the
+  // sphere's (acos, atan2 per hit: 5 % of a medium render) is skipped and hit.uv is (0, 0).
+  void set_uv_needed(bool needed) { uv_needed_ = needed; }
+
   // Closest hit with t in (0, ray.tmax). Fills hit (world space) on success.
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
   // Any hit with t in (0, ray.tmax).
@@ -65,6 +69,7 @@ class EmbreeScene {
   std::vector<Instance> instances_;
   std::vector<std::unique_ptr<AlphaGeometry>> alpha_geometries_;
   AlphaTextureLookup alpha_lookup_;
+  bool uv_needed_ = true;
   Vec3 center_;
   float radius_ = 0;
 };

@@ -61,5 +61,32 @@ TEST(EmbreeScene, FastHitRecordMatchesTheShapesTriangle) { expect_hits_match_the
 TEST(EmbreeScene, FastHitRecordMatchesTheShapesTriangleReversed) { expect_hits_match_the_shape(true, false); }
 TEST(EmbreeScene, FastHitRecordMatchesTheShapesTriangleInstanced) { expect_hits_match_the_shape(false, true); }
 
+// A sphere's (u, v) is pbrt-v4's (phi / 2 pi, 1 - theta / pi) about its centre; a scene that
+// says it needs no (u, v) (no textures) gets (0, 0) and the same point and normal.
+TEST(EmbreeScene, SphereUvOnlyWhenNeeded) {
+  Shape sphere;
+  sphere.type = Shape::Type::Sphere;
+  sphere.center = Vec3(1, 2, 3);
+  sphere.radius = 2;
+  std::vector<Shape> shapes{sphere};
+  EmbreeScene with_uv, without_uv;
+  with_uv.build(shapes, {0}, {}, {});
+  without_uv.build(shapes, {0}, {}, {});
+  without_uv.set_uv_needed(false);
+  // From below-left: the hit point's direction from the centre is l = (-1, -1, -1) / sqrt 3.
+  const Vec3 l = normalize(Vec3(-1, -1, -1));
+  const Ray ray{sphere.center + l * 10.0f, -l};
+  SurfaceHit a, b;
+  ASSERT_TRUE(with_uv.intersect(ray, a));
+  ASSERT_TRUE(without_uv.intersect(ray, b));
+  const float phi = std::atan2(l.y, l.x) + 2 * kPi, theta = std::acos(l.z);
+  EXPECT_NEAR(a.uv.x, phi / (2 * kPi), 1e-4f);
+  EXPECT_NEAR(a.uv.y, 1 - theta / kPi, 1e-4f);
+  EXPECT_EQ(b.uv.x, 0.0f);
+  EXPECT_EQ(b.uv.y, 0.0f);
+  EXPECT_EQ(a.p.x, b.p.x);
+  EXPECT_EQ(a.ng.z, b.ng.z);
+}
+
 }  // namespace
 }  // namespace dermis

@@ -360,6 +360,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
       },
       &sc->textures};
   sc->embree->build(sc->shapes, top_level, objects, instances, alpha_lookup);
+  sc->embree->set_uv_needed(!sc->textures.empty());  // only textures read (u, v)
 
   for (const LightDesc& d : desc.lights) {
     Light l;
