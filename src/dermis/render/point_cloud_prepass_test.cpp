@@ -127,5 +127,27 @@ TEST(PointCloudRender, TheCloudIsCappedAtItsBudgetWithAWarning) {
   EXPECT_TRUE(warnings.empty());
 }
 
+// The blue-noise placement (the first, single-threaded part of the pre-pass) shows its own
+// progress, and a cancel (Ctrl-C) stops it there: no irradiance pass is started.
+TEST(PointCloudRender, PlacingThePointsShowsProgressAndStopsOnCancel) {
+  std::string text = slab(true);
+  const std::string samples = "\"integer irradiancesamples\" 4";
+  text.replace(text.find(samples), samples.size(), "\"integer irradiancesamples\" 1 \"integer maxpoints\" 20000");
+  Diagnostics diag;
+  auto sc = assemble_scene(parse_scene_string(text), diag);
+  prepare_scene(*sc, {});
+  ::testing::internal::CaptureStderr();
+  build_point_clouds(*sc, {}, Progress::Style::kLines, nullptr, nullptr);
+  const std::string shown = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(shown.find("Point cloud 1: placing 20000 points"), std::string::npos) << shown;
+  EXPECT_NE(shown.find("Point cloud 1 (20000 points)"), std::string::npos) << shown;
+
+  const std::atomic<bool> cancel{true};
+  ::testing::internal::CaptureStderr();
+  EXPECT_THROW(build_point_clouds(*sc, {}, Progress::Style::kLines, &cancel, nullptr), Interrupted);
+  const std::string stopped = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(stopped.find("Point cloud 1 (20000 points)"), std::string::npos) << stopped;
+}
+
 }  // namespace
 }  // namespace dermis

@@ -157,6 +157,11 @@ std::vector<SurfacePoint> uniform_random_points(const std::vector<Vec3>& positio
   return points;
 }
 
+std::size_t distribution_steps(std::size_t count, const DistributionOptions& options) {
+  const std::size_t m = count * std::size_t(std::max(options.candidates_per_point, 1));
+  return m + m + (m - count);
+}
+
 std::vector<SurfacePoint> distribute_points(const std::vector<Vec3>& positions, const std::vector<uint32_t>& indices,
                                             std::size_t count, uint64_t seed, DistributionOptions options) {
   validate_mesh(positions, indices);
@@ -164,9 +169,16 @@ std::vector<SurfacePoint> distribute_points(const std::vector<Vec3>& positions, 
   if (options.candidates_per_point < 1)
     throw std::invalid_argument("distribute_points: candidates_per_point must be >= 1");
   const std::size_t m = count * std::size_t(options.candidates_per_point);
+  // Progress every 4096 steps of the weighing and elimination loops (a call, not a draw).
+  std::size_t done = 0;
+  auto step = [&](std::size_t i) {
+    if (options.progress && (i & 4095) == 4095) options.progress(done + i + 1);
+  };
   double area = 0;
   std::vector<SurfacePoint> cand = sample_candidates(positions, indices, m, seed, &area);
   spatial_order(cand);
+  done = m;
+  if (options.progress) options.progress(done);
   if (m > count) {
     // Yuksel 2015, eq. 5 (2D sampling domain): r_max = sqrt(A / (2 sqrt(3) N)).
     const double r_max = std::sqrt(area / (2 * std::sqrt(3.0) * double(count)));
@@ -183,12 +195,16 @@ std::vector<SurfacePoint> distribute_points(const std::vector<Vec3>& positions, 
     for (std::size_t i = 0; i < m; ++i) pos[i] = cand[i].position;
     const PointGrid grid(pos, reach);
     std::vector<double> w(m, 0.0);
-    for (uint32_t i = 0; i < m; ++i)
+    for (uint32_t i = 0; i < m; ++i) {
       grid.for_each_within(pos[i], reach, [&](uint32_t j, double d2) {
         if (j != i) w[i] += weight(d2);
       });
+      step(i);
+    }
+    done += m;
     EliminationHeap heap(w);
     for (std::size_t removed = 0; removed < m - count; ++removed) {
+      step(removed);
       const uint32_t i = heap.pop();
       grid.for_each_within(pos[i], reach, [&](uint32_t j, double d2) {
         if (j != i && heap.contains(j)) heap.decrease(j, weight(d2));
@@ -201,6 +217,7 @@ std::vector<SurfacePoint> distribute_points(const std::vector<Vec3>& positions, 
     cand = std::move(kept);
   }
   for (auto& p : cand) p.area = float(area / double(count));
+  if (options.progress) options.progress(distribution_steps(count, options));
   return cand;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "dermis/core/vec.h"
@@ -27,7 +28,15 @@ double point_count_for_density(double area, double mean_free_path, double points
 
 struct DistributionOptions {
   int candidates_per_point = 5;  // candidates = this x count (Yuksel uses 5)
+  // Called now and then (every few thousand steps, from the calling thread) with the steps
+  // done of distribution_steps(count, ...): for a progress display. It may throw to stop the
+  // distribution (Ctrl-C); the exception leaves distribute_points as it is.
+  std::function<void(std::size_t done)> progress;
 };
+
+// The steps distribute_points reports through DistributionOptions::progress: each candidate
+// drawn, weighed and (for all but `count`) eliminated.
+std::size_t distribution_steps(std::size_t count, const DistributionOptions& options = {});
 
 // `count` points over the mesh, blue-noise distributed; deterministic for a seed.
 // Degenerate (zero-area) triangles receive no points. Throws std::invalid_argument on an

@@ -106,6 +106,33 @@ TEST(PointDistribution, DeterministicForASeed) {
   EXPECT_LT(same_as_c, 5);
 }
 
+// The progress callback sees the steps grow to distribution_steps() and the points do not
+// depend on it; a callback that throws stops the distribution there.
+TEST(PointDistribution, ReportsProgressAndStopsWhenTheCallbackThrows) {
+  std::vector<Vec3> p;
+  std::vector<uint32_t> idx;
+  box(p, idx);
+  DistributionOptions o;
+  std::vector<std::size_t> seen;
+  o.progress = [&](std::size_t done) { seen.push_back(done); };
+  const auto with = distribute_points(p, idx, 3000, 5, o), without = distribute_points(p, idx, 3000, 5);
+  ASSERT_EQ(with.size(), without.size());
+  for (std::size_t i = 0; i < with.size(); ++i) ASSERT_EQ(with[i].position, without[i].position);
+  ASSERT_GE(seen.size(), 5u);  // 15000 candidates weighed, 12000 eliminated: several calls each
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_EQ(seen.back(), distribution_steps(3000));
+  EXPECT_EQ(distribution_steps(3000), 15000u + 15000u + 12000u);
+
+  struct Stop {};
+  int calls = 0;
+  o.progress = [&](std::size_t done) {
+    ++calls;
+    if (done > 20000) throw Stop{};
+  };
+  EXPECT_THROW(distribute_points(p, idx, 3000, 5, o), Stop);
+  EXPECT_LT(calls, int(seen.size()));
+}
+
 TEST(PointDistribution, BadInputIsRejected) {
   std::vector<Vec3> p;
   std::vector<uint32_t> idx;
