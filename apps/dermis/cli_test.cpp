@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -248,6 +249,61 @@ TEST_F(Cli, CompareReportsDifferences) {
   EXPECT_NE(r.output.find("RMSE"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(path("d.exr")));
   EXPECT_EQ(run_dermis("compare " + path("a.exr") + " " + path("nope.exr")).status, 2);
+}
+
+// A point light of 1e37 (within float range, as the parser requires) 0.001 away from a
+// wall, seen through a narrow lens: I / r^2 overflows to infinity in the path. Such samples are counted, reported, and never
+// reach the image.
+TEST_F(Cli, NonFiniteSamplesAreReportedAndNotWritten) {
+  std::string scene = write("hot.pbrt", R"(
+LookAt 0 0 5  0 0 0  0 1 0
+Camera "perspective" "float fov" 0.5
+Film "rgb" "integer xresolution" 8 "integer yresolution" 8
+WorldBegin
+LightSource "point" "point3 from" [0 0 0.001] "rgb I" [1e37 1e37 1e37]
+Material "diffuse"
+Shape "trianglemesh" "point3 P" [-5 -5 0 5 -5 0 5 5 0 -5 5 0] "integer indices" [0 1 2 0 2 3]
+)");
+  CommandResult r = run_dermis("render " + scene + " -q --spp 2 --no-png -o " + path("hot.exr"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find(" samples were NaN or infinite; they were dropped"), std::string::npos)
+      << r.output;
+  dermis::Image img = dermis::read_image(path("hot.exr"));
+  for (float v : img.pixels) ASSERT_TRUE(std::isfinite(v));
+}
+
+// --confine: the scene reads inside its directory and the --allow-path ones only, after
+// '..' and symbolic links; outside is an error at the file name, exit 2, nothing written.
+TEST_F(Cli, ConfineRefusesFilesOutsideTheSceneDirectory) {
+  const std::string head = "Camera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 4 "
+                           "\"integer yresolution\" 4\nWorldBegin\nLightSource \"point\"\n";
+  fs::create_directories(dir_ / "scene");
+  fs::create_directories(dir_ / "assets");
+  write("assets/part.pbrt", "Shape \"sphere\"\n");
+  write("scene/inside.pbrt", "Shape \"sphere\"\n");
+  fs::create_symlink(dir_ / "assets", dir_ / "scene" / "link");
+  const std::string up = write("scene/up.pbrt", head + "Include \"../assets/part.pbrt\"\n");
+  const std::string abs = write("scene/abs.pbrt", head + "Include \"" + path("assets/part.pbrt") + "\"\n");
+  const std::string sym = write("scene/sym.pbrt", head + "Include \"link/part.pbrt\"\n");
+  const std::string in = write("scene/in.pbrt", head + "Include \"inside.pbrt\"\n");
+  const std::string out = " -q --no-png -o " + path("o.exr");
+  // pbrt-v4's default: any path.
+  for (const std::string& s : {up, abs, sym}) EXPECT_EQ(run_dermis("render " + s + out).status, 0) << s;
+  fs::remove(path("o.exr"));
+  for (const std::string& s : {up, abs, sym}) {
+    CommandResult r = run_dermis("render " + s + " --confine" + out);
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find(":5:9: error: Include '"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("is outside the directories this scene may read"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(path("o.exr")));
+  }
+  EXPECT_EQ(run_dermis("render " + in + " --confine" + out).status, 0);
+  // An allowed directory (--allow-path implies --confine), named through a symlink or not.
+  for (const std::string& s : {up, abs, sym})
+    EXPECT_EQ(run_dermis("render " + s + " --allow-path " + path("assets") + out).status, 0) << s;
+  EXPECT_EQ(run_dermis("render " + up + " --allow-path " + path("scene") + " --allow-path " + path("assets") + out).status,
+            0);
+  EXPECT_EQ(run_dermis("render " + up + " --allow-path " + path("missing-dir") + out).status, 2);
 }
 
 }  // namespace

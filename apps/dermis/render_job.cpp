@@ -70,6 +70,14 @@ void add_render_options(CLI::App& cmd, RenderArgs& args) {
   cmd.add_option("--resume", args.resume,
                  "continue from a checkpoint of the same scene, seed, sampler and resolution (--spp may be larger): "
                  "the image is bit-identical to a render never stopped");
+  cmd.add_flag("--confine", args.file_access.confined,
+               "the scene may name only files inside its own directory (and --allow-path ones), after '..' and "
+               "symbolic links: Include/Import, meshes, images, spectrum files, its Film filename "
+               "(docs/robustness.md)");
+  cmd.add_option("--allow-path", args.file_access.allowed_dirs,
+                 "with --confine (implied), also allow files under this directory (repeatable)")
+      ->allow_extra_args(false)
+      ->check(CLI::ExistingDirectory);
 }
 
 namespace {
@@ -105,7 +113,7 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   std::optional<std::string> error;
   // Reading and assembling: each process alone.
   try {
-    desc = parse_scene_file(a.scene);
+    desc = parse_scene_file(a.scene, a.file_access);
     if (!a.res.empty()) {
       int w = 0, h = 0, consumed = 0;
       char x = 0;

@@ -13,6 +13,7 @@
 
 #include "dermis/render/process_group.h"
 #include "dermis/render/renderer.h"
+#include "dermis/scene/file_access.h"
 
 namespace dermis::app {
 
@@ -28,6 +29,7 @@ struct RenderArgs {
   std::string save_pointcloud, load_pointcloud;
   std::string checkpoint, resume;  // film state files (render/checkpoint.h)
   double checkpoint_interval = 60;
+  FileAccessOptions file_access;  // --confine, --allow-path (scene/file_access.h)
 };
 
 // Adds the options of `render` to a subcommand.

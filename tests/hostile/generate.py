@@ -103,7 +103,8 @@ DIRECTIVES = {  # directive: (a valid use, uses that must be refused)
     "CoordSysTransform": ('CoordinateSystem "c" CoordSysTransform "c"', ["CoordSysTransform", "CoordSysTransform 1"]),
     "AttributeBegin": ("AttributeBegin AttributeEnd", ["AttributeEnd", "AttributeBegin AttributeEnd AttributeEnd"]),
     "TransformBegin": ("TransformBegin TransformEnd", ["TransformEnd"]),
-    "Material": ('Material "diffuse"', ["Material", "Material 3", ('Material "plastic-ish"', 0),
+    "Material": ('Material "diffuse"', ["Material", "Material 3", 'Material "plastic-ish"', 'Material "difuse"',
+                                        ('Material "hair"', 0),
                                         'Material "diffuse" "rgb reflectance" [1 2]',
                                         'Material "diffuse" "rgb reflectance" "red"',
                                         'Material "subsurface" "string method" "psychic"',
@@ -126,7 +127,7 @@ DIRECTIVES = {  # directive: (a valid use, uses that must be refused)
                                  'Shape "disk" "float radius" 0', 'Shape "sphere" "blob radius" 1']),
     "ObjectBegin": ('ObjectBegin "o" Shape "sphere" ObjectEnd ObjectInstance "o"',
                     ["ObjectBegin", 'ObjectBegin "o"', "ObjectEnd", 'ObjectInstance "missing"', "ObjectInstance"]),
-    "LightSource": ('LightSource "point"', ["LightSource", "LightSource 2", ('LightSource "laser"', 0),
+    "LightSource": ('LightSource "point"', ["LightSource", "LightSource 2", 'LightSource "laser"', ('LightSource "goniometric"', 0),
                                            'LightSource "point" "rgb I" [-1 -1 -1]',
                                            'LightSource "point" "rgb I" [1e39 1 1]',
                                            'LightSource "infinite" "string filename" "none.exr"',
@@ -134,7 +135,8 @@ DIRECTIVES = {  # directive: (a valid use, uses that must be refused)
     "AreaLightSource": ('AreaLightSource "diffuse" "rgb L" [1 1 1]',
                         ["AreaLightSource", 'AreaLightSource "diffuse" "rgb L" [-1 0 0]']),
     "MakeNamedMedium": ('MakeNamedMedium "f" "string type" "homogeneous"',
-                        ["MakeNamedMedium", 'MakeNamedMedium "f"', ('MakeNamedMedium "f" "string type" "plasma"', 0)]),
+                        ["MakeNamedMedium", 'MakeNamedMedium "f"', 'MakeNamedMedium "f" "string type" "plasma"',
+                        ('MakeNamedMedium "f" "string type" "nanovdb"', 0)]),
     "MediumInterface": ('MakeNamedMedium "f" "string type" "homogeneous" MediumInterface "f" ""',
                         # an unknown name is an error once something uses it (pbrt-v4 resolves at use)
                         ["MediumInterface", 'MediumInterface "nowhere" "" Shape "sphere"', "MediumInterface 1 2"]),
@@ -151,7 +153,8 @@ for d, (good, bads) in DIRECTIVES.items():
         world(text + "\n", f"directive_{d}_bad{i}", ex)
 
 # Options before WorldBegin
-OPTIONS = ['Camera', 'Camera 1', ('Camera "fisheye"', 0), 'Film', 'Film "rgb" "integer xresolution" 0',
+OPTIONS = ['Camera', 'Camera 1', 'Camera "fisheye"', ('Camera "orthographic"', 0), 'Film "film"',
+           'PixelFilter "gauss"', ('PixelFilter "mitchell"', 0), 'Film', 'Film "rgb" "integer xresolution" 0',
            'Film "rgb" "integer xresolution" -8', 'Film "rgb" "integer xresolution" 2.5',
            'Film "rgb" "integer yresolution" "tall"', 'Sampler "independent" "integer pixelsamples" 0',
            'Sampler "independent" "integer pixelsamples" -3', 'Integrator "volpath" "integer maxdepth" -1',
@@ -217,6 +220,18 @@ world('Include "ok.pbrt.gz"\n', "include_gzip", 0)
 cases[-1]["files"]["ok.pbrt.gz"] = gzip.compress(b'Shape "sphere"\n', mtime=0)
 world('Include "trunc.pbrt.gz"\n', "include_truncated_gzip", 2)
 cases[-1]["files"]["trunc.pbrt.gz"] = gzip.compress(b'Shape "sphere"\n' * 100, mtime=0)[:30]
+
+# --confine: only files inside the scene's directory (docs/robustness.md, "File access")
+CONFINED = RENDER + ["--confine"]
+world('Include "../outside.pbrt"\n', "confine_dotdot", 2, args=CONFINED)
+world('Include "/etc/passwd"\n', "confine_absolute", 2, args=CONFINED)
+world('Include "inc/../inc/ok.pbrt"\n', "confine_inside", 0, args=CONFINED)
+cases[-1]["files"]["inc/ok.pbrt"] = 'Shape "sphere"\n'
+world('Shape "plymesh" "string filename" "../../mesh.ply"\n', "confine_mesh_dotdot", 2, args=CONFINED)
+world('Material "diffuse" "spectrum reflectance" "/usr/share/x.spd"\nShape "sphere"\n', "confine_spd_absolute", 2,
+      args=CONFINED)
+case("confine_film_filename", {"scene.pbrt": BASE.replace('Film "rgb"', 'Film "rgb" "string filename" "../x.exr"')}, 2,
+     args=["render", "scene.pbrt", "--spp", "1", "-q", "--confine"])
 
 
 # ------------------------------------------------------------------ PLY
@@ -357,7 +372,7 @@ case("only_comments", {"scene.pbrt": "# nothing\n" * 10}, 2)
 case("only_world", {"scene.pbrt": "WorldBegin\n"}, 0)
 TEN_MB = 10 * 1024 * 1024
 world("A" * TEN_MB + "\n", "token_10mb_identifier", 2)
-world('Shape "' + "s" * TEN_MB + '"\n', "token_10mb_string", 0, note="an unsupported shape: a warning")
+world('Shape "' + "s" * TEN_MB + '"\n', "token_10mb_string", 2, note="an unknown shape type, quoted in part")
 world('Shape "sphere" "float radius" ' + "1" * TEN_MB + "\n", "token_10mb_number", 2)
 world('Shape "sphere" "float radius" [' + " 1" * 1000000 + " ]\n", "token_1m_values", 2)
 world('Shape "sphere" "float radius" "' + "1" * TEN_MB + "\n", "token_10mb_unterminated", 2)

@@ -424,6 +424,11 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
         break;
       }
     }
+    // The parser bounds "L" x "scale"; "illuminance" normalises after it and may still overflow.
+    if (d.illuminance >= 0 && !l.emission.is_finite())
+      throw SceneError(d.loc, fmt::format("the light's emission is beyond the range of 32-bit floats (\"scale\" {:g}, "
+                                          "\"illuminance\" {:g}): lower them",
+                                          double(d.scale), double(d.illuminance)));
     sc->lights.push_back(l);
   }
 

@@ -48,12 +48,32 @@ const Case kCases[] = {
     {"WorldBegin\nLightSource \"point\" \"rgb I\" @[1 -1 1]\n", "\"I\" must be finite and >= 0"},
     {"WorldBegin\nAreaLightSource \"diffuse\" \"rgb L\" [@1e39 1 1]\nShape \"sphere\"\n", "beyond the range of 32-bit floats"},
     {"WorldBegin\nLightSource \"infinite\" \"float scale\" @-2\n", "\"scale\" must be finite and >= 0"},
+    // Each factor in range, the product not: 1e20 x 1e20 is infinite in float.
+    {"WorldBegin\nLightSource \"point\" \"rgb I\" [1e20 1 1] \"float scale\" @1e20\n",
+     "a light's \"scale\" 1e+20 times its \"I\" 1e+20 is 1e+40, beyond the range of 32-bit floats"},
+    {"WorldBegin\nAreaLightSource \"diffuse\" \"float scale\" @1e30 \"rgb L\" [1 1e9 1]\nShape \"sphere\"\n",
+     "times its \"L\" 1e+09"},
+    {"WorldBegin\nLightSource \"distant\" \"rgb L\" [3e38 3e38 3e38] \"float scale\" @2\n", "beyond the range"},
     // As in pbrt-v4, an unknown directive is an error (what follows it would be misread);
     // a near miss gets a suggestion, anything else a hint (a file that is not a scene).
     {"WorldBegin\n  @Shpae \"sphere\"\n", "unknown directive 'Shpae' (did you mean 'Shape'?)"},
     {"WorldBegin\n@Frobnicate \"x\" [1 2]\n", "unknown directive 'Frobnicate' (is this a pbrt-v4 scene file?)"},
     {"WorldBegin\n@root:x:0:0:root:/root:/bin/bash\n", "unknown directive 'root:x:0:0:root:/root:/bin/bash'"},
     {"Sampler @\"sobolish\" \"integer pixelsamples\" 4\nWorldBegin\n", "unknown Sampler \"sobolish\""},
+    // As in pbrt-v4, a type name it does not know is an error (a typo would otherwise render
+    // something else); a type pbrt-v4 knows but Dermis does not render is a warning.
+    {"WorldBegin\nMaterial @\"difuse\"\n", "unknown Material type 'difuse' (did you mean 'diffuse'?)"},
+    {"WorldBegin\nMaterial @\"plastic\"\n", "unknown Material type 'plastic' (a pbrt-v3 material"},
+    {"WorldBegin\nMakeNamedMaterial \"m\" \"string type\" @\"coateddifuse\"\n", "(did you mean 'coateddiffuse'?)"},
+    {"WorldBegin\nLightSource @\"laser\" \"rgb I\" [1 1 1]\n", "unknown LightSource type 'laser' (pbrt-v4 has point, spot"},
+    {"WorldBegin\nAreaLightSource @\"difuse\"\n", "unknown AreaLightSource type 'difuse' (did you mean 'diffuse'?)"},
+    {"Camera @\"fisheye\"\nWorldBegin\n", "unknown Camera type 'fisheye' (pbrt-v4 has perspective, orthographic"},
+    {"Camera @\"perspectiv\"\nWorldBegin\n", "(did you mean 'perspective'?)"},
+    {"WorldBegin\nShape @\"sphear\"\n", "unknown Shape type 'sphear' (did you mean 'sphere'?)"},
+    {"WorldBegin\nTexture \"t\" \"spectrum\" @\"imagemapp\"\n", "unknown Texture type 'imagemapp' (did you mean 'imagemap'?)"},
+    {"WorldBegin\nMakeNamedMedium \"f\" \"string type\" @\"plasma\"\n", "unknown MakeNamedMedium type 'plasma'"},
+    {"Film @\"film\"\nWorldBegin\n", "unknown Film type 'film'"},
+    {"PixelFilter @\"gauss\"\nWorldBegin\n", "unknown PixelFilter type 'gauss'"},
     {"WorldBegin\nShape \"sphere\" \"float radius\" @\"two\"\n", "expects numbers, found string 'two'"},
     {"WorldBegin\nShape \"sphere\" @\"string radius\" \"2\"\n", "has type 'string', expected float"},
     {"WorldBegin\nShape \"trianglemesh\" \"point3 P\" @[0 0 0 1 0 0 0 1]\n", "multiple of 3"},

@@ -122,6 +122,7 @@ ParamList ParamList::parse(TokenStream& ts) {
     if (!v) throw SceneError(ts.end_loc(), fmt::format("missing value of parameter \"{}\"", excerpt(decl.text)));
     p.value_loc = ts.loc(*v);
     p.base_dir = ts.base_dir();
+    p.file_access = ts.file_access();
     if (v->kind == Token::Kind::LBracket) {
       ts.next();
       while (true) {

@@ -3,6 +3,7 @@
 // parameter used, so that the ones nobody read can be reported.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -22,6 +23,7 @@ struct ParsedParam {
   SourceLoc value_loc;         // first token of the value ('[' or the single value)
   std::vector<std::pair<int, int>> value_pos;  // line and column of every value
   std::string base_dir;        // where a file named in the value (a .spd spectrum) is looked for
+  std::shared_ptr<const FileAccess> file_access;  // which files it may reach; null: any
   mutable bool used = false;
 
   size_t size() const;         // number of values of whatever kind

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "dermis/scene/gzip_file.h"
+#include "dermis/scene/pbrt_v4_types.h"
 #include "dermis/scene/scene_parser.h"
 
 namespace dermis {
@@ -91,17 +92,25 @@ void SceneParser::parse_file(const std::string& path, const SourceLoc* from) {
   // pbrt-v4 (SetSearchDirectory in ParseFiles) resolves every relative path against the
   // directory of the main scene file, in included files too.
   main_dir_ = fs::path(resolve_path(path, ".")).parent_path().string();
+  file_access_ = std::make_shared<const FileAccess>(access_options_, main_dir_);
   TokenStream ts(read_scene_file(path, from, {}), path);
   run(ts, main_dir_);
 }
 
 void SceneParser::parse_text(const std::string& text, const std::string& name, const std::string& base_dir) {
   main_dir_ = resolve_path(".", base_dir);
+  file_access_ = std::make_shared<const FileAccess>(access_options_, main_dir_);
   TokenStream ts(tokenize(text, name), name);
   run(ts, main_dir_);
 }
 
-std::string SceneParser::scene_path(const std::string& file, const SourceLoc& at) {
+std::string SceneParser::scene_path(const std::string& file, const SourceLoc& at, const std::string& what) {
+  const std::string path = find_scene_file(file, at);
+  if (file_access_) file_access_->check_read(path, file, at, what);
+  return path;
+}
+
+std::string SceneParser::find_scene_file(const std::string& file, const SourceLoc& at) {
   const std::string main = resolve_path(file, main_dir_);
   std::error_code ec;
   if (fs::path(file).is_absolute() || fs::exists(main, ec)) return main;
@@ -125,7 +134,7 @@ std::string SceneParser::scene_path(const std::string& file, const SourceLoc& at
 void SceneParser::include(const Token& d, TokenStream& ts) {
   SourceLoc loc;
   std::string file = string_arg(ts, d, &loc);
-  const std::string path = scene_path(file, loc);
+  const std::string path = scene_path(file, loc, d.text);
   std::vector<std::string> chain = outer_files_;
   for (const std::string& f : ts.open_files()) chain.push_back(resolve_path(f, "."));
   if (d.text == "Include") {
@@ -153,6 +162,7 @@ void SceneParser::include(const Token& d, TokenStream& ts) {
 
 void SceneParser::run(TokenStream& ts, const std::string& dir) {
   ts.set_base_dir(dir);
+  ts.set_file_access(file_access_);
   while (!ts.at_end()) {
     const Token d = ts.next();
     if (d.kind != Token::Kind::Identifier)
@@ -434,7 +444,9 @@ void SceneParser::block_end(const Token& d, TokenStream& ts, BlockKind kind) {
 void SceneParser::camera(const Token& d, TokenStream& ts) {
   require_options(d, ts);
   const SourceLoc loc = ts.loc(d);
-  std::string type = string_arg(ts, d);
+  SourceLoc type_loc;
+  std::string type = string_arg(ts, d, &type_loc);
+  require_known_type(TypedDirective::Camera, type, type_loc);
   ParamList pl = ParamList::parse(ts);
   if (type != "perspective")
     s_.diagnostics.warn(loc, fmt::format("Camera \"{}\" is not supported; rendered as \"perspective\"", type));
@@ -463,18 +475,21 @@ void SceneParser::camera(const Token& d, TokenStream& ts) {
 void SceneParser::film(const Token& d, TokenStream& ts) {
   require_options(d, ts);
   const SourceLoc loc = ts.loc(d);
-  std::string type = string_arg(ts, d);
+  SourceLoc type_loc;
+  std::string type = string_arg(ts, d, &type_loc);
+  require_known_type(TypedDirective::Film, type, type_loc);
   ParamList pl = ParamList::parse(ts);
   if (type == "gbuffer" || type == "spectral")
     s_.diagnostics.warn(loc, fmt::format("Film \"{}\" is written as an \"rgb\" film", type));
-  else if (type != "rgb")
-    s_.diagnostics.warn(loc, fmt::format("unknown Film \"{}\"; using \"rgb\"", type));
   FilmDesc& f = s_.film;
   f.xres = pl.get_int("xresolution", f.xres);
   if (f.xres <= 0) throw SceneError(pl.find("xresolution")->value_loc, fmt::format("xresolution must be positive, got {}", f.xres));
   f.yres = pl.get_int("yresolution", f.yres);
   if (f.yres <= 0) throw SceneError(pl.find("yresolution")->value_loc, fmt::format("yresolution must be positive, got {}", f.yres));
   f.filename = pl.get_string("filename", f.filename);
+  if (file_access_ && pl.has("filename"))  // written relative to the working directory, as pbrt-v4 does
+    file_access_->check_write(resolve_path(f.filename, "."), f.filename, pl.find("filename")->value_loc,
+                              "Film \"filename\"");
   if (const ParsedParam* p = pl.find("cropwindow")) {
     // pbrt-v4: [x0 x1 y0 y1] in NDC, rendering and writing only that part of the image.
     const std::vector<double> c = pl.get_numbers("cropwindow", {"float"}, 4);
@@ -505,7 +520,9 @@ void SceneParser::film(const Token& d, TokenStream& ts) {
 void SceneParser::pixel_filter(const Token& d, TokenStream& ts) {
   require_options(d, ts);
   const SourceLoc loc = ts.loc(d);
-  std::string type = string_arg(ts, d);
+  SourceLoc type_loc;
+  std::string type = string_arg(ts, d, &type_loc);
+  require_known_type(TypedDirective::PixelFilter, type, type_loc);
   ParamList pl = ParamList::parse(ts);
   FilterDesc& f = s_.film.filter;
   if (type == "box") {
@@ -577,18 +594,19 @@ void SceneParser::integrator(const Token& d, TokenStream& ts) {
 
 // ---------------------------------------------------------------- entry points
 
-SceneDesc parse_scene_file(const std::string& path) {
+SceneDesc parse_scene_file(const std::string& path, const FileAccessOptions& access) {
   SceneDesc scene;
-  SceneParser parser(scene);
+  SceneParser parser(scene, access);
   parser.parse_file(path, nullptr);
   parser.finish(path, path);
   return scene;
 }
 
-SceneDesc parse_scene_string(const std::string& text, const std::string& name, const std::string& base_dir) {
+SceneDesc parse_scene_string(const std::string& text, const std::string& name, const std::string& base_dir,
+                             const FileAccessOptions& access) {
   SceneDesc scene;
   scene.base_directory = resolve_path(".", base_dir);
-  SceneParser parser(scene);
+  SceneParser parser(scene, access);
   parser.parse_text(text, name, base_dir);
   parser.finish("", name);
   return scene;

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "dermis/scene/medium_presets.h"
+#include "dermis/scene/pbrt_v4_types.h"
 #include "dermis/scene/scene_parser.h"
 #include "dermis/scene/spectra.h"
 #include "dermis/scene/subsurface_params.h"
@@ -40,10 +41,19 @@ RGB emission_param(const ParamList& pl, const std::string& name, Diagnostics& di
   return e;
 }
 
-float light_scale_param(const ParamList& pl) {
+// A light's "scale", which multiplies `emission` (its "L" or "I", given as `name`): the
+// product, not only each factor, must stay within float range (1e20 x 1e20 is infinite).
+float light_scale_param(const ParamList& pl, RGB emission, const char* name) {
   const float scale = pl.get_float("scale", 1);
   if (!(scale >= 0) || !std::isfinite(scale))
     throw SceneError(pl.find("scale")->value_loc, fmt::format("a light's \"scale\" must be finite and >= 0, got {}", scale));
+  const double product = double(emission.max()) * double(scale);
+  if (product > double(std::numeric_limits<float>::max()))
+    throw SceneError(pl.find("scale")->value_loc,
+                     fmt::format("a light's \"scale\" {:g} times its \"{}\" {:g} is {:g}, beyond the range of 32-bit "
+                                 "floats ({:g}): the light would be infinite",
+                                 double(scale), name, double(emission.max()), product,
+                                 double(std::numeric_limits<float>::max())));
   return scale;
 }
 
@@ -249,7 +259,7 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
       return spectrum_or_texture(pl, p.param.name, RGB(1.0f)).texture;
     });
     m.eta = m.subsurface.eta;
-  } else {
+  } else {  // pbrt-v4's "hair" and "measured" (require_known_type refused unknown names)
     s_.diagnostics.warn(loc, fmt::format("unsupported material \"{}\"; using diffuse", type));
     m.type = MaterialDesc::Type::Diffuse;
     m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));  // its other parameters are warned unused
@@ -288,7 +298,9 @@ MaterialDesc SceneParser::rebuild_material(const MaterialDesc& old, const std::s
 
 void SceneParser::material(const Token& d, TokenStream& ts) {
   require_world(d, ts);
-  std::string type = string_arg(ts, d);
+  SourceLoc type_loc;
+  std::string type = string_arg(ts, d, &type_loc);
+  require_known_type(TypedDirective::Material, type, type_loc);
   ParamList pl = ParamList::parse(ts);
   s_.materials.push_back(build_material(type, pl, ts.loc(d)));
   gs_.material = int(s_.materials.size()) - 1;
@@ -305,6 +317,7 @@ void SceneParser::make_named_material(const Token& d, TokenStream& ts) {
                                            s_.materials[named_materials_[name]].loc.str()));
   if (!pl.has("type")) throw SceneError(loc, fmt::format("MakeNamedMaterial \"{}\" needs \"string type\"", name));
   std::string type = pl.get_string("type", "");
+  require_known_type(TypedDirective::Material, type, pl.find("type")->value_loc);
   MaterialDesc m = build_material(type, pl, loc);
   m.name = name;
   named_materials_[name] = int(s_.materials.size());
@@ -329,7 +342,9 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
   SourceLoc type_loc;
   std::string name = string_arg(ts, d);
   std::string value_type = string_arg(ts, d, &type_loc);
-  std::string cls = string_arg(ts, d);
+  SourceLoc cls_loc;
+  std::string cls = string_arg(ts, d, &cls_loc);
+  require_known_type(TypedDirective::Texture, cls, cls_loc);
   ParamList pl = ParamList::parse(ts);
   if (value_type == "color") {
     s_.diagnostics.warn(type_loc, "texture type \"color\" (pbrt-v3) read as \"spectrum\"");
@@ -410,8 +425,9 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
     t.type = TextureDesc::Type::ImageMap;
     mapping_2d();
     if (!pl.has("filename")) throw SceneError(loc, "imagemap texture needs \"string filename\"");
-    t.filename = existing_file(pl, "filename", scene_path(pl.get_string("filename", ""), pl.find("filename")->value_loc),
-                                "imagemap texture");
+    t.filename = existing_file(pl, "filename",
+                               scene_path(pl.get_string("filename", ""), pl.find("filename")->value_loc, "image"),
+                               "imagemap texture");
     t.scale = pl.get_float("scale", 1);
     t.invert = pl.get_bool("invert", false);
     t.encoding = pl.get_string("encoding", t.encoding);
@@ -495,15 +511,11 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
   } else if (cls == "windy") {
     t.type = TextureDesc::Type::Windy;
     t.mapping = "3d";
-  } else if (cls == "ptex") {
+  } else {  // "ptex", the one pbrt-v4 texture left (require_known_type refused the rest)
     // Ptex (per-face textures) needs the Ptex library, which Dermis does not use.
     for (const char* p : {"filename", "encoding", "scale"})
       if (const ParsedParam* q = pl.find(p)) q->used = true;
     s_.diagnostics.warn(loc, fmt::format("ptex textures are not supported; texture \"{}\" is the constant 1", name));
-    t.type = TextureDesc::Type::Constant;
-    t.value = RGB(1);
-  } else {
-    s_.diagnostics.warn(loc, fmt::format("unsupported texture class \"{}\"; texture \"{}\" is the constant 1", cls, name));
     t.type = TextureDesc::Type::Constant;
     t.value = RGB(1);
   }
@@ -518,7 +530,9 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
 void SceneParser::light_source(const Token& d, TokenStream& ts, const std::string& dir) {
   require_world(d, ts);
   const SourceLoc loc = ts.loc(d);
-  std::string type = string_arg(ts, d);
+  SourceLoc type_loc;
+  std::string type = string_arg(ts, d, &type_loc);
+  require_known_type(TypedDirective::LightSource, type, type_loc);
   ParamList pl = ParamList::parse(ts);
   LightDesc l;
   l.loc = loc;
@@ -564,7 +578,8 @@ void SceneParser::light_source(const Token& d, TokenStream& ts, const std::strin
       throw SceneError(pl.find("filename")->param.loc, "infinite light: give either \"L\" or \"filename\", not both");
     l.spectrum = emission_param(pl, "L", s_.diagnostics);
     if (pl.has("filename"))
-      l.filename = existing_file(pl, "filename", scene_path(pl.get_string("filename", ""), pl.find("filename")->value_loc),
+      l.filename = existing_file(pl, "filename",
+                                 scene_path(pl.get_string("filename", ""), pl.find("filename")->value_loc, "image"),
                                  "infinite light");
     // pbrt-v4 reads the image in the equal-area octahedral mapping; Dermis also takes
     // lat-long maps when asked ("string mapping" "latlong", not a pbrt-v4 parameter).
@@ -590,7 +605,7 @@ void SceneParser::light_source(const Token& d, TokenStream& ts, const std::strin
     pl.mark_all_used();
     return;
   }
-  l.scale = light_scale_param(pl);
+  l.scale = light_scale_param(pl, l.spectrum, l.type == LightDesc::Type::Point || l.type == LightDesc::Type::Spot ? "I" : "L");
   pl.warn_unused(s_.diagnostics, fmt::format("LightSource \"{}\"", type));
   s_.lights.push_back(std::move(l));
 }
@@ -598,7 +613,9 @@ void SceneParser::light_source(const Token& d, TokenStream& ts, const std::strin
 void SceneParser::area_light_source(const Token& d, TokenStream& ts) {
   require_world(d, ts);
   const SourceLoc loc = ts.loc(d);
-  std::string type = string_arg(ts, d);
+  SourceLoc type_loc;
+  std::string type = string_arg(ts, d, &type_loc);
+  require_known_type(TypedDirective::AreaLightSource, type, type_loc);
   ParamList pl = ParamList::parse(ts);
   if (type != "diffuse") {
     s_.diagnostics.warn(loc, fmt::format("AreaLightSource \"{}\" is not supported; shapes stay non-emissive", type));
@@ -608,7 +625,7 @@ void SceneParser::area_light_source(const Token& d, TokenStream& ts) {
   }
   AreaLightDesc a;
   a.L = emission_param(pl, "L", s_.diagnostics);
-  a.scale = light_scale_param(pl);
+  a.scale = light_scale_param(pl, a.L, "L");
   a.two_sided = pl.get_bool("twosided", false);
   for (const char* ignored : {"power", "filename"})
     if (const ParsedParam* p = pl.find(ignored)) {
@@ -630,6 +647,7 @@ void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
     throw SceneError(name_loc, fmt::format("medium \"{}\" is defined twice", name));
   if (!pl.has("type")) throw SceneError(loc, fmt::format("MakeNamedMedium \"{}\" needs \"string type\"", name));
   std::string type = pl.get_string("type", "");
+  require_known_type(TypedDirective::Medium, type, pl.find("type")->value_loc);
   if (type != "homogeneous") {
     s_.diagnostics.warn(loc, fmt::format("medium type \"{}\" is not supported; medium \"{}\" is treated as vacuum",
                                          type, name));

@@ -148,7 +148,7 @@ TEST(ParserTextures, ImageMapConstantScaleAndReference) {
       "Texture \"k\" \"spectrum\" \"constant\" \"rgb value\" [0.1 0.2 0.3]\n"
       "Texture \"half\" \"spectrum\" \"scale\" \"texture tex\" \"wood\" \"float scale\" 0.5\n"
       "Texture \"f\" \"float\" \"constant\" \"float value\" 0.7\n"
-      "Texture \"odd\" \"spectrum\" \"hyperbolic\" \"float foo\" 1\n"
+      "Texture \"odd\" \"spectrum\" \"ptex\" \"float foo\" 1\n"
       "Texture \"check\" \"spectrum\" \"checkerboard\" \"texture tex1\" \"k\" \"float uscale\" 8\n"
       "Texture \"blend\" \"spectrum\" \"mix\" \"texture tex2\" \"k\" \"texture amount\" \"f\"\n"
       "Material \"diffuse\" \"texture reflectance\" \"half\"\n",
@@ -173,9 +173,9 @@ TEST(ParserTextures, ImageMapConstantScaleAndReference) {
   EXPECT_TRUE(s.textures[3].is_float);
   expect_rgb(s.textures[3].value, RGB(0.7f));
   expect_rgb(s.textures[4].value, RGB(1));
-  EXPECT_TRUE(has_warning(s, "test.pbrt:8:1: warning: unsupported texture class \"hyperbolic\""));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:8:1: warning: ptex textures are not supported; texture \"odd\" is the constant 1"));
   // Its parameters are read by nobody: each warned where it is.
-  EXPECT_TRUE(has_warning(s, "test.pbrt:8:39: warning: unused parameter \"float foo\""));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:8:33: warning: unused parameter \"float foo\""));
   const TextureDesc& c = s.textures[5];
   EXPECT_EQ(c.type, TextureDesc::Type::Checkerboard);
   EXPECT_EQ(c.tex1, 1);  // "k"
@@ -306,14 +306,13 @@ TEST(ParserLights, PointSpotDistantInfinite) {
 }
 
 TEST(ParserLights, AreaLightOnShapes) {
-  SceneDesc s = parse_world("AreaLightSource \"diffuse\" \"rgb L\" [4 5 6] \"float scale\" 2 \"bool twosided\" true\n"
-                            "Shape \"sphere\"\nAreaLightSource \"projector\"\nShape \"sphere\"\n");
+  SceneDesc s = parse_world("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 5 6] \"float scale\" 2 "
+                            "\"bool twosided\" true\nShape \"sphere\"\nAttributeEnd\nShape \"sphere\"\n");
   ASSERT_TRUE(s.shapes[0].area_light.has_value());
   expect_rgb(s.shapes[0].area_light->L, RGB(4, 5, 6));
   EXPECT_FLOAT_EQ(s.shapes[0].area_light->scale, 2);
   EXPECT_TRUE(s.shapes[0].area_light->two_sided);
-  EXPECT_FALSE(s.shapes[1].area_light.has_value());
-  EXPECT_TRUE(has_warning(s, "test.pbrt:4:1: warning: AreaLightSource \"projector\""));
+  EXPECT_FALSE(s.shapes[1].area_light.has_value());  // the attribute block ended it
 }
 
 TEST(ParserMedia, PresetsExplicitCoefficientsAndInterfaces) {

@@ -8,6 +8,7 @@
 #include "dermis/scene/gzip_file.h"
 #include "dermis/scene/loop_subdivision.h"
 #include "dermis/scene/mesh_import.h"
+#include "dermis/scene/pbrt_v4_types.h"
 #include "dermis/scene/ply_reader.h"
 #include "dermis/scene/scene_parser.h"
 #include "dermis/scene/shape_tessellation.h"
@@ -65,6 +66,7 @@ void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir)
   const SourceLoc loc = ts.loc(d);
   SourceLoc type_loc;
   std::string type = string_arg(ts, d, &type_loc);
+  require_known_type(TypedDirective::Shape, type, type_loc);
   ParamList pl = ParamList::parse(ts);
 
   ShapeDesc sh;
@@ -176,7 +178,7 @@ void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir)
   } else if (type == "plymesh" || type == "objmesh") {
     const ParsedParam* fp = pl.find("filename");
     if (!fp) throw SceneError(loc, fmt::format("Shape \"{}\" needs \"string filename\"", type));
-    std::string file = scene_path(pl.get_string("filename", ""), fp->value_loc);
+    std::string file = scene_path(pl.get_string("filename", ""), fp->value_loc, "mesh");
     try {
       if (type == "plymesh") {
         sh.mesh = read_ply(file);
@@ -194,7 +196,7 @@ void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir)
     }
     if (type == "plymesh" && (pl.has("displacement") || pl.has("edgelength")))
       s_.diagnostics.warn(loc, "plymesh displacement is not supported (ignored)");
-  } else {
+  } else {  // pbrt-v4's "curve" (require_known_type refused unknown names)
     s_.diagnostics.warn(loc, fmt::format("unsupported Shape \"{}\" ignored", type));
     pl.warn_unused(s_.diagnostics, fmt::format("Shape \"{}\"", type));  // each of its parameters, where it is
     return;

@@ -490,12 +490,12 @@ TEST(ParserMessages, ParametersOfUnsupportedMaterialsAndShapesAreWarned) {
   SceneDesc s = parse_world(
       "LightSource \"point\"\n"
       "Material \"hair\" \"float eumelanin\" 1.3 \"rgb reflectance\" [0.2 0.2 0.2]\n"
-      "Shape \"hyperboloid\" \"point3 p1\" [0 0 0]\n");
+      "Shape \"curve\" \"point3 p1\" [0 0 0]\n");
   EXPECT_TRUE(has_warning(s, "test.pbrt:3:1: warning: unsupported material \"hair\""));
   EXPECT_TRUE(has_warning(s, "test.pbrt:3:17: warning: unused parameter \"float eumelanin\""));
   EXPECT_FALSE(has_warning(s, "\"rgb reflectance\""));  // read by the diffuse stand-in
-  EXPECT_TRUE(has_warning(s, "test.pbrt:4:1: warning: unsupported Shape \"hyperboloid\""));
-  EXPECT_TRUE(has_warning(s, "test.pbrt:4:21: warning: unused parameter \"point3 p1\""));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:4:1: warning: unsupported Shape \"curve\""));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:4:15: warning: unused parameter \"point3 p1\""));
   EXPECT_EQ(s.diagnostics.warnings.size(), 4u);
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,7 +18,7 @@ namespace dermis {
 
 class SceneParser {
  public:
-  explicit SceneParser(SceneDesc& scene) : s_(scene) {}
+  explicit SceneParser(SceneDesc& scene, FileAccessOptions access = {}) : s_(scene), access_options_(std::move(access)) {}
 
   // Parses one file; `from` is the Include directive's filename token, if any.
   void parse_file(const std::string& path, const SourceLoc* from);
@@ -81,8 +82,10 @@ class SceneParser {
   std::vector<Token> read_scene_file(const std::string& path, const SourceLoc* from,
                                      const std::vector<std::string>& chain);
   // A file named in the scene at `at`, resolved as pbrt-v4 does: against the main scene
-  // file's directory (then, with a warning, beside the file that names it).
-  std::string scene_path(const std::string& file, const SourceLoc& at);
+  // file's directory (then, with a warning, beside the file that names it); an error when
+  // the file access is confined and it lies outside (`what` names it in the message).
+  std::string scene_path(const std::string& file, const SourceLoc& at, const std::string& what);
+  std::string find_scene_file(const std::string& file, const SourceLoc& at);
   void block_end(const Token& d, TokenStream& ts, BlockKind kind);
 
   // parser_shapes.cpp
@@ -116,6 +119,8 @@ class SceneParser {
   std::string main_dir_;                    // directory of the main scene file (pbrt-v4's search directory)
   bool warned_beside_ = false;              // scene_path's fallback has been warned about
   std::vector<std::string> outer_files_;    // while Importing: the files open in the importing streams
+  FileAccessOptions access_options_;
+  std::shared_ptr<const FileAccess> file_access_;  // made once the scene's directory is known
 };
 
 // An absolute, normalized path for `file` written in a scene whose directory is `dir`.

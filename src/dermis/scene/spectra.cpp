@@ -226,6 +226,7 @@ Pairs spectrum_file_pairs(const ParsedParam& p) {
                                               "\"string sensor\"; Dermis's film records linear sRGB",
                                               name));
   const std::string path = resolve_path(name, p.base_dir);
+  if (p.file_access) p.file_access->check_read(path, name, p.value_loc, "spectrum file");
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw SceneError(p.value_loc, unknown_spectrum_message(name, path));
   SampledSpectrum f = read_spectrum_file(path, p.value_loc);

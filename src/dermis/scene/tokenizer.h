@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dermis/scene/diagnostics.h"
+#include "dermis/scene/file_access.h"
 
 namespace dermis {
 
@@ -53,6 +54,9 @@ class TokenStream {
   // the main scene file's, for every file of the stream, as pbrt-v4 resolves them.
   const std::string& base_dir() const { return base_dir_; }
   void set_base_dir(std::string dir) { base_dir_ = std::move(dir); }
+  // Which files those names may reach (scene/file_access.h); null: any.
+  const std::shared_ptr<const FileAccess>& file_access() const { return file_access_; }
+  void set_file_access(std::shared_ptr<const FileAccess> access) { file_access_ = std::move(access); }
   // Where the end of the innermost file is (just after its last token), for "unexpected end" errors.
   SourceLoc end_loc() const;
   // The files being read, outermost first (the main file, then each Include in turn).
@@ -67,6 +71,7 @@ class TokenStream {
   std::vector<Frame> frames_;
   std::vector<std::string> files_;  // by Token::source; never shrinks, so that locations stay valid
   std::string base_dir_;
+  std::shared_ptr<const FileAccess> file_access_;
 };
 
 }  // namespace dermis
