@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Stand-ins for the assets of pbrt-v4's `sssdragon` scene (mmp/pbrt-v4-scenes, sssdragon/),
-which are not redistributed here: files of the same names and kinds, so that dragon_10.pbrt
-and dragon_50.pbrt parse and renders exactly as written.
+which are not redistributed here: files of the same names and kinds, so that dragon_10.pbrt,
+dragon_50.pbrt and dragon_250.pbrt parse and render exactly as written.
 
   geometry/dragon.ply.gz   a gzip-compressed binary PLY: a lumpy blob of the dragon's size
                            (object space, ~50 units; the scene scales it by 0.02)

@@ -9,6 +9,7 @@
 #include "dermis/render/renderer.h"
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
+#include "dermis/scene/spectra.h"
 
 namespace dermis {
 namespace {
@@ -141,9 +142,11 @@ TEST(PbrtV4Scenes, GaneshaRendersItsTexturedStatue) {
 // mapping and the scene's light transform). The blob's limb toward the sun, as the camera
 // sees it, is brighter than the limb away from it; read as lat-long, or with the light
 // transform ignored, the sun would be elsewhere.
-TEST(PbrtV4Scenes, SssDragon50IsLitFromTheSunsSide) {
-  SceneDesc d = parse_scene_file(std::string(DERMIS_SOURCE_DIR) + "/scenes/pbrt-v4/sssdragon/dragon_50.pbrt");
+void expect_sss_dragon_lit_from_the_suns_side(const std::string& file, float scale) {
+  SceneDesc d = parse_scene_file(std::string(DERMIS_SOURCE_DIR) + "/scenes/pbrt-v4/sssdragon/" + file);
   for (const std::string& w : d.diagnostics.warnings) EXPECT_NE(w.find("Sampler \"halton\""), std::string::npos) << w;
+  ASSERT_EQ(d.materials.size(), 2u);
+  EXPECT_EQ(d.materials[0].subsurface.scale, scale);
   d.film.xres = 136;
   d.film.yres = 102;
   Diagnostics diag;
@@ -180,6 +183,69 @@ TEST(PbrtV4Scenes, SssDragon50IsLitFromTheSunsSide) {
   EXPECT_GT(std::abs(lit_px % r.width - dark_px % r.width) + std::abs(lit_px / r.width - dark_px / r.width), 6);
   const double lit = mean_around(lit_px), dark = mean_around(dark_px);
   EXPECT_GT(lit, 2 * dark) << "lit " << lit << " dark " << dark;
+}
+
+TEST(PbrtV4Scenes, SssDragon50IsLitFromTheSunsSide) { expect_sss_dragon_lit_from_the_suns_side("dragon_50.pbrt", 50); }
+
+// The third scale: 250 times denser than at scale 1, otherwise the same scene.
+TEST(PbrtV4Scenes, SssDragon250IsLitFromTheSunsSide) { expect_sss_dragon_lit_from_the_suns_side("dragon_250.pbrt", 250); }
+
+// killeroo-coated-gold: a level-3 loopsubdiv killeroo in coatedconductor gold whose eta
+// and k are .spd files (stand-ins: Palik's gold, the data of pbrt-v4's metal-Au-eta/k),
+// a floor and two walls under a scale texture of an image of lines, a disk light
+// (ReverseOrientation, facing down) and a distant light in camera space.
+// Plausible means: no warning but the two owed for the spectrum files (reduced to RGB, as
+// every sampled spectrum); the files' gold is the named gold; the killeroo
+// reads as gold (gold reflects red about twice as much as blue at normal incidence, a
+// clear coat adds 4% of white): of its pixels not black, 90% have R > 1.5 B; the
+// floor and walls show the grid: the lines (8 of every 64 texels each way, 23% of the
+// area, linear reflectance 0.5 x 0.014 against 0.5 x 1) are the darker pixels.
+TEST(PbrtV4Scenes, KillerooCoatedGoldIsGoldOnAGrid) {
+  SceneDesc d = parse_scene_file(std::string(DERMIS_SOURCE_DIR) + "/scenes/pbrt-v4/killeroo-coated-gold/killeroo-coated-gold.pbrt");
+  EXPECT_EQ(d.diagnostics.warnings.size(), 2u);
+  for (const std::string& w : d.diagnostics.warnings) EXPECT_NE(w.find("reduced to RGB"), std::string::npos) << w;
+  ASSERT_EQ(d.shapes.size(), 5u);  // light, floor, two walls, killeroo
+  EXPECT_EQ(d.shapes[4].mesh.indices.size(), 3u * 64 * 528);  // 528 triangles, three levels
+  ASSERT_GE(d.shapes[4].material, 0);
+  const MaterialDesc& gold = d.materials[std::size_t(d.shapes[4].material)];
+  EXPECT_EQ(gold.type, MaterialDesc::Type::CoatedConductor);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(gold.conductor_eta[c], (*named_spectrum_rgb("metal-Au-eta"))[c], 1e-4f);
+    EXPECT_NEAR(gold.conductor_k[c], (*named_spectrum_rgb("metal-Au-k"))[c], 1e-4f);
+  }
+  d.film.xres = 171;
+  d.film.yres = 128;
+  Diagnostics diag;
+  auto sc = build_render_scene(d, diag);
+  RenderOptions o;
+  o.spp = 16;
+  RenderResult r = render_image(*sc, o);
+  ASSERT_EQ(r.nonfinite, 0u);
+  // What each pixel's centre ray sees first.
+  int killeroo = 0, killeroo_lit = 0, gold_hue = 0;
+  std::vector<float> grid;
+  for (int y = 0; y < r.height; ++y)
+    for (int x = 0; x < r.width; ++x) {
+      SurfaceHit hit;
+      if (!sc->embree->intersect(sc->camera.generate_ray({x + 0.5f, y + 0.5f}, {0.5f, 0.5f}), hit)) continue;
+      const float* p = &r.rgb[3 * (std::size_t(y) * r.width + x)];
+      if (hit.shape == 4) {
+        ++killeroo;
+        if (p[1] < 1e-3f) continue;
+        ++killeroo_lit;
+        gold_hue += p[0] > 1.5f * p[2];
+      } else if (hit.shape >= 1) {
+        grid.push_back(p[1]);
+      }
+    }
+  EXPECT_GT(killeroo, 1000);
+  EXPECT_GT(killeroo_lit, killeroo / 2);
+  EXPECT_GT(gold_hue, 0.9 * killeroo_lit) << gold_hue << " of " << killeroo_lit;
+  std::sort(grid.begin(), grid.end());
+  const float median = grid[grid.size() / 2];
+  const auto dark = std::count_if(grid.begin(), grid.end(), [&](float g) { return g < 0.3f * median; });
+  EXPECT_GT(dark, 0.1 * double(grid.size())) << "the grid's lines";
+  EXPECT_LT(dark, 0.4 * double(grid.size())) << "the grid's lines";
 }
 
 }  // namespace
