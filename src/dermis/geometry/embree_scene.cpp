@@ -7,6 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "dermis/core/frame.h"
+
 namespace dermis {
 
 namespace {
@@ -15,9 +17,11 @@ void embree_error(void*, RTCError code, const char* str) {
   throw std::runtime_error(fmt::format("Embree error {}: {}", int(code), str ? str : ""));
 }
 
-// (u, v) at a hit: interpolated vertex uvs, pbrt's default triangle parameterisation, or
-// the sphere's (phi / 2 pi, 1 - theta / pi) from the direction `l` (unit, object space).
+// (u, v) at a hit: interpolated vertex uvs, pbrt's default triangle parameterisation, the
+// sphere's (phi / 2 pi, 1 - theta / pi) from the direction `l` (unit, object space), or a
+// curve's (u along the segment, v across it from Embree's -1..1 to pbrt-v4's 0..1).
 Vec2 surface_uv(const Shape& s, unsigned prim, float b1, float b2, Vec3 l) {
+  if (s.type == Shape::Type::Curve) return Vec2(b1, std::clamp(0.5f * (b2 + 1), 0.0f, 1.0f));
   if (s.type == Shape::Type::Mesh) {
     if (s.uvs.empty()) return Vec2(b1 + b2, b2);  // pbrt: (0,0), (1,0), (1,1) at the three vertices
     const uint32_t* tri = &s.indices[3 * std::size_t(prim)];
@@ -54,6 +58,43 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// Embree filter of flat curves. A flat curve is a band that turns to face each ray, so a
+// ray leaving a point on it would find the band again, turned toward the new ray. A ray
+// whose origin lies within the segment's reach (its widest radius, plus the chord error
+// of the polyline measured against, plus the offset rays leave surfaces with) never hits
+// that segment: rays leaving a flat curve pass through it. Then alpha, if the curve has it.
+void flat_curve_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* g = static_cast<const EmbreeScene::AlphaGeometry*>(args->geometryUserPtr);
+  const Shape& s = *g->shape;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned N = args->N;
+    const std::size_t prim = RTCHitN_primID(args->hit, N, i);
+    const Vec3* p = &s.positions[4 * prim];
+    const float* r = &s.curve_radii[4 * prim];
+    const Vec3 o(RTCRayN_org_x(args->ray, N, i), RTCRayN_org_y(args->ray, N, i), RTCRayN_org_z(args->ray, N, i));
+    // The segment as a polyline of m chords. A cubic Bézier strays from a chord over 1/m of
+    // its parameter by at most |B''|max / (8 m^2), and |B''| <= 6 max|p[k+2] - 2 p[k+1] + p[k]|
+    // (Farin, Curves and Surfaces for CAGD, the derivative of a Bézier curve).
+    constexpr int m = 8;
+    const float second = std::max(length(p[2] - p[1] * 2 + p[0]), length(p[3] - p[2] * 2 + p[1]));
+    const float reach = std::max({r[0], r[1], r[2], r[3]}) + 6 * second / (8 * m * m) +
+                        2e-4f * std::max(1.0f, max_component(abs(o)));
+    Vec3 a = p[0];
+    bool near = false;
+    for (int k = 1; k <= m && !near; ++k) {
+      const float t = float(k) / m, u = 1 - t;
+      const Vec3 b = p[0] * (u * u * u) + p[1] * (3 * t * u * u) + p[2] * (3 * t * t * u) + p[3] * (t * t * t);
+      const Vec3 ab = b - a;
+      const float along = std::clamp(dot(o - a, ab) / std::max(length_squared(ab), 1e-30f), 0.0f, 1.0f);
+      near = length(o - (a + ab * along)) <= reach;
+      a = b;
+    }
+    if (near) args->valid[i] = 0;
+  }
+  if (s.has_alpha()) alpha_filter(args);
+}
+
 }  // namespace
 
 EmbreeScene::EmbreeScene() {
@@ -87,6 +128,35 @@ RTCScene EmbreeScene::make_scene(const std::vector<int>& shape_ids, std::vector<
       auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                  3 * sizeof(unsigned), s.indices.size() / 3));
       for (std::size_t i = 0; i < s.indices.size(); ++i) idx[i] = s.indices[i];
+    } else if (s.type == Shape::Type::Curve) {
+      g = rtcNewGeometry(device_, s.curve_kind == Shape::CurveKind::Cylinder ? RTC_GEOMETRY_TYPE_ROUND_BEZIER_CURVE
+                                  : s.curve_kind == Shape::CurveKind::Ribbon
+                                      ? RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BEZIER_CURVE
+                                      : RTC_GEOMETRY_TYPE_FLAT_BEZIER_CURVE);
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                                            4 * sizeof(float), s.positions.size()));
+      for (std::size_t i = 0; i < s.positions.size(); ++i) {
+        v[4 * i] = s.positions[i].x;
+        v[4 * i + 1] = s.positions[i].y;
+        v[4 * i + 2] = s.positions[i].z;
+        v[4 * i + 3] = s.curve_radii[i];
+      }
+      if (s.curve_kind == Shape::CurveKind::Ribbon) {
+        auto* n = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3,
+                                                              3 * sizeof(float), s.normals.size()));
+        for (std::size_t i = 0; i < s.normals.size(); ++i) {
+          n[3 * i] = s.normals[i].x;
+          n[3 * i + 1] = s.normals[i].y;
+          n[3 * i + 2] = s.normals[i].z;
+        }
+      }
+      const std::size_t segments = s.positions.size() / 4;
+      auto* idx = static_cast<unsigned*>(
+          rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), segments));
+      for (std::size_t k = 0; k < segments; ++k) idx[k] = unsigned(4 * k);
+      // Flat curves are traced as ray-facing quads along the curve: 8 per segment rather
+      // than Embree's default 4, for close views of bent hairs.
+      if (s.curve_kind == Shape::CurveKind::Flat) rtcSetGeometryTessellationRate(g, 8);
     } else {
       g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
       auto* v = static_cast<float*>(
@@ -96,11 +166,12 @@ RTCScene EmbreeScene::make_scene(const std::vector<int>& shape_ids, std::vector<
       v[2] = s.center.z;
       v[3] = s.radius;
     }
-    if (s.has_alpha()) {
+    const bool flat_curve = s.type == Shape::Type::Curve && s.curve_kind == Shape::CurveKind::Flat;
+    if (s.has_alpha() || flat_curve) {
       alpha_geometries_.push_back(std::make_unique<AlphaGeometry>(AlphaGeometry{&s, alpha_lookup_}));
       rtcSetGeometryUserData(g, alpha_geometries_.back().get());
-      rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
-      rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
+      rtcSetGeometryIntersectFilterFunction(g, flat_curve ? flat_curve_filter : alpha_filter);
+      rtcSetGeometryOccludedFilterFunction(g, flat_curve ? flat_curve_filter : alpha_filter);
     }
     rtcCommitGeometry(g);
     unsigned gid = rtcAttachGeometry(scene, g);
@@ -226,6 +297,38 @@ void EmbreeScene::fill_hit(const RTCRayHit& rh, const Ray& ray, SurfaceHit& hit)
     hit.ng = ng;
     hit.ns = ng;
     hit.uv = Vec2(rh.hit.u + rh.hit.v, rh.hit.v);  // pbrt's default parameterisation, as below
+    return;
+  }
+  if (s.type == Shape::Type::Curve) {
+    // Embree's Ng: the surface normal of round and normal-oriented curves; the curve's
+    // tangent for flat ones, which face the ray: their normal is the ray's reverse made
+    // perpendicular to the tangent (pbrt-v4's flat curve, dp/du x dp/dv with dp/dv across
+    // the ray). Computed in world space; the point is on the ray.
+    Vec3 n(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    if (inst) n = s.curve_kind == Shape::CurveKind::Flat ? inst->object_to_world.vector(n)
+                                                        : inst->object_to_world.normal(n);
+    if (s.curve_kind == Shape::CurveKind::Flat) {
+      const Vec3 tangent = normalize(n);
+      const Vec3 d = normalize(ray.d);
+      n = tangent * dot(tangent, d) - d;
+      if (!(length_squared(n) > 0)) {  // a ray along the curve
+        Vec3 b;
+        orthonormal_basis(tangent, n, b);
+      }
+    }
+    if (s.curve_kind == Shape::CurveKind::Ribbon) {
+      // pbrt-v4's ribbon normal is the given one (interpolated along the segment).
+      const Vec3* nk = &s.normals[4 * std::size_t(rh.hit.primID)];
+      Vec3 given = nk[0] * (1 - rh.hit.u) + nk[3] * rh.hit.u;
+      if (inst) given = inst->object_to_world.normal(given);
+      if (dot(n, given) < 0) n = -n;
+    }
+    ng = normalize(n);
+    if (s.flip_normals && s.curve_kind != Shape::CurveKind::Flat) ng = -ng;  // a flat curve faces the ray
+    hit.p = ray.o + ray.d * hit.t;
+    hit.ng = ng;
+    hit.ns = ng;
+    hit.uv = surface_uv(s, rh.hit.primID, rh.hit.u, rh.hit.v, Vec3());
     return;
   }
   if (s.type == Shape::Type::Mesh) {

@@ -30,7 +30,8 @@ class EmbreeScene {
   // objects: for each object, the indices of its shapes (in object space).
   // Shapes with alpha (Shape::has_alpha) get an Embree filter that cuts their hits away
   // (geometry/alpha_mask.h) for every query, closest and any hit; `alpha` evaluates
-  // their alpha textures. Shapes without alpha get no filter: they cost nothing more.
+  // their alpha textures. Shapes without alpha get no filter: they cost nothing more,
+  // except flat curves, whose filter also drops a ray's hits on the band it left.
   void build(const std::vector<Shape>& shapes, const std::vector<int>& top_level,
              const std::vector<std::vector<int>>& objects, const std::vector<Instance>& instances,
              AlphaTextureLookup alpha = {});
@@ -49,7 +50,7 @@ class EmbreeScene {
   Vec3 bounds_center() const { return center_; }
   float bounds_radius() const { return radius_; }
 
- // What the alpha filter of one geometry reads (Embree's geometry user pointer).
+ // What the filter of one geometry (alpha, flat curve) reads (Embree's geometry user pointer).
   struct AlphaGeometry {
     const Shape* shape;
     AlphaTextureLookup lookup;

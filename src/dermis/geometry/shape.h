@@ -1,5 +1,5 @@
 // Shapes as the renderer holds them: triangle meshes in world space (or in an
-// instanced object's space) and exact spheres.
+// instanced object's space), exact spheres, and curves (Embree's curve primitives).
 #pragma once
 
 #include <cstdint>
@@ -12,11 +12,17 @@
 namespace dermis {
 
 struct Shape {
-  enum class Type { Mesh, Sphere };
+  enum class Type { Mesh, Sphere, Curve };
+  // Curve: how its cross-section is traced (pbrt-v4's curve "type"): a band facing the
+  // ray, a round tube, or a band oriented by per-point normals.
+  enum class CurveKind { Flat, Cylinder, Ribbon };
   Type type = Type::Mesh;
-  // Mesh: vertices in the space of the Embree scene that holds it.
+  // Mesh: vertices in the space of the Embree scene that holds it. Curve: cubic Bézier
+  // control points, 4 per segment (segment k: positions[4k .. 4k+3]); indices stay empty.
   std::vector<Vec3> positions;
-  std::vector<Vec3> normals;  // optional per-vertex shading normals
+  std::vector<Vec3> normals;  // mesh: optional per-vertex shading normals; ribbon curve: per control point
+  std::vector<float> curve_radii;  // curve: half the width at each control point
+  CurveKind curve_kind = CurveKind::Flat;
   std::vector<Vec2> uvs;      // optional
   std::vector<uint32_t> indices;
   // Sphere: centre and radius in the space of the Embree scene that holds it.
@@ -34,7 +40,9 @@ struct Shape {
   int alpha_texture = -1;
   bool has_alpha() const { return alpha < 1 || alpha_texture >= 0; }
 
-  std::size_t primitive_count() const { return type == Type::Sphere ? 1 : indices.size() / 3; }
+  std::size_t primitive_count() const {
+    return type == Type::Sphere ? 1 : type == Type::Curve ? positions.size() / 4 : indices.size() / 3;
+  }
 
   // Oriented unit geometric normal of triangle `prim` at barycentrics (b1, b2), in the
   // shape's own space (pbrt-v4's rule: with vertex normals the geometric normal

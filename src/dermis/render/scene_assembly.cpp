@@ -196,6 +196,23 @@ Shape make_shape(const ShapeDesc& d, const Transform& xf, int default_material) 
     s.radius = d.radius * scale;
     return s;
   }
+  if (d.type == ShapeDesc::Type::Curve) {
+    s.type = Shape::Type::Curve;
+    s.curve_kind = d.curve.kind == CurveKind::Cylinder ? Shape::CurveKind::Cylinder
+                   : d.curve.kind == CurveKind::Ribbon ? Shape::CurveKind::Ribbon
+                                                       : Shape::CurveKind::Flat;
+    s.positions = d.curve.points;
+    for (Vec3& p : s.positions) p = xf.point(p);
+    // The width is in object space: scaled by the cube root of the transform's volume
+    // scale (exact for a similarity; under a non-uniform scale, a round curve stays round).
+    const Vec3 x = xf.vector(Vec3(1, 0, 0)), y = xf.vector(Vec3(0, 1, 0)), z = xf.vector(Vec3(0, 0, 1));
+    const float width_scale = std::cbrt(std::abs(dot(x, cross(y, z))));
+    s.curve_radii.resize(d.curve.widths.size());
+    for (std::size_t i = 0; i < d.curve.widths.size(); ++i) s.curve_radii[i] = 0.5f * d.curve.widths[i] * width_scale;
+    s.normals = d.curve.normals;
+    for (Vec3& n : s.normals) n = normalize(xf.normal(n));
+    return s;
+  }
   s.type = Shape::Type::Mesh;
   if (d.type == ShapeDesc::Type::Sphere) {
     // An ellipsoid: tessellated finely, with pbrt's uv and the sphere's normals (transformed below).

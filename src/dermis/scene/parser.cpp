@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "dermis/scene/gzip_file.h"
+#include "dermis/scene/named_spectra_data.h"
 #include "dermis/scene/pbrt_v4_types.h"
 #include "dermis/scene/scene_parser.h"
 
@@ -514,6 +515,29 @@ void SceneParser::film(const Token& d, TokenStream& ts) {
   const float iso = pl.get_float("iso", 100);
   if (!(iso > 0) || !std::isfinite(iso)) throw SceneError(pl.find("iso")->value_loc, "iso must be positive");
   f.exposure_scale = iso / 100;
+  // pbrt-v4's "sensor": "cie1931" (the default) is what Dermis's film records (linear sRGB
+  // from the CIE 1931 observer). A camera's sensor (canon_eos_100d, ...) would need its
+  // measured r, g, b responses and pbrt-v4's fit of them to XYZ, which Dermis does not
+  // have: one warning saying so, and the image is the cie1931 one (exposure as above).
+  if (const ParsedParam* p = pl.find("sensor")) {
+    const std::string sensor = pl.get_string("sensor", "cie1931");
+    if (sensor != "cie1931") {
+      bool known = false;
+      std::string names = "\"cie1931\"";
+      for (const char* camera : camera_sensor_names()) {
+        known = known || sensor == camera;
+        names += fmt::format(", \"{}\"", camera);
+      }
+      if (!known)  // an error in pbrt-v4 too
+        throw SceneError(p->value_loc, fmt::format("unknown Film \"sensor\" \"{}\" (pbrt-v4's sensors: {})", sensor,
+                                                   names));
+      s_.diagnostics.warn(p->param.loc,
+                          fmt::format("Film \"sensor\" \"{}\": camera sensor responses are not modelled; rendered "
+                                      "with the \"cie1931\" sensor (the CIE 1931 observer, linear sRGB), so colours "
+                                      "and white balance differ from pbrt-v4's",
+                                      sensor));
+    }
+  }
   pl.warn_unused(s_.diagnostics, fmt::format("Film \"{}\"", type));
 }
 

@@ -259,7 +259,18 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
       return spectrum_or_texture(pl, p.param.name, RGB(1.0f)).texture;
     });
     m.eta = m.subsurface.eta;
-  } else {  // pbrt-v4's "hair" and "measured" (require_known_type refused unknown names)
+  } else if (type == "hair") {
+    // pbrt-v4's hair BSDF (Chiang et al. 2016) is not implemented: one warning, and a
+    // diffuse surface of the "reflectance" given (pbrt-v4's alternative to sigma_a and
+    // the melanin concentrations), else 0.5. Its other parameters are known, so they
+    // are not warned one by one.
+    s_.diagnostics.warn(loc, "material \"hair\" is not supported: rendered as diffuse (its \"reflectance\" if "
+                             "given, else 0.5)");
+    m.type = MaterialDesc::Type::Diffuse;
+    m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));
+    for (const char* known : {"sigma_a", "eumelanin", "pheomelanin", "eta", "beta_m", "beta_n", "alpha"})
+      if (const ParsedParam* p = pl.find(known)) p->used = true;
+  } else {  // pbrt-v4's "measured" (require_known_type refused unknown names)
     s_.diagnostics.warn(loc, fmt::format("unsupported material \"{}\"; using diffuse", type));
     m.type = MaterialDesc::Type::Diffuse;
     m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));  // its other parameters are warned unused

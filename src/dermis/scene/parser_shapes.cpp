@@ -59,6 +59,53 @@ std::vector<Vec3> read_positions(const ParamList& pl, const SourceLoc& shape_loc
   return pl.get_vec3s("P", {"point3"});
 }
 
+// pbrt-v4's curve: "point3 P" in "basis" bezier|bspline of "degree" 2|3, "type"
+// flat|cylinder|ribbon, "normal N" (ribbons: one per segment end), "width" (1) or
+// "width0"/"width1" at its ends. "splitdepth" (pbrt-v4's own refinement) is read and not
+// needed: Embree intersects the cubic segments directly.
+void read_curve(const ParamList& pl, const SourceLoc& loc, ShapeDesc& sh, Diagnostics& diag) {
+  std::vector<Vec3> P = read_positions(pl, loc, "curve");
+  auto one_of = [&](const char* name, const char* def, std::initializer_list<const char*> allowed) {
+    const std::string v = pl.get_string(name, def);
+    for (const char* a : allowed)
+      if (v == a) return v;
+    std::string list;
+    for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+    throw SceneError(pl.find(name)->value_loc, fmt::format("curve \"{}\" \"{}\" is not one of {}", name, v, list));
+  };
+  const CurveBasis basis = one_of("basis", "bezier", {"bezier", "bspline"}) == "bspline" ? CurveBasis::BSpline
+                                                                                        : CurveBasis::Bezier;
+  const std::string kind_name = one_of("type", "flat", {"flat", "cylinder", "ribbon"});
+  const CurveKind kind = kind_name == "cylinder" ? CurveKind::Cylinder
+                         : kind_name == "ribbon" ? CurveKind::Ribbon
+                                                 : CurveKind::Flat;
+  const int degree = pl.get_int("degree", 3);
+  if (degree != 2 && degree != 3)
+    throw SceneError(pl.find("degree")->value_loc, fmt::format("curve degree must be 2 or 3, got {}", degree));
+  const float width = pl.get_float("width", 1);
+  const float width0 = pl.get_float("width0", width), width1 = pl.get_float("width1", width);
+  for (const char* name : {"width", "width0", "width1"})
+    if (const ParsedParam* w = pl.find(name); w && !(pl.get_float(name, 1) >= 0 && std::isfinite(pl.get_float(name, 1))))
+      throw SceneError(w->value_loc, fmt::format("curve \"{}\" must be finite and >= 0, got {}", name,
+                                                 pl.get_float(name, 1)));
+  if (!(std::max(width0, width1) > 0)) throw SceneError(loc, "a curve of width 0 has no surface");
+  pl.get_int("splitdepth", 3);  // read: pbrt-v4's refinement depth, not needed with Embree
+  std::vector<Vec3> N = pl.get_vec3s("N", {"normal3"});
+  if (!N.empty() && kind != CurveKind::Ribbon) {
+    diag.warn(pl.find("N")->param.loc, fmt::format("curve normals \"N\" are used only by \"ribbon\" curves; this "
+                                                   "\"{}\" curve ignores them (as pbrt-v4)",
+                                                   kind_name));
+    N.clear();
+  }
+  try {
+    sh.curve = curve_to_bezier_segments(P, basis, degree, kind, width0, width1, N);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(pl.find(kind == CurveKind::Ribbon && pl.has("N") ? "N" : "P")->value_loc,
+                     fmt::format("Shape \"curve\": {}", e.what()));
+  }
+  sh.type = ShapeDesc::Type::Curve;
+}
+
 }  // namespace
 
 void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir) {
@@ -175,6 +222,8 @@ void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir)
     const float phimax = pl.get_float("phimax", 360);
     if (!(phimax > 0)) throw SceneError(pl.find("phimax")->value_loc, "disk phimax must be positive");
     sh.mesh = tessellate_disk(height, radius, inner, kDiskSegments, phimax);
+  } else if (type == "curve") {
+    read_curve(pl, loc, sh, s_.diagnostics);
   } else if (type == "plymesh" || type == "objmesh") {
     const ParsedParam* fp = pl.find("filename");
     if (!fp) throw SceneError(loc, fmt::format("Shape \"{}\" needs \"string filename\"", type));
@@ -196,12 +245,21 @@ void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir)
     }
     if (type == "plymesh" && (pl.has("displacement") || pl.has("edgelength")))
       s_.diagnostics.warn(loc, "plymesh displacement is not supported (ignored)");
-  } else {  // pbrt-v4's "curve" (require_known_type refused unknown names)
+  } else {  // unreachable: require_known_type refused unknown names, and every pbrt-v4 shape is read above
     s_.diagnostics.warn(loc, fmt::format("unsupported Shape \"{}\" ignored", type));
     pl.warn_unused(s_.diagnostics, fmt::format("Shape \"{}\"", type));  // each of its parameters, where it is
     return;
   }
 
+  if (sh.type == ShapeDesc::Type::Curve && sh.material >= 0 &&
+      s_.materials[std::size_t(sh.material)].type == MaterialDesc::Type::Subsurface)
+    s_.diagnostics.warn(loc, "a subsurface material on a curve: a curve encloses no volume a random walk could "
+                             "cross (not supported; rendered as written, not meaningful)");
+  if (sh.type == ShapeDesc::Type::Curve && sh.area_light) {
+    s_.diagnostics.warn(loc, "an area light on a curve is not supported (pbrt-v4 cannot sample curves either); the "
+                             "curve is not emissive");
+    sh.area_light.reset();
+  }
   if (sh.type == ShapeDesc::Type::TriangleMesh) {
     try {
       validate_mesh(sh.mesh);

@@ -223,6 +223,26 @@ TEST(ParserOptions, SamplerNamesMapToTheNearestSampler) {
   EXPECT_TRUE(has_warning(digits, "warning: Sampler \"randomization\" \"permutedigits\" is not available"));
 }
 
+// pbrt-v4's Film "sensor": "cie1931" is what Dermis records; a camera's sensor is one clear
+// warning at the parameter (rendered as cie1931); a name pbrt-v4 does not know is an error.
+TEST(ParserOptions, FilmSensor) {
+  const std::string lit = "WorldBegin\nLightSource \"point\"\n";
+  EXPECT_TRUE(test::parse_text("Film \"rgb\" \"string sensor\" \"cie1931\"\n" + lit).diagnostics.warnings.empty());
+  SceneDesc canon = test::parse_text("Film \"rgb\" \"float iso\" 200 \"string sensor\" \"canon_eos_100d\"\n" + lit);
+  ASSERT_EQ(canon.diagnostics.warnings.size(), 1u);
+  EXPECT_TRUE(has_warning(canon, "test.pbrt:1:28: warning: Film \"sensor\" \"canon_eos_100d\": camera sensor "
+                                 "responses are not modelled; rendered with the \"cie1931\" sensor"));
+  EXPECT_FLOAT_EQ(canon.film.exposure_scale, 2);
+  try {
+    test::parse_text("Film \"rgb\" \"string sensor\" \"canon_eos_99d\"\n" + lit);
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("test.pbrt:1:28: error: unknown Film \"sensor\" \"canon_eos_99d\""),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ParserOptions, GaussianFilterAndFallbacks) {
   SceneDesc s = test::parse_text(
       "Film \"gbuffer\"\nPixelFilter \"mitchell\" \"float sigma\" 0.7\nIntegrator \"bdpt\"\nWorldBegin\n");

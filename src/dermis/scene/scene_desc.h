@@ -14,6 +14,7 @@
 #include "dermis/core/sampler.h"
 #include "dermis/core/transform.h"
 #include "dermis/core/vec.h"
+#include "dermis/scene/curve_segments.h"
 #include "dermis/scene/diagnostics.h"
 #include "dermis/scene/subsurface_params.h"
 
@@ -163,11 +164,12 @@ struct TriangleMeshDesc {
 };
 
 struct ShapeDesc {
-  enum class Type { TriangleMesh, Sphere };
+  enum class Type { TriangleMesh, Sphere, Curve };
   Type type = Type::TriangleMesh;
   Transform object_to_world;   // to world for top-level shapes, to the object's space in instances
   TriangleMeshDesc mesh;       // trianglemesh, plymesh, objmesh, bilinearmesh and disk (tessellated)
   float radius = 1;            // sphere (full spheres only)
+  CurveSegments curve;         // curve: cubic Bézier segments in object space
   int material = -1;           // index into SceneDesc::materials; -1: the default diffuse
   std::optional<AreaLightDesc> area_light;
   int inside_medium = -1;      // indices into SceneDesc::media, -1: vacuum
