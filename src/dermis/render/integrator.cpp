@@ -9,6 +9,7 @@
 #include "dermis/materials/bsdf.h"
 #include "dermis/materials/free_flight.h"
 #include "dermis/materials/fresnel.h"
+#include "dermis/render/volumetric_texture.h"
 
 namespace dermis {
 
@@ -163,6 +164,12 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     return true;
   };
 
+  // A textured `volumetric` object: the path takes the medium of the point where it
+  // entered and keeps it while inside (volumetric_texture.h); elsewhere sc.media.
+  HomogeneousMedium entered;
+  int entered_medium = -1;
+  auto medium_of = [&](int m) -> const HomogeneousMedium& { return m == entered_medium ? entered : sc.media[m]; };
+
   const uint64_t last_stratified = start.first_dimension + kStratifiedVertices * kVertexDimensions;
   for (;; vertex_dimension += kVertexDimensions) {
     if (vertex_dimension < last_stratified)
@@ -175,7 +182,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     float t_hit = found ? hit.t : kInf;
 
     if (medium >= 0) {
-      const HomogeneousMedium& m = sc.media[medium];
+      const HomogeneousMedium& m = medium_of(medium);
       const float u_channel = sampler.get1d(), u_distance = sampler.get1d();
       // Direct light in-scattered anywhere on the segment, at a point drawn for it alone
       // (decoupled from the free flight below, as Cycles' volume integrator does): the path
@@ -441,7 +448,14 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     const bool behind = two_sided_nee && bs->transmission;
     prev_p = behind ? p_back : p_out;
     prev_n = behind ? -surface_n : surface_n;
-    if (bs->transmission) medium = medium_after_crossing(s, bs->wi, hit.ng, medium);
+    if (bs->transmission) {
+      const int before = medium;
+      medium = medium_after_crossing(s, bs->wi, hit.ng, medium);
+      if (const int v = textured_volumetric(sc, medium); v >= 0 && medium != before) {
+        entered = volumetric_medium_at(sc, v, hit);
+        entered_medium = medium;
+      }
+    }
     ray = Ray{offset_ray_origin(hit.p, hit.ng, bs->wi), bs->wi};
     if (!beta.is_finite() || beta.is_black()) break;
     if (!survives_roulette()) break;

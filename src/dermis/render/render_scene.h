@@ -33,12 +33,18 @@ struct RenderScene {
   // and the methods made from them by preparation.
   std::vector<SubsurfaceParams> subsurface_params;
   std::vector<std::unique_ptr<SubsurfaceMaterial>> subsurface;
-  // The `volumetric` references: a medium filled in by preparation from the parameters.
+  // The `volumetric` references: a medium filled in by preparation from the parameters
+  // (with textured parameters, the textures' mean; a path takes the medium of the point
+  // where it entered: volumetric_texture.h).
   struct VolumetricMedium {
     SubsurfaceParams params;
     int medium = -1;
+    const sss::AlbedoInversion* inversion = nullptr;  // the dielectric table (null: coefficients or the fit)
   };
   std::vector<VolumetricMedium> volumetric_media;
+  // Per medium: its entry in volumetric_media when its parameters are textured, else -1
+  // (filled by preparation; empty when no volumetric material is textured).
+  std::vector<int> textured_volumetric_of_medium;
   // The subsurface object of each shape (subsurface/object_tracer.h): walks and probes
   // stay within the shapes of the object they entered.
   std::vector<int> object_of_shape;

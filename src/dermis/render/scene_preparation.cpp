@@ -45,15 +45,21 @@ PreparationReport prepare_scene(RenderScene& sc, const PreparationOptions& optio
     }
     // The volumetric reference has a dielectric boundary: its (reflectance, mfp)
     // inversion uses the dielectric table.
-    for (const RenderScene::VolumetricMedium& v : sc.volumetric_media) {
+    // Textured parameters: the medium of the textures' mean here; each path takes the one
+    // of its entry point (volumetric_texture.h), through the same table.
+    sc.textured_volumetric_of_medium.clear();
+    for (std::size_t i = 0; i < sc.volumetric_media.size(); ++i) {
+      RenderScene::VolumetricMedium& v = sc.volumetric_media[i];
       check_cancel();
-      if (v.params.textured())
-        throw SceneError(v.params.loc, "subsurface: method \"volumetric\" renders a homogeneous medium and needs "
-                                       "constant parameters; with textured parameters use \"randomwalk\"");
       SubsurfaceParams as_dielectric = v.params;
       as_dielectric.boundary = SubsurfaceParams::Boundary::Dielectric;
-      const Coefficients k = resolve_coefficients(as_dielectric);
+      v.inversion = albedo_inversion_for(as_dielectric);
+      const Coefficients k = coefficients_from(medium_at(as_dielectric), v.inversion);
       sc.media[v.medium] = HomogeneousMedium::from_coefficients(k.sigma_a, k.sigma_s, 1, v.params.g);
+      if (v.params.textured()) {
+        sc.textured_volumetric_of_medium.resize(sc.media.size(), -1);
+        sc.textured_volumetric_of_medium[v.medium] = int(i);
+      }
       progress.advance();
     }
     progress.finish();

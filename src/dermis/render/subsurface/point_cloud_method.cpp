@@ -9,9 +9,10 @@
 
 namespace dermis {
 
-PointCloudMethod::PointCloudMethod(const SubsurfaceParams& params)
-    : params_(params), sw_norm_(subsurface_exit_normalization(params.eta)),
-      profile_(std::make_unique<sss::ProfileRGB>(make_profile(params))) {
+PointCloudMethod::PointCloudMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures)
+    : params_(params), sw_norm_(subsurface_exit_normalization(params.eta)), textures_(textures),
+      table_(profile_table(params)),
+      profile_(std::make_unique<sss::ProfileRGB>(make_profile(params, medium_at(params), table_))) {
   const RGB l = albedo_and_mfp(params).mfp;
   min_mfp_ = std::min({l[0], l[1], l[2]});
 }
@@ -27,7 +28,12 @@ bool PointCloudMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sample
   // The local disk needs the irradiance at x itself: one estimate per sample.
   const RGB Ex = params_.local_disk ? entry.irradiance(entry.hit.p, entry.hit.ng, params_.eta, sampler) : RGB(0);
   out.kind = SubsurfaceExit::Kind::Emitted;
-  out.radiance = c->radiant_exitance(entry.hit.p, Ex) / (sw_norm_ * kPi);  // L = Sw M (METHODS.md sec. 0)
+  const RGB M = textures_ && params_.textured()
+                    ? c->radiant_exitance(entry.hit.p, Ex,
+                                          make_profile(params_, medium_at(params_, textures_, texture_context(entry.hit)),
+                                                       table_))
+                    : c->radiant_exitance(entry.hit.p, Ex);
+  out.radiance = M / (sw_norm_ * kPi);  // L = Sw M (METHODS.md sec. 0)
   return true;
 }
 

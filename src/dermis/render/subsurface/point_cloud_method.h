@@ -8,16 +8,22 @@
 #include <memory>
 #include <vector>
 
+#include "dermis/materials/texture.h"
 #include "dermis/scene/subsurface_params.h"
 #include "dermis/render/subsurface/subsurface_exit.h"
 #include "dermis/sss/pointcloud/point_cloud_diffusion.h"
 #include "dermis/sss/profiles/profile.h"
+#include "dermis/sss/profiles/tabulated.h"
 
 namespace dermis {
 
+// Textured parameters: the cloud holds irradiance and area only; the exitance at a
+// shading point spreads every point's E_p A_p with the profile of the parameters at the
+// shading point (as the probes weight every exit with the entry point's profile).
 class PointCloudMethod {
  public:
-  explicit PointCloudMethod(const SubsurfaceParams& params);
+  // textures: the scene's (outlives the method); null when the parameters are constant.
+  explicit PointCloudMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures = nullptr);
 
   bool sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const;
 
@@ -36,7 +42,9 @@ class PointCloudMethod {
   SubsurfaceParams params_;
   float sw_norm_;
   float min_mfp_;
-  std::unique_ptr<sss::ProfileRGB> profile_;
+  const std::vector<Texture>* textures_;
+  std::shared_ptr<const sss::ProfileTable> table_;  // the tabulated profile's
+  std::unique_ptr<sss::ProfileRGB> profile_;        // the constants' (or the textures' mean)
   std::vector<std::shared_ptr<const sss::pointcloud::PointCloudDiffusion>> clouds_;  // per object
 };
 

@@ -1,12 +1,12 @@
 #include "dermis/render/subsurface/probe_method.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
-#include <stdexcept>
+#include <array>
+#include <cmath>
 #include <vector>
 
 #include "dermis/render/subsurface/profile_from_params.h"
+#include "dermis/sss/profiles/quadrature.h"
 
 namespace dermis {
 
@@ -53,6 +53,12 @@ RGB channel_weights(const sss::ProfileRGB& profile) {
   return weights;
 }
 
+// int_0^rho R(r) 2 pi r dr: what a plane through the entry returns (the retry's
+// fallback for a textured entry; rare, so by quadrature).
+double energy_within(const sss::RadialProfile& profile, double rho) {
+  return sss::integrate([&](double r) { return profile.eval(r) * 2 * kPiD * r; }, 0, rho, 1e-7);
+}
+
 sss::ProbeAxisProbabilities axes(SubsurfaceParams::Method m) {
   return m == SubsurfaceParams::Method::Disk ? sss::ProbeAxisProbabilities{} : sss::ProbeAxisProbabilities::single_axis();
 }
@@ -62,21 +68,34 @@ sss::ProbeAxisProbabilities axes(SubsurfaceParams::Method m) {
 ProbeMethod::ProbeMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures)
     : method_(params.method), params_(params), textures_(textures), table_(profile_table(params)),
       profile_(std::make_unique<sss::ProfileRGB>(make_profile(params, medium_at(params), table_))) {
-  const bool disk = method_ == Method::Disk || method_ == Method::DiskSingleAxis;
-  if (params.textured() && !disk)
-    throw std::invalid_argument(fmt::format(
-        "textured parameters need method \"disk\", \"disk-single-axis\" or \"randomwalk\": \"{}\" tabulates "
-        "its probes once per material",
-        to_string(method_)));
-  if (disk) {
+  if (method_ == Method::Disk || method_ == Method::DiskSingleAxis) {
     disk_ = std::make_unique<sss::DiskProbeSampler>(*profile_, channel_weights(*profile_), axes(method_));
   } else {
+    // With textured parameters these are the tables of the textures' mean, stretched
+    // per entry point (sphere_lines.h, radius_scale).
     line_tables_ = std::make_unique<sss::SphereLineTablesRGB>(*profile_);
     lines_ = std::make_unique<sss::SphereLineSampler>(*line_tables_, channel_weights(*profile_));
   }
 }
 
 double ProbeMethod::max_radius() const { return disk_ ? disk_->max_radius() : lines_->max_radius(); }
+
+double ProbeMethod::max_radius(const sss::ProfileRGB& entry_profile) const {
+  if (!params_.textured()) return max_radius();
+  return disk_ ? sss::DiskProbeSampler(entry_profile, channel_weights(entry_profile), axes(method_)).max_radius()
+               : lines_at(entry_profile).max_radius();
+}
+
+sss::SphereLineSampler ProbeMethod::lines_at(const sss::ProfileRGB& profile) const {
+  // Each channel's table stretched to the entry profile's reach: exact for the profiles
+  // that one length scales (Burley, Gaussian, cubic), unbiased for the others.
+  std::array<double, 3> scale{1, 1, 1};
+  for (int c = 0; c < 3; ++c) {
+    const double mean_reach = profile_->channel[c].r_max(), reach = profile[c].r_max();
+    if (mean_reach > 0 && reach > 0 && std::isfinite(reach)) scale[c] = reach / mean_reach;
+  }
+  return sss::SphereLineSampler(*line_tables_, channel_weights(profile), scale);
+}
 
 bool ProbeMethod::sample_disk(const sss::ProfileRGB& profile, const sss::DiskProbeSampler& disk,
                               const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
@@ -88,21 +107,15 @@ bool ProbeMethod::sample_disk(const sss::ProfileRGB& profile, const sss::DiskPro
                         [&](const SurfaceHit& h) { return disk.pdf_area(frame, to_d(h.p), to_d(h.ng)); }, out);
 }
 
-bool ProbeMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
+bool ProbeMethod::sample_lines(const sss::ProfileRGB& profile, const sss::SphereLineSampler& lines,
+                               const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
   const Vec3d p = to_d(entry.hit.p);
-  if (disk_ && params_.textured()) {
-    // The entry point's own parameters.
-    const sss::ProfileRGB profile = make_profile(params_, medium_at(params_, textures_, texture_context(entry.hit)), table_);
-    const sss::DiskProbeSampler disk(profile, channel_weights(profile), axes(method_));
-    return sample_disk(profile, disk, entry, sampler, out);
-  }
-  if (disk_) return sample_disk(*profile_, *disk_, entry, sampler, out);
   if (method_ == Method::SphereLines) {
     const float u_channel = sampler.get1d(), u_radius = sampler.get1d();
     const Vec2 u_first = sampler.get2d(), u_second = sampler.get2d();
-    sss::SphereLineSample s = lines_->sample(p, u_channel, u_radius, {u_first.x, u_first.y}, {u_second.x, u_second.y});
-    return pick_probe_hit(*profile_, entry, s.segment, sampler,
-                          [&](const SurfaceHit& h) { return lines_->pdf_area(p, to_d(h.p)); }, out);
+    sss::SphereLineSample s = lines.sample(p, u_channel, u_radius, {u_first.x, u_first.y}, {u_second.x, u_second.y});
+    return pick_probe_hit(profile, entry, s.segment, sampler,
+                          [&](const SurfaceHit& h) { return lines.pdf_area(p, to_d(h.p)); }, out);
   }
   // The Cycles page's scheme: retry up to 8 lines until one hits, else stay at P.
   const std::vector<SurfaceHit>* hits = nullptr;
@@ -110,20 +123,35 @@ bool ProbeMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Su
     hits = &probe_hits(entry, seg);
     return int(hits->size());
   };
-  sss::SphereLineRetry r = lines_->sample_retry(p, sampler, count_hits);
+  sss::SphereLineRetry r = lines.sample_retry(p, sampler, count_hits);
   out.kind = SubsurfaceExit::Kind::ThroughLobe;
   if (r.hits == 0) {
     out.hit = entry.hit;
-    for (int c = 0; c < 3; ++c) out.weight[c] = float(lines_->fallback_weight(c));
+    for (int c = 0; c < 3; ++c)
+      out.weight[c] = float(params_.textured() ? energy_within(profile[c], lines.max_radius())
+                                               : lines.fallback_weight(c));
     return true;
   }
   const SurfaceHit& h = (*hits)[r.chosen];
   double d = length(to_d(h.p) - p);
-  double pdf = lines_->pdf_area(p, to_d(h.p));
+  double pdf = lines.pdf_area(p, to_d(h.p));
   out.hit = h;
   for (int c = 0; c < 3; ++c)
-    out.weight[c] = float(sss::SphereLineSampler::retry_weight(profile_->channel[c].eval(d), r.hits, pdf));
+    out.weight[c] = float(sss::SphereLineSampler::retry_weight(profile.channel[c].eval(d), r.hits, pdf));
   return true;
+}
+
+bool ProbeMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
+  if (!params_.textured())
+    return disk_ ? sample_disk(*profile_, *disk_, entry, sampler, out)
+                 : sample_lines(*profile_, *lines_, entry, sampler, out);
+  // The entry point's own parameters: its profile and probe sampler on the stack.
+  const sss::ProfileRGB profile = make_profile(params_, medium_at(params_, textures_, texture_context(entry.hit)), table_);
+  if (disk_) {
+    const sss::DiskProbeSampler disk(profile, channel_weights(profile), axes(method_));
+    return sample_disk(profile, disk, entry, sampler, out);
+  }
+  return sample_lines(profile, lines_at(profile), entry, sampler, out);
 }
 
 }  // namespace dermis

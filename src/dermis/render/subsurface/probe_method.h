@@ -19,13 +19,13 @@
 
 namespace dermis {
 
-// Textured parameters (disk, disk-single-axis): the profile and its probe sampler are
-// made at each entry point from the parameters there (on the stack, no allocation),
-// and the exit is weighted with that profile.
+// Textured parameters: the profile and its probe sampler are made at each entry point
+// from the parameters there, on the stack (no allocation), and the exit is weighted
+// with that profile. The disk sampler is closed-form; the sphere lines stretch the
+// tables of the textures' mean to the entry profile's reach (sphere_lines.h).
 class ProbeMethod {
  public:
-  // textures: the scene's (outlives the method); throws std::invalid_argument for
-  // textured parameters with the sphere-line probes, whose tables are per material.
+  // textures: the scene's (outlives the method).
   ProbeMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures);
 
   bool sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const;
@@ -35,11 +35,17 @@ class ProbeMethod {
   const sss::SphereLineSampler* lines() const { return lines_.get(); }
   // The largest distance from the entry at which a probe can find an exit.
   double max_radius() const;
+  // The same at an entry point whose (textured) parameters give `entry_profile`.
+  double max_radius(const sss::ProfileRGB& entry_profile) const;
 
  private:
   using Method = SubsurfaceParams::Method;
   bool sample_disk(const sss::ProfileRGB& profile, const sss::DiskProbeSampler& disk, const SubsurfaceEntry& entry,
                    Sampler& sampler, SubsurfaceExit& out) const;
+  bool sample_lines(const sss::ProfileRGB& profile, const sss::SphereLineSampler& lines, const SubsurfaceEntry& entry,
+                    Sampler& sampler, SubsurfaceExit& out) const;
+  // The sphere-line sampler for an entry point's profile (textured parameters).
+  sss::SphereLineSampler lines_at(const sss::ProfileRGB& profile) const;
 
   Method method_;
   SubsurfaceParams params_;

@@ -20,10 +20,7 @@ SubsurfaceMethod make_method(const SubsurfaceParams& p, const std::vector<Textur
     case Method::RandomWalk:
       return SubsurfaceMethod(std::in_place_type<WalkMethod>, p, textures);
     case Method::PointCloud:
-      if (p.textured())
-        throw std::invalid_argument("textured parameters are not supported by method \"pointcloud\" yet (its cloud "
-                                    "holds one profile); use \"disk\" or \"randomwalk\"");
-      return SubsurfaceMethod(std::in_place_type<PointCloudMethod>, p);
+      return SubsurfaceMethod(std::in_place_type<PointCloudMethod>, p, textures);
     case Method::Volumetric:
       break;
   }

@@ -63,6 +63,17 @@ double LocalDiskTable::local_albedo(double alpha) const {
   return std::exp(log_value_[i] * (1 - t) + log_value_[i + 1] * t);
 }
 
+double local_albedo_of(const RadialProfile& profile, double alpha) {
+  if (!(alpha > 0) || !(profile.albedo() > 0)) return 0.0;
+  // Langlands & Mertens (seed 001): the local term's 1D integral 2 pi int_0^alpha w R r dr.
+  auto f = [&](double r) { return local_weight(r, alpha) * profile.eval(r) * r; };
+  constexpr int kPieces = 40;
+  double total = 0, b = alpha;
+  for (int k = 0; k < kPieces; ++k, b *= 0.5) total += gauss_legendre_16(f, 0.5 * b, b);
+  total += gauss_legendre_16(f, 0.0, b);
+  return 2 * kPiD * total;
+}
+
 LocalDiskTableRGB::LocalDiskTableRGB(const ProfileRGB& profile, int entries)
     : channel{LocalDiskTable(profile[0], entries), LocalDiskTable(profile[1], entries),
               LocalDiskTable(profile[2], entries)} {}

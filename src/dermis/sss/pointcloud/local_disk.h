@@ -35,6 +35,12 @@ class LocalDiskTable {
   std::vector<double> log_value_;   // ln(local albedo) at alpha_lo * exp(i / inv_step)
 };
 
+// The local albedo 2 pi int_0^alpha w(r) R(r) r dr of one profile at one alpha, without
+// a table (a profile made per shading point, textured parameters): 16-point
+// Gauss-Legendre on 40 dyadic pieces of [0, alpha] (about 650 evaluations), on each of
+// which a profile singular or steep at r = 0 is smooth.
+double local_albedo_of(const RadialProfile& profile, double alpha);
+
 struct LocalDiskTableRGB {
   std::array<LocalDiskTable, 3> channel;
   explicit LocalDiskTableRGB(const ProfileRGB& profile, int entries = LocalDiskTable::kDefaultEntries);

@@ -60,4 +60,13 @@ RGB PointCloudDiffusion::radiant_exitance(Vec3 x, RGB irradiance_at_x) const {
   return tables_.local_term(irradiance_at_x, alpha) + octree_.query_outside_disk(x, profile_, options_.epsilon, alpha);
 }
 
+RGB PointCloudDiffusion::radiant_exitance(Vec3 x, RGB irradiance_at_x, const ProfileRGB& profile_at_x) const {
+  if (!options_.local_disk) return octree_.query(x, profile_at_x, options_.epsilon);
+  double alpha = disk_radius(x);
+  if (!std::isfinite(alpha)) alpha = 0;  // fewer than k points: no disk
+  RGB local;
+  for (int c = 0; c < 3; ++c) local[c] = float(irradiance_at_x[c] * local_albedo_of(profile_at_x[c], alpha));
+  return local + octree_.query_outside_disk(x, profile_at_x, options_.epsilon, alpha);
+}
+
 }  // namespace dermis::sss::pointcloud

@@ -47,6 +47,10 @@ class PointCloudDiffusion {
   // (Langlands & Mertens); without it, sum R E_p A_p. irradiance_at_x = E(x), computed
   // by the caller at the shading point (unused without the local disk).
   RGB radiant_exitance(Vec3 x, RGB irradiance_at_x) const;
+  // The same with the profile of the shading point x instead of the cloud's (textured
+  // parameters: every cloud point's E_p A_p is spread with x's profile; the local term
+  // by quadrature, local_albedo_of). Allocates nothing.
+  RGB radiant_exitance(Vec3 x, RGB irradiance_at_x, const ProfileRGB& profile_at_x) const;
   // The plain octree sum at any epsilon, and the exact sum (references for tests).
   RGB octree_sum(Vec3 x, double epsilon) const { return octree_.query(x, profile_, epsilon); }
   RGB brute_force(Vec3 x) const { return octree_.brute_force(x, profile_); }

@@ -81,13 +81,18 @@ SphereLineTablesRGB::SphereLineTablesRGB(const ProfileRGB& profile, int bins) {
   for (int c = 0; c < 3; ++c) channel[c] = SphereLineTable(profile[c], rho_max, bins);
 }
 
-SphereLineSampler::SphereLineSampler(const SphereLineTablesRGB& tables, RGB channel_weights) : tables_(&tables) {
+SphereLineSampler::SphereLineSampler(const SphereLineTablesRGB& tables, RGB channel_weights,
+                                     std::array<double, 3> radius_scale)
+    : tables_(&tables), scale_(radius_scale) {
   RGB w = channel_weights;
-  for (int c = 0; c < 3; ++c)
+  for (int c = 0; c < 3; ++c) {
+    if (!(scale_[c] > 0) || !std::isfinite(scale_[c]))
+      throw std::invalid_argument("sphere-line probe: radius scales must be positive and finite");
     if (tables.channel[c].is_empty() && w[c] >= 0) w[c] = 0;
+  }
   q_ = normalised_channel_weights(w, "sphere-line probe");
   for (int c = 0; c < 3; ++c)
-    if (q_[c] > 0) max_radius_ = std::max(max_radius_, tables.channel[c].rho_max());
+    if (q_[c] > 0) max_radius_ = std::max(max_radius_, scale_[c] * tables.channel[c].rho_max());
 }
 
 SphereLineSample SphereLineSampler::sample(Vec3d p, double u_channel, double u_radius, Vec2d u_first,
@@ -96,7 +101,7 @@ SphereLineSample SphereLineSampler::sample(Vec3d p, double u_channel, double u_r
   int c = u_channel < q_[0] ? 0 : (u_channel < q_[0] + q_[1] ? 1 : 2);
   while (q_[c] == 0) c = (c + 2) % 3;  // rounding at the last edge
   out.channel = c;
-  const double rho = tables_->channel[c].sample_radius(u_radius);
+  const double rho = scale_[c] * tables_->channel[c].sample_radius(u_radius);
   out.sphere_radius = rho;
   // Two independent uniform points on the sphere of radius rho (Walter et al. 2012, App. B).
   const Vec3d a = p + uniform_sphere_direction(u_first.x, u_first.y) * rho;
@@ -110,7 +115,7 @@ double SphereLineSampler::pdf_area(Vec3d p, Vec3d x) const {
   const double d = length(x - p);
   double pdf = 0;
   for (int c = 0; c < 3; ++c)
-    if (q_[c] > 0) pdf += q_[c] * tables_->channel[c].hit_density(d);
+    if (q_[c] > 0) pdf += q_[c] * tables_->channel[c].hit_density(d / scale_[c]) / (scale_[c] * scale_[c]);
   return pdf;
 }
 

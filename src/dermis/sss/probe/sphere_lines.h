@@ -96,7 +96,13 @@ class SphereLineSampler {
 
   // `tables` must outlive the sampler. Channels with empty tables get weight 0.
   // Throws std::invalid_argument when no channel with a non-empty table has weight > 0.
-  SphereLineSampler(const SphereLineTablesRGB& tables, RGB channel_weights = RGB(1.0f));
+  // radius_scale s_c > 0 stretches channel c's table by s_c: radii s_c rho, hit density
+  // q_c(d / s_c) / s_c^2 (the density of s_c rho for rho ~ p_c). It lets one table serve
+  // a family of profiles R_s(r) = R(r / s) / s^2 exactly, and any other profile of
+  // similar reach unbiasedly (textured parameters: no table per entry point). Allocates
+  // nothing: a sampler may live on the stack.
+  SphereLineSampler(const SphereLineTablesRGB& tables, RGB channel_weights = RGB(1.0f),
+                    std::array<double, 3> radius_scale = {1, 1, 1});
 
   // u_channel, u_radius in [0, 1); u_first, u_second in [0, 1)^2 pick the chord's ends.
   SphereLineSample sample(Vec3d p, double u_channel, double u_radius, Vec2d u_first, Vec2d u_second) const;
@@ -133,12 +139,14 @@ class SphereLineSampler {
   static double retry_weight(double profile_value, int hits, double pdf) {
     return pdf > 0 ? hits * profile_value / (2 * pdf) : 0.0;
   }
-  // What the plane would have returned: the energy of channel c within its table's rho_max.
+  // What the plane would have returned: the energy of channel c within its table's
+  // rho_max (the tables' own profile: radius scales of 1).
   double fallback_weight(int c) const { return (*tables_).channel[c].energy_within(); }
 
  private:
   const SphereLineTablesRGB* tables_ = nullptr;
   std::array<double, 3> q_{};
+  std::array<double, 3> scale_{1, 1, 1};
   double max_radius_ = 0;
 };
 

@@ -240,6 +240,50 @@ TEST(SphereLines, FlatPlaneEstimatorRecoversTheKeptEnergy) {
   }
 }
 
+// Radius scales (textured parameters): a sampler over the tables of one profile,
+// stretched by s_c, (a) has the hit density of the tables of the stretched profile
+// R(r / s) / s^2 (Burley: the same profile family, so the tables must agree to
+// rounding), and (b) estimates any other profile's energy on a plane without bias:
+// here a dipole of other albedos and lengths, weighted by its own R(d) / q(d), within
+// 4 sigma of the quadrature of that dipole within the scaled sampler's reach.
+TEST(SphereLines, RadiusScalesStretchTheTablesExactly) {
+  const RGB A(0.8f, 0.5f, 0.3f), l(0.5f, 0.3f, 0.2f);
+  const std::array<double, 3> s{2.0, 0.5, 4.0};  // powers of 2: the stretched lengths exact in float
+  const ProfileRGB unit = make_burley_rgb(A, l);
+  const ProfileRGB stretched = make_burley_rgb(A, RGB(float(l[0] * s[0]), float(l[1] * s[1]), float(l[2] * s[2])));
+  const SphereLineTablesRGB unit_tables(unit);
+  const SphereLineSampler scaled(unit_tables, RGB(1.0f), s);
+  for (int c = 0; c < 3; ++c) {
+    // The stretched channel's own table on the scaled reach (the same edges, stretched).
+    const SphereLineTable own(stretched[c], s[c] * unit_tables.channel[c].rho_max());
+    const SphereLineTable& base = unit_tables.channel[c];
+    for (double f : {1e-3, 0.01, 0.1, 0.3, 0.7, 0.99}) {
+      const double d = f * own.rho_max();
+      const double expected = own.hit_density(d);
+      EXPECT_NEAR(base.hit_density(d / s[c]) / (s[c] * s[c]), expected, 1e-9 * expected) << "channel " << c << " d " << d;
+    }
+  }
+  // (b) Another profile, estimated with the scaled sampler.
+  const ProfileRGB other = make_dipole_rgb(RGB(0.6f, 0.7f, 0.2f), RGB(0.7f, 0.2f, 0.5f), 1.3);
+  const Vec3d n = normalize(Vec3d(0.2, 0.1, -1.0));
+  const TestPlane plane(kP, n);
+  MeanAndError estimate[3];
+  Rng rng(77, 7);
+  for (int k = 0; k < 40000; ++k) {
+    const auto smp = scaled.sample(kP, rng.uniform_double(), rng.uniform_double(),
+                                   Vec2d(rng.uniform_double(), rng.uniform_double()),
+                                   Vec2d(rng.uniform_double(), rng.uniform_double()));
+    Vec3d x;
+    const bool hit = testing::intersect(smp.segment, plane, &x);
+    for (int c = 0; c < 3; ++c) estimate[c].add(hit ? other[c].eval(length(x - kP)) / scaled.pdf_area(kP, x) : 0.0);
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double kept = energy_within(other[c], scaled.max_radius());
+    EXPECT_NEAR(estimate[c].mean(), kept, 4 * estimate[c].error()) << "channel " << c;
+  }
+  EXPECT_THROW(SphereLineSampler(unit_tables, RGB(1.0f), {1, 0, 1}), std::invalid_argument);
+}
+
 // On a sphere of radius 0.3 rho_max through P (a small, curved object; lines can cross
 // it twice) the unbiased estimator (every crossing counts) averages to int_S R(|x - P|) dA
 // (quadrature), and the retry variant to its predicted biased value
