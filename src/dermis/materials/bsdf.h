@@ -12,7 +12,7 @@
 #include "dermis/core/rgb.h"
 #include "dermis/core/vec.h"
 #include "dermis/materials/layered_bsdf.h"
-#include "dermis/materials/microfacet.h"
+#include "dermis/core/microfacet.h"
 
 namespace dermis {
 

@@ -53,25 +53,6 @@ float rough_dielectric_pdf(const TrowbridgeReitz& d, float eta, Vec3 wo, Vec3 wi
   return pdf_m * refraction_jacobian(wo, wi, c->m, c->etap) * (1 - F);
 }
 
-std::optional<MicrofacetSample> rough_dielectric_sample(const TrowbridgeReitz& d, float eta, Vec3 wo, float u_lobe,
-                                                        Vec2 u) {
-  if (wo.z == 0) return std::nullopt;
-  const Vec3 m = d.sample_visible(wo, u);
-  const float F = fresnel_dielectric(dot(wo, m), eta);
-  MicrofacetSample s;
-  if (u_lobe < F) {
-    s.wi = reflect(wo, m);
-    if (s.wi.z * wo.z <= 0) return std::nullopt;  // reflected below the surface: lost
-    return s;
-  }
-  const auto t = refract(wo, m, eta);               // m faces +z: eta for wo above, 1/eta below
-  if (!t || t->z * wo.z >= 0) return std::nullopt;  // refracted back to wo's side: lost
-  s.wi = *t;
-  s.transmission = true;
-  s.etap = wo.z > 0 ? eta : 1 / eta;
-  return s;
-}
-
 RGB rough_conductor_eval(const TrowbridgeReitz& d, RGB eta, RGB k, Vec3 wo, Vec3 wi) {
   if (wo.z * wi.z <= 0) return RGB(0);
   if (wo.z < 0) wo = -wo, wi = -wi;  // seen from below: the same surface, mirrored

@@ -10,7 +10,7 @@
 
 #include "dermis/core/rng.h"
 #include "dermis/materials/layered_bsdf.h"
-#include "dermis/materials/microfacet.h"
+#include "dermis/core/microfacet.h"
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
 #include "dermis/scene/scene_test_util.h"

@@ -123,7 +123,7 @@ struct MaterialDesc {
   // dielectric, conductor, the coated materials' interface: pbrt-v4's Trowbridge-Reitz
   // roughness per tangent axis ("roughness" sets both, "uroughness" / "vroughness"
   // override one each) and "remaproughness" (alpha = sqrt(roughness) when true;
-  // materials/microfacet.h). coatedconductor: the conductor's in conductor_*roughness.
+  // core/microfacet.h). coatedconductor: the conductor's in conductor_*roughness.
   float uroughness = 0, vroughness = 0;
   float conductor_uroughness = 0, conductor_vroughness = 0;
   bool remap_roughness = true;

@@ -3,7 +3,7 @@
 #include <stdexcept>
 
 #include "dermis/materials/bsdf.h"
-#include "dermis/materials/microfacet.h"
+#include "dermis/core/microfacet.h"
 
 namespace dermis {
 

@@ -6,7 +6,7 @@
 #include "dermis/core/warp.h"
 #include "dermis/materials/bsdf.h"
 #include "dermis/materials/fresnel.h"
-#include "dermis/materials/microfacet.h"
+#include "dermis/core/microfacet.h"
 
 namespace dermis {
 

@@ -1,6 +1,8 @@
-#include "dermis/materials/microfacet.h"
+#include "dermis/core/microfacet.h"
 
 #include <limits>
+
+#include "dermis/core/fresnel.h"
 
 namespace dermis {
 
@@ -62,6 +64,25 @@ std::optional<Vec3> refraction_half_vector(Vec3 wo, Vec3 wi, float etap) {
   if (len2 == 0) return std::nullopt;
   const Vec3 m = h / std::sqrt(len2);
   return m.z < 0 ? -m : m;
+}
+
+std::optional<MicrofacetSample> rough_dielectric_sample(const TrowbridgeReitz& d, float eta, Vec3 wo, float u_lobe,
+                                                        Vec2 u) {
+  if (wo.z == 0) return std::nullopt;
+  const Vec3 m = d.sample_visible(wo, u);
+  const float F = fresnel_dielectric(dot(wo, m), eta);
+  MicrofacetSample s;
+  if (u_lobe < F) {
+    s.wi = reflect(wo, m);
+    if (s.wi.z * wo.z <= 0) return std::nullopt;  // reflected below the surface: lost
+    return s;
+  }
+  const auto t = refract(wo, m, eta);               // m faces +z: eta for wo above, 1/eta below
+  if (!t || t->z * wo.z >= 0) return std::nullopt;  // refracted back to wo's side: lost
+  s.wi = *t;
+  s.transmission = true;
+  s.etap = wo.z > 0 ? eta : 1 / eta;
+  return s;
 }
 
 }  // namespace dermis

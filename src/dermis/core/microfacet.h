@@ -1,7 +1,10 @@
 // The anisotropic Trowbridge-Reitz (GGX) microfacet distribution, its Smith masking,
-// the sampling of visible normals, and the half-vector Jacobians of reflection and
-// refraction. Geometry-free: every direction is a unit vector in the local shading
-// frame, z along the macro-surface normal, x along the alpha_x axis.
+// the sampling of visible normals, the half-vector Jacobians of reflection and
+// refraction, and the sampling of a rough dielectric interface. Geometry-free: every
+// direction is a unit vector in the local shading frame, z along the macro-surface
+// normal, x along the alpha_x axis. In core/ because two layers use it: the rough
+// BSDFs (materials/microfacet_bsdf.h) and the half-space simulator's rough boundary
+// (sss/halfspace/), which must sample exactly what the renderer samples.
 #pragma once
 
 #include <algorithm>
@@ -75,5 +78,23 @@ inline float reflection_jacobian(Vec3 wi, Vec3 m) { return 1 / (4 * std::abs(dot
 inline float refraction_jacobian(Vec3 wo, Vec3 wi, Vec3 m, float etap) {
   return std::abs(dot(wi, m)) / sqr(dot(wi, m) + dot(wo, m) / etap);
 }
+
+// One scattering by a rough dielectric interface, sampled.
+struct MicrofacetSample {
+  Vec3 wi;  // local frame
+  bool transmission = false;
+  float etap = 1;  // transmission: index on wi's side over index on wo's side
+};
+
+// Samples the rough dielectric seen from wo (either side; eta: index on the -z side over
+// the index on the +z side): m from the normals visible from wo (Heitz 2018), then
+// reflection about m with the microfacet's Fresnel reflectance F(wo.m) (u_lobe < F),
+// else refraction through m (Walter et al. 2007). Nothing when the sample is
+// lost: a reflection below the surface, a refraction back to wo's side. Its density and
+// f |cos wi| are rough_dielectric_pdf and _eval (materials/microfacet_bsdf.h); their
+// ratio, with the transmitted radiance scaling etap^2 undone, is the power weight
+// G(wo, wi) / G1(wo) of either lobe.
+std::optional<MicrofacetSample> rough_dielectric_sample(const TrowbridgeReitz& d, float eta, Vec3 wo, float u_lobe,
+                                                        Vec2 u);
 
 }  // namespace dermis

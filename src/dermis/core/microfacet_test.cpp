@@ -1,7 +1,7 @@
 // Tests of the Trowbridge-Reitz distribution: normalisation over projected area, the
 // visible-normal density (which integrates to one only if Lambda matches D) and its
 // sampler (chi-square), Smith's masking, and the half-vector Jacobians.
-#include "dermis/materials/microfacet.h"
+#include "dermis/core/microfacet.h"
 
 #include <gtest/gtest.h>
 
