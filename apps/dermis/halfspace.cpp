@@ -20,7 +20,7 @@ namespace {
 
 struct HalfspaceOptions {
   std::optional<double> albedo, sigma_a, sigma_s;
-  double sigma_t = 1.0, g = 0.0, eta = 1.0, r_max = 16.0, r_min = 0.0;
+  double sigma_t = 1.0, g = 0.0, eta = 1.0, r_max = 16.0, r_min = 0.0, alpha = 0.0;
   std::string incidence = "normal", output, walk_sampling = "classical";
   double p_guided = 0.5;
   long long paths = 1000000, seed = 1, max_collisions = 10'000'000;
@@ -48,6 +48,7 @@ int run_halfspace(const HalfspaceOptions& o) {
   if (o.threads < 0) throw std::invalid_argument("--threads must be >= 0 (0: all cores)");
   c.g = o.g;
   c.eta = o.eta;
+  c.alpha_x = c.alpha_y = o.alpha;
   c.paths = uint64_t(o.paths);
   c.seed = uint64_t(o.seed);
   c.max_collisions = uint64_t(o.max_collisions);
@@ -62,11 +63,14 @@ int run_halfspace(const HalfspaceOptions& o) {
   if (o.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
   const sss::HalfspaceResult r = sss::simulate_halfspace(c);
 
-  const double scale = o.per_entering ? 1 / (1 - r.specular) : 1.0;
+  const double scale = o.per_entering ? 1 / r.entered : 1.0;
   std::cerr << fmt::format("albedo {:.6f} +- {:.6f} (per unit incident power)\n", r.albedo, r.albedo_stderr);
   if (c.eta != 1.0)
     std::cerr << fmt::format("albedo per entering power {:.6f} +- {:.6f}; entry specular {:.6f}\n",
                              r.albedo_per_entering(), r.albedo_per_entering_stderr(), r.specular);
+  if (r.lost > 0 || r.entered_stderr > 0)
+    std::cerr << fmt::format("rough boundary: entered {:.6f} +- {:.6f}; specular +- {:.6f}; lost {:.6f} +- {:.6f}\n",
+                             r.entered, r.entered_stderr, r.specular_stderr, r.lost, r.lost_stderr);
   std::cerr << fmt::format("absorbed {:.6f} +- {:.6f}; beyond r_max {:.6f}; truncated paths {} (weight {:.3g})\n",
                            r.absorbed, r.absorbed_stderr, r.beyond_rmax, r.truncated, r.truncated_weight);
   std::cerr << fmt::format("{} paths ({} sampling), {:.1f} collisions/path, {:.3f} s, {:.3g} paths/s\n", r.paths,
@@ -98,6 +102,8 @@ void register_halfspace(CLI::App& app, int& exit_code) {
   cmd->add_option("--sigma-s", opts->sigma_s, "Scattering coefficient (with --sigma-a)");
   cmd->add_option("--g", opts->g, "Henyey-Greenstein anisotropy in (-1, 1)");
   cmd->add_option("--eta", opts->eta, "Relative index of refraction n_medium/n_outside (1: index-matched)");
+  cmd->add_option("--alpha", opts->alpha,
+                  "Trowbridge-Reitz alpha of a rough dielectric boundary (pbrt-v4: sqrt(roughness); 0: smooth)");
   cmd->add_option("--incidence", opts->incidence, "normal | diffuse | angle:DEG");
   cmd->add_option("--paths", opts->paths, "Number of paths");
   cmd->add_option("--seed", opts->seed, "Random seed");
@@ -110,7 +116,7 @@ void register_halfspace(CLI::App& app, int& exit_code) {
                   "classical | dwivedi (zero-variance guiding) | mis (one-sample MIS of both)");
   cmd->add_option("--p-guided", opts->p_guided, "Probability of the guided strategy with --walksampling mis, in [0, 1]");
   cmd->add_option("--max-collisions", opts->max_collisions, "Truncate (and report) paths after this many collisions");
-  cmd->add_flag("--per-entering", opts->per_entering, "Normalise R(r) per unit power that entered (divide by 1 - specular)");
+  cmd->add_flag("--per-entering", opts->per_entering, "Normalise R(r) per unit power that entered (1 - specular when smooth)");
   cmd->add_option("-o,--output", opts->output, "CSV file for R(r) (default: stdout)");
   cmd->callback([opts, &exit_code] {
     try {

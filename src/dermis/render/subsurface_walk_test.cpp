@@ -142,6 +142,7 @@ TEST(SubsurfaceRandomWalk, MatchedBoundaryEqualsAMediumInsideAnInterface) {
 #include "dermis/materials/fresnel.h"
 #include "dermis/render/integrator.h"
 #include "dermis/render/subsurface/coefficients.h"
+#include "support/slab_albedo.h"
 
 #include <cstdio>
 
@@ -154,43 +155,20 @@ namespace {
 // under diffuse incidence (the table's definition) and F_avg = 2 integral F(mu) mu dmu.
 void expect_slab_albedo(const std::string& boundary, double A, double eta, double tolerance_sigmas,
                         double* measured_A = nullptr) {
-  std::string scene = std::string(R"(LookAt 0 0 10  0 0 0  0 1 0
-Camera "perspective"
-Film "rgb" "integer xresolution" 2 "integer yresolution" 2
-Integrator "volpath" "integer maxdepth" 100000
-WorldBegin
-LightSource "infinite" "rgb L" [1 1 1]
-Material "subsurface" "rgb reflectance" [)") + std::to_string(A) + " " + std::to_string(A) + " " +
-                      std::to_string(A) + R"(] "rgb mfp" [1 1 1] "float eta" )" + std::to_string(eta) +
-                      R"( "string method" "randomwalk" "string boundary" ")" + boundary + R"("
-Shape "trianglemesh" "point3 P" [-500 -500 -100  500 -500 -100  500 500 -100  -500 500 -100
-                                  -500 -500 0  500 -500 0  500 500 0  -500 500 0]
-  "integer indices" [0 2 1  0 3 2   4 5 6  4 6 7   0 1 5  0 5 4   1 2 6  1 6 5   2 3 7  2 7 6   3 0 4  3 4 7]
-)";
-  Diagnostics diag;
-  auto sc = build_render_scene(parse_scene_string(scene), diag);
+  const std::string material = "Material \"subsurface\" \"rgb reflectance\" [" + std::to_string(A) + " " +
+                               std::to_string(A) + " " + std::to_string(A) + "] \"rgb mfp\" [1 1 1] \"float eta\" " +
+                               std::to_string(eta) + " \"string method\" \"randomwalk\" \"string boundary\" \"" +
+                               boundary + "\"";
   double F_avg = 0;
   const int nq = 20000;
   for (int i = 0; i < nq; ++i) {
     double mu = (i + 0.5) / nq;
     F_avg += 2 * fresnel_dielectric(float(mu), float(eta)) * mu / nq;
   }
-  const int n = 40000;
-  double sum = 0, sum2 = 0;
-  PathCounters counters;
-  for (int i = 0; i < n; ++i) {
-    // Independent samples: the standard error below assumes them.
-    Sampler rng(SamplerKind::Independent, 77, uint64_t(i), 0);
-    Vec3 w = sample_cosine_hemisphere({rng.uniform(), rng.uniform()});
-    Ray ray{w * 1.0f, -w};  // arriving at the centre of the top face from direction w
-    double L = trace_path(*sc, ray, -1, rng, counters).average();
-    sum += L;
-    sum2 += L * L;
-  }
-  double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+  const testing::MeanAndError slab = testing::slab_hemispherical_albedo(material, 40000);
   double expected = F_avg + (1 - F_avg) * A;
-  if (measured_A) *measured_A = (mean - F_avg) / (1 - F_avg);
-  EXPECT_NEAR(mean, expected, tolerance_sigmas * se) << boundary << " A " << A << " eta " << eta;
+  if (measured_A) *measured_A = (slab.mean - F_avg) / (1 - F_avg);
+  EXPECT_NEAR(slab.mean, expected, tolerance_sigmas * slab.stderr_) << boundary << " A " << A << " eta " << eta;
 }
 
 TEST(SubsurfaceRandomWalk, ExactAlbedoTableMakesASlabReturnTheRequestedReflectance) {

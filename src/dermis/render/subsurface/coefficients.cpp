@@ -8,6 +8,7 @@
 #include <set>
 #include <tuple>
 
+#include "dermis/core/microfacet.h"
 #include "dermis/sss/study/albedo_inversion.h"
 #include "dermis/sss/walk/albedo_inversion.h"
 
@@ -15,9 +16,10 @@ namespace dermis {
 
 namespace {
 
-using TableKey = std::tuple<double, double, bool>;  // (eta, g, exit matched)
+// (eta, g, exit matched, alpha_x, alpha_y)
+using TableKey = std::tuple<double, double, bool, double, double>;
 
-// One table per (eta, g, exit), shared by every material of the process.
+// One table per boundary and g, shared by every material of the process.
 std::mutex g_tables_mutex;
 std::map<TableKey, std::unique_ptr<sss::AlbedoInversion>> g_tables;
 
@@ -26,17 +28,30 @@ sss::AlbedoTableConfig table_config(const TableKey& key) {
   config.eta = std::get<0>(key);
   config.g = std::get<1>(key);
   config.exit_matched = std::get<2>(key);
+  config.alpha_x = std::get<3>(key);
+  config.alpha_y = std::get<4>(key);
   return config;
 }
 
 // The table of the walk's own boundary: the dielectric (Fresnel at entry and at every
 // exit); the diffuse boundary (refraction at entry, out at the first crossing through
 // the exit lobe); matched (eta = 1). A is per entering light under diffuse incidence.
+// A rough boundary (the alphas the renderer uses: subsurface_method.cpp, walk_method.cpp)
+// is rough in the table too: at the entry for both, at every exit for the dielectric.
+// Only the walk and the volumetric reference invert with a table.
 std::optional<TableKey> table_key(const SubsurfaceParams& p) {
+  using Method = SubsurfaceParams::Method;
   if (!p.reflectance || p.albedo_inversion_fit) return std::nullopt;
+  if (p.method != Method::RandomWalk && p.method != Method::Volumetric) return std::nullopt;
   using Boundary = SubsurfaceParams::Boundary;
-  const double table_eta = p.boundary == Boundary::Matched ? 1.0 : p.eta;
-  return TableKey{table_eta, p.g, p.boundary == Boundary::Diffuse};
+  const bool matched = p.boundary == Boundary::Matched;
+  float ax = 0, ay = 0;
+  if (!matched) {
+    ax = roughness_to_alpha(p.uroughness, p.remap_roughness);
+    ay = roughness_to_alpha(p.vroughness, p.remap_roughness);
+    if (std::max(ax, ay) < kSmoothAlpha) ax = ay = 0;
+  }
+  return TableKey{matched ? 1.0 : p.eta, p.g, p.boundary == Boundary::Diffuse, ax, ay};
 }
 
 const sss::AlbedoInversion& albedo_inversion(const TableKey& key) {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "dermis/core/fresnel.h"
+#include "dermis/core/microfacet.h"
 #include "dermis/sss/halfspace/refraction.h"
 
 namespace dermis::sss {
@@ -26,6 +27,11 @@ struct Tally {
   double absorbed = 0, absorbed_sq = 0;
   double truncated = 0, truncated_sq = 0;
   double beyond = 0, beyond_sq = 0;
+  // Rough boundary only: per-path specular, entered and lost weights, and the sum of
+  // exit x entered (the ratio albedo / entered's standard error).
+  double specular = 0, specular_sq = 0;
+  double entered = 0, entered_sq = 0, exit_entered = 0;
+  double lost = 0, lost_sq = 0;
   uint64_t truncated_paths = 0, collisions = 0;
   std::vector<double> bin, bin_sq;
 
@@ -39,6 +45,9 @@ struct Tally {
     absorbed += o.absorbed, absorbed_sq += o.absorbed_sq;
     truncated += o.truncated, truncated_sq += o.truncated_sq;
     beyond += o.beyond, beyond_sq += o.beyond_sq;
+    specular += o.specular, specular_sq += o.specular_sq;
+    entered += o.entered, entered_sq += o.entered_sq, exit_entered += o.exit_entered;
+    lost += o.lost, lost_sq += o.lost_sq;
     truncated_paths += o.truncated_paths, collisions += o.collisions;
     for (size_t i = 0; i < bin.size(); ++i) bin[i] += o.bin[i], bin_sq[i] += o.bin_sq[i];
   }
@@ -62,19 +71,66 @@ Vec3d sample_incident_direction(const HalfspaceConfig& c, Rng& rng) {
   return {0, 0, -1};
 }
 
+bool is_rough(const HalfspaceConfig& c) {
+  return c.eta != 1.0 && std::max(c.alpha_x, c.alpha_y) >= double(kSmoothAlpha);
+}
+
+// One scattering by the rough boundary: the renderer's sampling of the rough dielectric
+// (core/microfacet.h), in the boundary's frame (normal +z, x along alpha_x).
+struct RoughScattering {
+  Vec3d direction;  // propagation direction after it
+  double weight = 0;  // power weight G(wo, wi) / G1(wo) (the radiance scaling undone)
+  bool transmitted = false;
+  bool lost = true;  // reflected below the surface, or refracted back: the sample is lost
+};
+
+// `propagation`: the direction light arrives along (from either side).
+RoughScattering scatter_at_rough_boundary(const TrowbridgeReitz& d, double eta, const Vec3d& propagation, Rng& rng) {
+  RoughScattering r;
+  const Vec3 wo(-propagation);  // points away from the boundary, on the side light comes from
+  const float u_lobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+  const auto s = rough_dielectric_sample(d, float(eta), wo, u_lobe, {u1, u2});
+  if (!s) return r;
+  // f |cos wi| / pdf of either lobe of the visible-normal sampler, times etap^2 for a
+  // refraction: G(wo, wi) / G1(wo) (Heitz 2018, sec. 1; Walter et al. 2007, eqs. 20-21).
+  r.weight = double(d.G(wo, s->wi)) / double(d.G1(wo));
+  r.direction = normalize(Vec3d(s->wi));
+  r.transmitted = s->transmission;
+  r.lost = false;
+  return r;
+}
+
 // One path from entry at the origin to exit, termination or truncation.
 template <class Policy>
 void trace_path(const HalfspaceConfig& c, const Policy& policy, Rng& rng, Tally& t) {
   const bool matched = c.eta == 1.0;
+  const bool rough = is_rough(c);
+  const TrowbridgeReitz microfacets(float(c.alpha_x), float(c.alpha_y));
   const Vec3d incident = sample_incident_direction(c, rng);
   // Entry: the Fresnel-transmitted fraction enters (the reflected part is `specular`,
   // known exactly); weighting instead of sampling costs no variance at normal incidence.
+  // Rough: the rough dielectric sampled from outside, as the renderer's entry does.
   Vec3d direction = incident;
   double weight = 1.0;
-  if (!matched) {
+  double path_lost = 0;  // rough boundary: lost by the microfacet model, at entry and exits
+  if (rough) {
+    const RoughScattering entry = scatter_at_rough_boundary(microfacets, c.eta, incident, rng);
+    // What the microfacet model loses: a lost sample, or the shadowed part 1 - G / G1 of
+    // a kept one.
+    path_lost = entry.lost ? 1.0 : 1.0 - entry.weight;
+    if (!entry.lost && !entry.transmitted) t.specular += entry.weight, t.specular_sq += entry.weight * entry.weight;
+    if (entry.lost || !entry.transmitted) {
+      t.lost += path_lost, t.lost_sq += path_lost * path_lost;
+      return;
+    }
+    weight = entry.weight;
+    direction = entry.direction;
+    t.entered += weight, t.entered_sq += weight * weight;
+  } else if (!matched) {
     weight = 1.0 - fresnel_dielectric(-incident.z, c.eta);
     if (!refract_through_plane(incident, c.eta, direction)) return;  // total reflection
   }
+  const double entered = weight;
   const double roulette_weight = c.roulette_threshold * weight;
   double absorbed = 0;
   uint64_t collisions = 0;
@@ -86,7 +142,19 @@ void trace_path(const HalfspaceConfig& c, const Policy& policy, Rng& rng, Tally&
     if (flight.reaches_boundary) {
       position.z = 0;
       const double cos_out = flight.direction.z;
-      if (!matched && !c.exit_matched) {
+      if (rough && !c.exit_matched) {
+        // Exit through the rough dielectric sampled from inside: refraction leaves,
+        // reflection walks on, a lost sample ends the path.
+        const RoughScattering exit = scatter_at_rough_boundary(microfacets, c.eta, flight.direction, rng);
+        path_lost += exit.lost ? weight : weight * (1.0 - exit.weight);
+        if (exit.lost) break;
+        weight *= exit.weight;
+        if (!exit.transmitted) {
+          flight = policy.fly(exit.direction, 0.0, rng);
+          weight *= flight.weight;
+          continue;
+        }
+      } else if (!matched && !c.exit_matched) {
         // Exit: reflect back inside with probability F (always under total internal
         // reflection), else refract out (Fresnel; the direction outside is not tallied).
         const double f = fresnel_dielectric(cos_out, 1.0 / c.eta);
@@ -98,6 +166,7 @@ void trace_path(const HalfspaceConfig& c, const Policy& policy, Rng& rng, Tally&
         }
       }
       t.exit += weight, t.exit_sq += weight * weight;
+      t.exit_entered += weight * entered;
       const int b = c.bins.index(std::hypot(position.x, position.y));
       if (b < 0) {
         t.beyond += weight, t.beyond_sq += weight * weight;
@@ -122,6 +191,7 @@ void trace_path(const HalfspaceConfig& c, const Policy& policy, Rng& rng, Tally&
     }
   }
   t.absorbed += absorbed, t.absorbed_sq += absorbed * absorbed;
+  t.lost += path_lost, t.lost_sq += path_lost * path_lost;
   t.collisions += collisions;
 }
 
@@ -176,6 +246,8 @@ void validate(const HalfspaceConfig& c) {
   if (!(c.p_guided >= 0 && c.p_guided <= 1))
     fail("guided sampling probability p_guided must be in [0, 1], got " + std::to_string(c.p_guided));
   if (c.max_collisions < 1) fail("max_collisions must be at least 1");
+  if (!(c.alpha_x >= 0 && c.alpha_y >= 0 && std::isfinite(c.alpha_x) && std::isfinite(c.alpha_y)))
+    fail("roughness alphas must be non-negative and finite");
   if (!(c.roulette_threshold > 0 && c.roulette_threshold <= 1))
     fail("roulette_threshold must be in (0, 1], got " + std::to_string(c.roulette_threshold));
 }
@@ -204,12 +276,28 @@ HalfspaceResult simulate_halfspace(const HalfspaceConfig& c) {
   mean_and_stderr(t.beyond, t.beyond_sq, n, r.beyond_rmax, r.beyond_rmax_stderr);
   r.truncated = t.truncated_paths;
   r.mean_collisions = double(t.collisions) / double(n);
-  if (c.eta != 1.0) {
-    switch (c.incidence) {
-      case Incidence::Normal: r.specular = fresnel_dielectric(1.0, c.eta); break;
-      case Incidence::Angle: r.specular = fresnel_dielectric(std::cos(c.incidence_angle), c.eta); break;
-      case Incidence::Diffuse: r.specular = fresnel_diffuse_reflectance(c.eta); break;
+  if (is_rough(c)) {
+    mean_and_stderr(t.specular, t.specular_sq, n, r.specular, r.specular_stderr);
+    mean_and_stderr(t.entered, t.entered_sq, n, r.entered, r.entered_stderr);
+    mean_and_stderr(t.lost, t.lost_sq, n, r.lost, r.lost_stderr);
+    // A = mean(exit) / mean(entered); its standard error by the delta method (first order
+    // in the two means): that of the mean per-path residual exit - A entered, / mean(entered).
+    if (r.entered > 0) {
+      const double A = r.albedo / r.entered, dn = double(n);
+      const double residual_sq = t.exit_sq - 2 * A * t.exit_entered + A * A * t.entered_sq;
+      const double variance = n > 1 ? std::max(0.0, residual_sq / (dn - 1)) : 0.0;
+      r.per_entering_stderr = std::sqrt(variance / dn) / r.entered;
     }
+  } else {
+    if (c.eta != 1.0) {
+      switch (c.incidence) {
+        case Incidence::Normal: r.specular = fresnel_dielectric(1.0, c.eta); break;
+        case Incidence::Angle: r.specular = fresnel_dielectric(std::cos(c.incidence_angle), c.eta); break;
+        case Incidence::Diffuse: r.specular = fresnel_diffuse_reflectance(c.eta); break;
+      }
+    }
+    r.entered = 1 - r.specular;
+    r.per_entering_stderr = r.albedo_stderr / r.entered;
   }
   const int bins = c.bins.count();
   r.r_lo.resize(bins), r.r_hi.resize(bins), r.R.resize(bins), r.R_stderr.resize(bins);

@@ -2,6 +2,8 @@
 // medium z < 0 below a flat boundary (Krivanek & d'Eon 2014 set-up; METHODS.md
 // sections 4 and 6): the ground truth for the diffusion profiles. Light enters at the
 // origin; the result is the total diffuse albedo and the radial exit profile R(r).
+// The boundary is index-matched, a smooth dielectric, or a rough one: the renderer's
+// Trowbridge-Reitz dielectric (core/microfacet.h), sampled as the renderer samples it.
 #pragma once
 
 #include <cstdint>
@@ -27,6 +29,14 @@ struct HalfspaceConfig {
   // Refract at entry by eta but leave at the first boundary crossing (the renderer's
   // `diffuse` random-walk boundary, whose exit lobe lets everything out).
   bool exit_matched = false;
+  // Trowbridge-Reitz alphas of a rough dielectric boundary (pbrt-v4's roughness after
+  // remapping). Both below kSmoothAlpha (core/microfacet.h): the smooth boundary, exactly
+  // as without them (the renderer's rule). Rough, the entry samples the rough dielectric
+  // from outside, as the renderer's entry does (reflection is `specular`, transmission
+  // enters with the power weight G / G1, a sample reflected below the surface is `lost`),
+  // and every boundary hit from inside samples it from inside (refraction leaves,
+  // reflection goes on walking; not with exit_matched). Ignored when eta = 1.
+  double alpha_x = 0, alpha_y = 0;
   Incidence incidence = Incidence::Normal;
   double incidence_angle = 0.0;  // radians in [0, pi/2), for Incidence::Angle
   uint64_t paths = 100000;
@@ -46,10 +56,17 @@ struct HalfspaceConfig {
 
 // Every energy figure is per unit incident power, mean over paths +- standard error
 // sigma / sqrt(N) from the per-path weights. Energy balance (in expectation):
-// specular + albedo + absorbed + truncated_weight = 1.
+// specular + albedo + absorbed + truncated_weight + lost = 1.
 struct HalfspaceResult {
   double albedo = 0, albedo_stderr = 0;          // left through the boundary after entering
-  double specular = 0;                           // reflected at entry (exact Fresnel; 0 if eta = 1)
+  // Reflected at entry: smooth, the exact Fresnel reflectance (0 if eta = 1, stderr 0);
+  // rough, estimated per path.
+  double specular = 0, specular_stderr = 0;
+  // Entered the medium: 1 - specular (exact) when smooth; rough, estimated per path.
+  double entered = 1, entered_stderr = 0;
+  // Rough boundary only: lost by the single-scattering microfacet model (a sample
+  // reflected below the surface), at entry or at an exit.
+  double lost = 0, lost_stderr = 0;
   double absorbed = 0, absorbed_stderr = 0;      // absorbed in the medium
   double truncated_weight = 0, truncated_weight_stderr = 0;  // stopped at max_collisions
   uint64_t truncated = 0;                        // number of truncated paths
@@ -60,10 +77,13 @@ struct HalfspaceResult {
   double mean_collisions = 0;  // scattering events per path
   double seconds = 0;          // wall-clock time of the simulation
 
-  // The same per unit power that entered the medium (divides by 1 - specular,
-  // an exact constant): the surface albedo A of METHODS.md section 0.
-  double albedo_per_entering() const { return albedo / (1 - specular); }
-  double albedo_per_entering_stderr() const { return albedo_stderr / (1 - specular); }
+  // The same per unit power that entered the medium, the surface albedo A of METHODS.md
+  // section 0: albedo / entered. Smooth, entered = 1 - specular is an exact constant;
+  // rough, the ratio of two means over the same paths, its standard error by the delta
+  // method (the per-path residual exit - A entered).
+  double albedo_per_entering() const { return albedo / entered; }
+  double albedo_per_entering_stderr() const { return per_entering_stderr; }
+  double per_entering_stderr = 0;
 };
 
 // Throws std::invalid_argument with an actionable message for bad parameters.

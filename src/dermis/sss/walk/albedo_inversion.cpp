@@ -12,13 +12,15 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "dermis/core/microfacet.h"
 #include "dermis/sss/halfspace/halfspace.h"
 
 namespace dermis::sss {
 
 namespace {
 
-constexpr int kCacheVersion = 1;
+// 2: tables of rough boundaries (their alphas in the file name) exist.
+constexpr int kCacheVersion = 2;
 
 std::string default_cache_dir() {
   if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/dermis";
@@ -46,6 +48,12 @@ std::vector<double> non_increasing_fit(const std::vector<double>& y, const std::
   std::vector<double> out;
   for (const Block& b : blocks) out.insert(out.end(), b.count, b.sum_wy / b.sum_w);
   return out;
+}
+
+// A rough dielectric boundary whose exits lose energy (the single-scattering microfacet
+// model's loss at each hit from inside): then A < 1 at alpha = 1.
+bool exits_lose_energy(const AlbedoTableConfig& config) {
+  return !config.exit_matched && config.eta != 1.0 && std::max(config.alpha_x, config.alpha_y) >= double(kSmoothAlpha);
 }
 
 }  // namespace
@@ -99,7 +107,11 @@ void check_albedo_table_config(const AlbedoTableConfig& config) {
     fail("relative index of refraction eta must be positive and finite, got " + std::to_string(config.eta));
   if (!(config.g > -1 && config.g < 1)) fail("HG anisotropy g must be in (-1, 1), got " + std::to_string(config.g));
   if (config.size < 3) fail("table size must be at least 3, got " + std::to_string(config.size));
+  if (exits_lose_energy(config) && config.size < 5)
+    fail("a table for a rough boundary needs at least 5 nodes, got " + std::to_string(config.size));
   if (config.paths_per_node < 100) fail("need at least 100 paths per table node");
+  if (!(config.alpha_x >= 0 && config.alpha_y >= 0 && std::isfinite(config.alpha_x) && std::isfinite(config.alpha_y)))
+    fail("roughness alphas must be non-negative and finite");
 }
 
 void AlbedoInversion::init_nodes() {
@@ -115,9 +127,12 @@ void AlbedoInversion::init_nodes() {
   if (config.use_cache) {
     const std::string dir = config.cache_dir.empty() ? default_cache_dir() : config.cache_dir;
     if (!dir.empty())
-      cache_path_ = fmt::format("{}/albedo-v{}-eta{:.9g}{}-g{:.9g}-n{}-p{}-s{}-{}.txt", dir, kCacheVersion, config.eta,
-                                config.exit_matched ? "-exitmatched" : "", config.g, n, config.paths_per_node,
-                                config.seed, walk_sampling_name(config.sampling));
+      cache_path_ = fmt::format("{}/albedo-v{}-eta{:.9g}{}{}-g{:.9g}-n{}-p{}-s{}-{}.txt", dir, kCacheVersion, config.eta,
+                                config.exit_matched ? "-exitmatched" : "",
+                                config.alpha_x > 0 || config.alpha_y > 0
+                                    ? fmt::format("-ax{:.9g}-ay{:.9g}", config.alpha_x, config.alpha_y)
+                                    : "",
+                                config.g, n, config.paths_per_node, config.seed, walk_sampling_name(config.sampling));
   }
 }
 
@@ -137,8 +152,9 @@ void AlbedoInversion::init_slopes() {
 
 AlbedoNode simulate_albedo_node(const AlbedoTableConfig& config, int i) {
   const int n = config.size;
-  // alpha = 1: nothing is absorbed, all entering light returns (A = 1);
-  // alpha = 0: nothing scatters back (A = 0). Exact, not simulated.
+  // alpha = 1: nothing is absorbed, all entering light returns (A = 1), unless the exits
+  // lose energy: then fit() extrapolates the node (a conservative walk has a return time
+  // of infinite mean, too long to simulate); alpha = 0: nothing scatters back (A = 0).
   if (i == 0) return {1.0, 0.0};
   if (i == n - 1) return {0.0, 0.0};
   const double t = double(i) / (n - 1);  // as init_nodes() places the nodes
@@ -147,6 +163,8 @@ AlbedoNode simulate_albedo_node(const AlbedoTableConfig& config, int i) {
   c.g = config.g;
   c.eta = config.eta;
   c.exit_matched = config.exit_matched;
+  c.alpha_x = config.alpha_x;
+  c.alpha_y = config.alpha_y;
   c.incidence = Incidence::Diffuse;
   c.paths = config.paths_per_node;
   c.seed = config.seed;
@@ -164,6 +182,15 @@ void AlbedoInversion::fit(const std::vector<AlbedoNode>& nodes) {
     raw[i] = nodes[i].albedo;
     stderr_[i] = nodes[i].error;
     weight[i] = i == 0 || i == n - 1 ? 1e30 : 1 / std::max(stderr_[i] * stderr_[i], 1e-30);
+  }
+  if (exits_lose_energy(config_) && n >= 4) {
+    // A(alpha = 1) < 1: the quadratic in t through nodes 1, 2, 3 (equally spaced), at
+    // t = 0: 3 A1 - 3 A2 + A3 (Newton's forward differences), its error propagated as
+    // if the nodes were independent. Checked against a truncated simulation in
+    // docs/materials.md.
+    raw[0] = std::clamp(3 * raw[1] - 3 * raw[2] + raw[3], raw[1], 1.0);
+    stderr_[0] = std::sqrt(9 * sqr(stderr_[1]) + 9 * sqr(stderr_[2]) + sqr(stderr_[3]));
+    weight[0] = 1 / std::max(sqr(stderr_[0]), 1e-30);
   }
   albedo_ = non_increasing_fit(raw, weight);
 }

@@ -8,7 +8,9 @@
 // that leaves after entering, internal Fresnel reflections included, with the entry
 // specular part excluded. That is the A of the separable BSSRDF (METHODS.md section 0),
 // which multiplies the entry transmission 1 - Fr separately: including the specular
-// part would count it twice.
+// part would count it twice. Behind a rough boundary the entering power is the part the
+// sampled rough dielectric transmits (a single-scattering microfacet model also loses
+// some: neither reflected nor transmitted), and A is what leaves per unit of it.
 #pragma once
 
 #include <cstdint>
@@ -24,8 +26,14 @@ struct AlbedoTableConfig {
   double eta = 1.0;  // n_medium / n_outside
   bool exit_matched = false;  // entry refracts by eta, exit at the first crossing (HalfspaceConfig)
   double g = 0.0;    // HG anisotropy
+  // The boundary's Trowbridge-Reitz alphas (HalfspaceConfig::alpha_x, alpha_y): rough at
+  // the entry, and at every exit unless exit_matched. Below kSmoothAlpha: smooth.
+  double alpha_x = 0.0, alpha_y = 0.0;
   // Nodes uniform in t = sqrt(1 - alpha) on [0, 1] (A is close to linear in t near
-  // alpha = 1); the end nodes alpha = 1 (A = 1) and alpha = 0 (A = 0) are exact.
+  // alpha = 1); the end nodes alpha = 1 (A = 1) and alpha = 0 (A = 0) are exact, but for
+  // a rough `dielectric` boundary, whose exits lose energy: its A(alpha = 1) < 1 is
+  // extrapolated from the next three nodes, and no A above it can be asked for (the
+  // inversion returns alpha = 1).
   int size = 32;
   uint64_t paths_per_node = 100000;
   uint64_t seed = 1;  // the same seed at every node: correlated noise, a smoother table
