@@ -6,8 +6,10 @@
 #include <oneapi/tbb/global_control.h>
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 #include "dermis/render/checkpoint.h"
@@ -39,6 +41,41 @@ bool failed_somewhere(ProcessGroup& group, const std::optional<std::string>& err
   if (error && (group.is_root() || state[1] == 0)) fmt::print(stderr, "{}\n", *error);
   return state[0] > 0;
 }
+
+// Loading's progress: a stage (a large mesh read, a BVH built) that is still running after half
+// a second gets a progress bar or line; quick stages show nothing.
+class LoadProgressDisplay {
+ public:
+  explicit LoadProgressDisplay(Progress::Style style) : style_(style) {}
+
+  void operator()(const std::string& stage, double fraction) {
+    const auto now = std::chrono::steady_clock::now();
+    if (stage != stage_) {
+      end_bar();
+      stage_ = stage;
+      started_ = now;
+      bar_ = std::make_unique<Progress>(stage_, kSteps, style_);  // draws nothing until advanced
+    }
+    if (!shown_ && fraction < 1 && now - started_ > std::chrono::milliseconds(500)) shown_ = true;
+    if (shown_) bar_->advance(int64_t(fraction * kSteps) - bar_->done());
+    if (fraction >= 1) end_bar();
+  }
+
+ private:
+  static constexpr int64_t kSteps = 1000;
+  void end_bar() {
+    if (bar_ && shown_) bar_->finish();
+    bar_.reset();
+    shown_ = false;
+    stage_.clear();  // the same name again (another shape's file) is a new stage
+  }
+
+  Progress::Style style_;
+  std::string stage_;
+  std::chrono::steady_clock::time_point started_;
+  std::unique_ptr<Progress> bar_;
+  bool shown_ = false;
+};
 
 }  // namespace
 
@@ -111,9 +148,16 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   PreparationReport preparation;
   PointCloudOptions pco;
   std::optional<std::string> error;
+  LoadMonitor load;
+  load.cancel = &g_interrupted;
+  if (progress_style != Progress::Style::kQuiet)
+    load.progress = [display = std::make_shared<LoadProgressDisplay>(progress_style)](const std::string& stage,
+                                                                                     double fraction) {
+      (*display)(stage, fraction);
+    };
   // Reading and assembling: each process alone.
   try {
-    desc = parse_scene_file(a.scene, a.file_access);
+    desc = parse_scene_file(a.scene, a.file_access, &load);
     if (!a.res.empty()) {
       int w = 0, h = 0, consumed = 0;
       char x = 0;
@@ -142,15 +186,18 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
     pco.load_path = a.load_pointcloud;
     pco.seed = a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
     pco.sampler = desc.settings.sampler;
-    scene = assemble_scene(desc, build_diag);
+    scene = assemble_scene(desc, build_diag, &load);
     if (root)
       for (const auto& w : build_diag.warnings) fmt::print(stderr, "{}\n", w);
+  } catch (const Interrupted&) {
+    error = fmt::format("{}: interrupted while loading the scene; nothing written", program);
   } catch (const std::bad_alloc&) {
     error = fmt::format("{}: {}: out of memory while loading or preparing the scene", program, a.scene);
   } catch (const std::exception& e) {
     error = fmt::format("{}: {}", program, e.what());
   }
-  if (failed_somewhere(group, error)) return 2;
+  load.progress = nullptr;  // its display is not drawn to after this point
+  if (failed_somewhere(group, error)) return g_interrupted ? 130 : 2;
   // Preparing: together (the group shares the tables and the point clouds).
   try {
     PreparationOptions prep;

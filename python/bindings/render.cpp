@@ -60,9 +60,11 @@ std::shared_ptr<RenderScene> prepared_scene(Scene& s, uint64_t seed, SamplerKind
   std::shared_ptr<RenderScene> built;
   Diagnostics diag;
   std::atomic<bool> cancel{false};
+  LoadMonitor monitor;  // Ctrl-C stops the BVH build too
+  monitor.cancel = &cancel;
   auto error = run_interruptible(
       [&] {
-        built = assemble_scene(s.desc, diag);
+        built = assemble_scene(s.desc, diag, &monitor);
         PreparationOptions prep;
         prep.point_clouds.seed = seed;
         prep.point_clouds.sampler = sampler;

@@ -5,9 +5,12 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <filesystem>
+#include <functional>
+#include <mutex>
 #include <fmt/format.h>
 
 #include "bindings.h"
+#include "interruptible.h"
 #include "dermis/render/film.h"
 #include "dermis/scene/params.h"
 #include "dermis/scene/parser.h"
@@ -28,20 +31,51 @@ void warn_all(const std::vector<std::string>& warnings) {
     if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 2) != 0) throw py::error_already_set();
 }
 
-std::shared_ptr<Scene> load_scene(const py::object& source, const std::string& base_dir) {
+std::shared_ptr<Scene> load_scene(const py::object& source, const std::string& base_dir, const py::object& progress) {
   auto scene = std::make_shared<Scene>();
   const bool is_text = py::isinstance<py::str>(source) && source.cast<std::string>().find('\n') != std::string::npos;
-  if (is_text) {
-    const std::string text = source.cast<std::string>();
-    py::gil_scoped_release release;
-    scene->desc = parse_scene_string(text, "<string>", base_dir.empty() ? "." : base_dir);
-    scene->source = "<string>";
-  } else {
-    const std::string path = py::str(py::module_::import("os").attr("fspath")(source)).cast<std::string>();
-    py::gil_scoped_release release;  // meshes may take a while to read
-    scene->desc = parse_scene_file(path);
-    scene->source = path;
-  }
+  std::string text, path;
+  if (is_text)
+    text = source.cast<std::string>();
+  else
+    path = py::str(py::module_::import("os").attr("fspath")(source)).cast<std::string>();
+  scene->source = is_text ? "<string>" : path;
+
+  // The parse runs on a worker thread (meshes may take a while to read); this thread
+  // waits without the GIL, hands the latest stage and fraction to `progress`, and stops
+  // the parse on Ctrl-C.
+  std::mutex mutex;
+  std::string stage, reported_stage;  // guarded by mutex (stage)
+  double fraction = -1, reported_fraction = -1;
+  std::atomic<bool> cancel{false};
+  LoadMonitor monitor;
+  monitor.cancel = &cancel;
+  if (!progress.is_none())
+    monitor.progress = [&](const std::string& s, double f) {
+      std::lock_guard<std::mutex> lock(mutex);
+      stage = s;
+      fraction = f;
+    };
+  auto poll = [&] {
+    std::string s;
+    double f;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      s = stage;
+      f = fraction;
+    }
+    if (f < 0 || (s == reported_stage && f == reported_fraction)) return;
+    reported_stage = s;
+    reported_fraction = f;
+    progress(s, f);
+  };
+  auto error = run_interruptible(
+      [&] {
+        scene->desc = is_text ? parse_scene_string(text, "<string>", base_dir.empty() ? "." : base_dir, {}, &monitor)
+                              : parse_scene_file(path, {}, &monitor);
+      },
+      cancel, progress.is_none() ? std::function<void()>() : std::function<void()>(poll));
+  if (error) throw *error;
   warn_all(scene->desc.diagnostics.warnings);
   return scene;
 }
@@ -135,12 +169,19 @@ py::dict material_dict(const MaterialDesc& m, std::size_t index) {
 }  // namespace
 
 void bind_scene(py::module_& m) {
-  m.def("load_scene", &load_scene, py::arg("source"), py::arg("base_dir") = "",
+  m.def("load_scene", &load_scene, py::arg("source"), py::arg("base_dir") = "", py::kw_only(),
+        py::arg("progress") = py::none(),
         R"(Reads a pbrt-v4 scene (Dermis' subset, docs/scene-format.md).
 
 source: a path (str or os.PathLike) of a .pbrt file (gzip-compressed or not), or the
   scene text itself when it is a str containing a newline (relative paths in it resolve
   against base_dir, default the working directory).
+progress: a callable progress(stage, fraction), called on this thread about every 50 ms
+  with the stage running ('loading bust.ply', 'reading bust.ply', 'subdividing
+  (loopsubdiv)', ...) and the fraction of it done, in [0, 1], non-decreasing within a
+  stage; the last state is always handed over.
+  An exception it raises stops the load.
+The file is read without the GIL; Ctrl-C stops it promptly (KeyboardInterrupt).
 Meshes and textures are read once; materials can then be changed between renders
 (Scene.set_material) without reading them again. Warnings (ignored or approximated
 parameters) are issued as UserWarning. Raises dermis.SceneError ("file:line:col: error:

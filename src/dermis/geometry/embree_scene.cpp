@@ -14,6 +14,7 @@ namespace dermis {
 namespace {
 
 void embree_error(void*, RTCError code, const char* str) {
+  if (code == RTC_ERROR_CANCELLED) return;  // a build stopped by its progress callback: commit() throws Interrupted
   throw std::runtime_error(fmt::format("Embree error {}: {}", int(code), str ? str : ""));
 }
 
@@ -179,13 +180,22 @@ RTCScene EmbreeScene::make_scene(const std::vector<int>& shape_ids, std::vector<
     if (geom_to_shape.size() <= gid) geom_to_shape.resize(gid + 1, -1);
     geom_to_shape[gid] = id;
   }
-  rtcCommitScene(scene);
   return scene;
+}
+
+void EmbreeScene::commit(RTCScene scene, const LoadMonitor* monitor, const std::string& stage_name) {
+  LoadStage stage(monitor, stage_name);
+  if (monitor)
+    rtcSetSceneProgressMonitorFunction(
+        scene, [](void* p, double fraction) { return static_cast<LoadStage*>(p)->try_update(fraction); }, &stage);
+  rtcCommitScene(scene);
+  if (monitor) rtcSetSceneProgressMonitorFunction(scene, nullptr, nullptr);
+  stage.finish();  // throws Interrupted when the build was stopped
 }
 
 void EmbreeScene::build(const std::vector<Shape>& shapes, const std::vector<int>& top_level,
                         const std::vector<std::vector<int>>& objects, const std::vector<Instance>& instances,
-                        AlphaTextureLookup alpha) {
+                        AlphaTextureLookup alpha, const LoadMonitor* monitor) {
   shapes_ = &shapes;
   alpha_lookup_ = alpha;
   for (const Shape& s : shapes)
@@ -193,12 +203,15 @@ void EmbreeScene::build(const std::vector<Shape>& shapes, const std::vector<int>
       throw std::invalid_argument("EmbreeScene::build: a shape has an alpha texture but no texture lookup was given");
   instances_ = instances;
   object_geom_shape_.assign(objects.size(), {});
-  for (std::size_t o = 0; o < objects.size(); ++o)
+  for (std::size_t o = 0; o < objects.size(); ++o) {
     object_scenes_.push_back(make_scene(objects[o], object_geom_shape_[o]));
+    commit(object_scenes_.back(), monitor,
+           fmt::format("building the BVH (object {} of {})", o + 1, objects.size()));
+  }
 
   top_geom_shape_.clear();
   scene_ = make_scene(top_level, top_geom_shape_);
-  // make_scene committed the scene; instances are attached and the scene committed again.
+  // The instances are attached, then the scene committed.
   top_geom_instance_.assign(top_geom_shape_.size(), -1);
   for (std::size_t k = 0; k < instances.size(); ++k) {
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
@@ -217,7 +230,7 @@ void EmbreeScene::build(const std::vector<Shape>& shapes, const std::vector<int>
     }
     top_geom_instance_[gid] = int(k);
   }
-  rtcCommitScene(scene_);
+  commit(scene_, monitor, "building the BVH");
 
   RTCBounds b;
   rtcGetSceneBounds(scene_, &b);

@@ -5,8 +5,10 @@
 #include <embree3/rtcore.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
+#include "dermis/core/load_monitor.h"
 #include "dermis/core/transform.h"
 #include "dermis/geometry/alpha_mask.h"
 #include "dermis/geometry/ray.h"
@@ -32,9 +34,11 @@ class EmbreeScene {
   // (geometry/alpha_mask.h) for every query, closest and any hit; `alpha` evaluates
   // their alpha textures. Shapes without alpha get no filter: they cost nothing more,
   // except flat curves, whose filter also drops a ray's hits on the band it left.
+  // With a monitor: stage "building the BVH" (one per instanced object too), as Embree
+  // reports it, and Interrupted once the cancel flag is set (Embree stops its build).
   void build(const std::vector<Shape>& shapes, const std::vector<int>& top_level,
              const std::vector<std::vector<int>>& objects, const std::vector<Instance>& instances,
-             AlphaTextureLookup alpha = {});
+             AlphaTextureLookup alpha = {}, const LoadMonitor* monitor = nullptr);
 
   // Whether hits need their (u, v): only a scene with textures reads them. Without, the
   // sphere's (acos, atan2 per hit: 5 % of a medium render) is skipped and hit.uv is (0, 0).
@@ -58,6 +62,8 @@ class EmbreeScene {
 
  private:
   RTCScene make_scene(const std::vector<int>& shape_ids, std::vector<int>& geom_to_shape);
+  // rtcCommitScene with progress and cancellation (monitor may be null).
+  void commit(RTCScene scene, const LoadMonitor* monitor, const std::string& stage_name);
   void fill_hit(const RTCRayHit& rh, const Ray& ray, SurfaceHit& hit) const;
 
   RTCDevice device_ = nullptr;

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "dermis/core/load_monitor.h"  // Interrupted
 #include "dermis/core/sampler.h"
 #include "dermis/render/process_group.h"
 #include "dermis/render/progress.h"
@@ -40,10 +41,5 @@ struct PointCloudReport {
 PointCloudReport build_point_clouds(RenderScene& scene, const PointCloudOptions& options,
                                     Progress::Style progress = Progress::Style::kQuiet,
                                     const std::atomic<bool>* cancel = nullptr, ProcessGroup* group = nullptr);
-
-// Thrown by a preparation stage stopped by its cancel flag.
-struct Interrupted : std::runtime_error {
-  Interrupted() : std::runtime_error("interrupted") {}
-};
 
 }  // namespace dermis

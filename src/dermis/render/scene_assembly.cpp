@@ -237,7 +237,7 @@ Shape make_shape(const ShapeDesc& d, const Transform& xf, int default_material) 
 
 }  // namespace
 
-std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& diag) {
+std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& diag, const LoadMonitor* monitor) {
   auto sc = std::make_unique<RenderScene>();
   sc->film = desc.film;
   sc->settings = desc.settings;
@@ -376,7 +376,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
         return evaluate_texture(*static_cast<const std::vector<Texture>*>(textures), texture, uv).r();
       },
       &sc->textures};
-  sc->embree->build(sc->shapes, top_level, objects, instances, alpha_lookup);
+  sc->embree->build(sc->shapes, top_level, objects, instances, alpha_lookup, monitor);
   sc->embree->set_uv_needed(!sc->textures.empty());  // only textures read (u, v)
 
   for (const LightDesc& d : desc.lights) {

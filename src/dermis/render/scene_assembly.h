@@ -6,13 +6,16 @@
 
 #include <memory>
 
+#include "dermis/core/load_monitor.h"
 #include "dermis/render/render_scene.h"
 #include "dermis/scene/scene_desc.h"
 
 namespace dermis {
 
 // Throws SceneError for problems found while building (e.g. an unreadable texture),
-// and adds warnings to `diagnostics`.
-std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& diagnostics);
+// and adds warnings to `diagnostics`. With a monitor, the BVH build reports its progress
+// and stops (Interrupted) once the monitor's cancel flag is set.
+std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& diagnostics,
+                                            const LoadMonitor* monitor = nullptr);
 
 }  // namespace dermis

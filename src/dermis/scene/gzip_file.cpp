@@ -39,12 +39,16 @@ uint64_t file_size(const std::string& path) {
 }
 
 // `head`: the bytes already read from the start of the file.
-std::string read_plain(std::FILE* f, const std::string& path, std::string_view head) {
+std::string read_plain(std::FILE* f, const std::string& path, std::string_view head, LoadStage* stage) {
+  const uint64_t size = file_size(path);
   std::string out;
-  out.reserve(size_t(file_size(path)));
+  out.reserve(size_t(size));
   out.append(head);
   std::vector<unsigned char> buf(kInputChunk);
-  while (size_t got = read_some(f, buf.data(), buf.size(), path)) out.append(reinterpret_cast<char*>(buf.data()), got);
+  while (size_t got = read_some(f, buf.data(), buf.size(), path)) {
+    out.append(reinterpret_cast<char*>(buf.data()), got);
+    if (stage && size > 0) stage->update(double(out.size()) / double(size));
+  }
   return out;
 }
 
@@ -63,7 +67,8 @@ uint64_t size_hint(std::FILE* f, uint64_t compressed, uint64_t limit) {
 }
 
 // `head`: the bytes already read from the start of the file (the magic).
-std::string inflate_gzip(std::FILE* f, const std::string& path, std::string_view head, uint64_t limit) {
+std::string inflate_gzip(std::FILE* f, const std::string& path, std::string_view head, uint64_t limit,
+                         LoadStage* stage) {
   auto corrupt = [&path](const char* why) {
     return FileReadError(path, fmt::format("gzip data is corrupt/truncated (zlib: {})", why));
   };
@@ -76,7 +81,8 @@ std::string inflate_gzip(std::FILE* f, const std::string& path, std::string_view
   } end{&zs};
 
   std::string out;
-  out.reserve(size_t(size_hint(f, file_size(path), limit)));
+  const uint64_t compressed = file_size(path);
+  out.reserve(size_t(size_hint(f, compressed, limit)));
   const uint64_t cap = limit < UINT64_MAX ? limit + 1 : limit;  // one byte past the limit tells it was passed
 
   std::vector<unsigned char> in(std::max(kInputChunk, head.size()));
@@ -84,10 +90,12 @@ std::string inflate_gzip(std::FILE* f, const std::string& path, std::string_view
   zs.next_in = in.data();
   zs.avail_in = uInt(head.size());
   bool eof = false, between_members = false;
-  uint64_t produced = 0;
+  uint64_t produced = 0, consumed = head.size();
   for (;;) {
     if (zs.avail_in == 0 && !eof) {
       size_t got = read_some(f, in.data(), in.size(), path);
+      consumed += got;
+      if (stage && compressed > 0) stage->update(double(consumed) / double(compressed));
       eof = got == 0;
       zs.next_in = in.data();
       zs.avail_in = uInt(got);
@@ -147,7 +155,7 @@ bool has_gzip_magic(std::string_view head) {
 FileReadError::FileReadError(const std::string& path, const std::string& reason)
     : std::runtime_error(fmt::format("{}: {}", path, reason)), path_(path), reason_(reason) {}
 
-std::string read_file_contents(const std::string& path, uint64_t max_decompressed) {
+std::string read_file_contents(const std::string& path, uint64_t max_decompressed, LoadStage* stage) {
   // Only regular files: a FIFO would block in fopen, a device such as /dev/zero never ends.
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
@@ -159,8 +167,8 @@ std::string read_file_contents(const std::string& path, uint64_t max_decompresse
   if (!f) throw FileReadError(path, std::strerror(errno));
   unsigned char bytes[2];
   std::string_view head(reinterpret_cast<char*>(bytes), read_some(f.get(), bytes, 2, path));
-  if (has_gzip_magic(head)) return inflate_gzip(f.get(), path, head, max_decompressed);
-  return read_plain(f.get(), path, head);
+  if (has_gzip_magic(head)) return inflate_gzip(f.get(), path, head, max_decompressed, stage);
+  return read_plain(f.get(), path, head, stage);
 }
 
 }  // namespace dermis

@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "dermis/core/load_monitor.h"
+
 namespace dermis {
 
 // The most bytes a gzip file may inflate to: 4 GiB. A larger result is taken as a corrupt
@@ -34,6 +36,9 @@ class FileReadError : public std::runtime_error {
 // file is returned as it is. Throws FileReadError when the file cannot be opened or read,
 // is a directory, holds gzip data that is corrupt or truncated ("gzip data is
 // corrupt/truncated (zlib: ...)"), or inflates to more than `max_decompressed` bytes.
-std::string read_file_contents(const std::string& path, uint64_t max_decompressed = kMaxDecompressedBytes);
+// With a `stage`, reports the fraction of the file's bytes read (compressed bytes for
+// gzip) and throws Interrupted when cancelled.
+std::string read_file_contents(const std::string& path, uint64_t max_decompressed = kMaxDecompressedBytes,
+                               LoadStage* stage = nullptr);
 
 }  // namespace dermis

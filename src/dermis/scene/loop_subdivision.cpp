@@ -246,7 +246,7 @@ std::vector<Vec3> loop_limit_normals(const LoopMesh& m) {
 }
 
 TriangleMeshDesc loop_subdivision_surface(const std::vector<Vec3>& positions, const std::vector<uint32_t>& indices,
-                                          int levels) {
+                                          int levels, const LoadMonitor* monitor) {
   if (levels < 0) throw std::invalid_argument(fmt::format("levels must be at least 0, got {}", levels));
   std::size_t triangles = indices.size() / 3;
   for (int l = 0; l < levels; ++l) {
@@ -255,12 +255,23 @@ TriangleMeshDesc loop_subdivision_surface(const std::vector<Vec3>& positions, co
       throw std::invalid_argument(fmt::format("{} levels of {} triangles would make more than {} triangles", levels,
                                               indices.size() / 3, kMaxLoopTriangles));
   }
+  // Progress in triangles made: each level makes 4x its input's; the limit positions
+  // and normals count as one more pass over the final triangles.
+  LoadStage stage(monitor, "subdividing (loopsubdiv)");
+  const double total = double(triangles) * (1 + 4.0 / 3.0);
+  double made = 0;
   LoopMesh m{positions, indices};
-  for (int l = 0; l < levels; ++l) m = loop_refine(m);
+  for (int l = 0; l < levels; ++l) {
+    m = loop_refine(m);
+    made += double(m.indices.size() / 3);
+    stage.update(made / total);
+  }
   TriangleMeshDesc out;
   out.positions = loop_limit_positions(m);
+  stage.update((made + 0.5 * double(triangles)) / total);
   out.normals = loop_limit_normals(m);
   out.indices = std::move(m.indices);
+  stage.finish();
   return out;
 }
 

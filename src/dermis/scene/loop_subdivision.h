@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "dermis/core/load_monitor.h"
 #include "dermis/core/vec.h"
 #include "dermis/scene/scene_desc.h"
 
@@ -36,8 +37,10 @@ std::vector<Vec3> loop_limit_normals(const LoopMesh& mesh);
 inline constexpr std::size_t kMaxLoopTriangles = std::size_t(1) << 25;
 
 // `levels` refinements, then limit positions and normals: pbrt-v4's "loopsubdiv".
-// Throws std::invalid_argument for a non-manifold mesh or too many triangles.
+// Throws std::invalid_argument for a non-manifold mesh or too many triangles. With a
+// monitor: stage "subdividing (loopsubdiv)", reported and checked for cancellation
+// (Interrupted) between levels, by the triangles made so far.
 TriangleMeshDesc loop_subdivision_surface(const std::vector<Vec3>& positions, const std::vector<uint32_t>& indices,
-                                          int levels);
+                                          int levels, const LoadMonitor* monitor = nullptr);
 
 }  // namespace dermis

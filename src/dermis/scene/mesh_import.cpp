@@ -3,10 +3,12 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
-#include <assimp/cimport.h>
+#include <assimp/Importer.hpp>
+#include <assimp/ProgressHandler.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fmt/format.h>
@@ -26,19 +28,29 @@ void collect(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent
   for (unsigned i = 0; i < node->mNumChildren; ++i) collect(scene, node->mChildren[i], m, out);
 }
 
+// Assimp's progress reports passed on to a load stage; asks Assimp to stop when cancelled.
+class StageProgress : public Assimp::ProgressHandler {
+ public:
+  explicit StageProgress(LoadStage& stage) : stage_(stage) {}
+  bool Update(float fraction) override { return fraction < 0 ? !stage_.cancelled() : stage_.try_update(fraction); }
+
+ private:
+  LoadStage& stage_;
+};
+
 }  // namespace
 
-ImportedMesh import_mesh_assimp(const std::string& path) {
+ImportedMesh import_mesh_assimp(const std::string& path, const LoadMonitor* monitor) {
   {
     std::ifstream probe(path, std::ios::binary);
     if (!probe) throw std::runtime_error(std::strerror(errno));
   }
-  const aiScene* scene = aiImportFile(path.c_str(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
-  if (!scene) throw std::runtime_error(fmt::format("Assimp: {}", aiGetErrorString()));
-  struct Release {
-    const aiScene* s;
-    ~Release() { aiReleaseImport(s); }
-  } release{scene};
+  LoadStage stage(monitor, "reading " + std::filesystem::path(path).filename().string());
+  Assimp::Importer importer;
+  importer.SetProgressHandler(new StageProgress(stage));  // the importer owns it
+  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+  stage.throw_if_cancelled();
+  if (!scene) throw std::runtime_error(fmt::format("Assimp: {}", importer.GetErrorString()));
   if (!scene->mRootNode || scene->mNumMeshes == 0) throw std::runtime_error("the file contains no meshes");
 
   std::vector<Collected> parts;
@@ -81,6 +93,7 @@ ImportedMesh import_mesh_assimp(const std::string& path) {
   if (any_normals && !all_normals) out.notes.push_back("normals dropped: only some meshes of the file have them");
   if (parts.size() > 1) out.notes.push_back(fmt::format("{} meshes merged into one", parts.size()));
   if (mesh.indices.empty()) throw std::runtime_error("the file contains no triangles");
+  stage.finish();
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "dermis/core/load_monitor.h"
 #include "dermis/scene/scene_desc.h"
 
 namespace dermis {
@@ -19,8 +20,11 @@ struct ImportedMesh {
 // every mesh of the file has them -- applies the node transforms of the file's hierarchy,
 // and merges everything into one mesh. Face winding is kept as written (Assimp's
 // triangulation fans polygons from their first vertex in order). Throws
-// std::runtime_error with Assimp's reason when the file cannot be read.
-ImportedMesh import_mesh_assimp(const std::string& path);
+// std::runtime_error with Assimp's reason when the file cannot be read. With a monitor:
+// stage "reading NAME" as Assimp reports it (its OBJ reader: by lines read), and
+// Interrupted once the cancel flag is set -- Assimp is asked to stop, which its
+// post-processing steps heed but its OBJ reader does not: it stops after the file.
+ImportedMesh import_mesh_assimp(const std::string& path, const LoadMonitor* monitor = nullptr);
 
 // Checks the invariants every mesh must satisfy: indices in range and a multiple of 3,
 // finite coordinates, normals/uvs either absent or one per vertex. Throws

@@ -29,9 +29,9 @@ std::string resolve_path(const std::string& file, const std::string& dir) {
 namespace {
 
 // The file's text (inflated when it is gzip data); on failure, empty with `why` set.
-std::string read_text(const std::string& path, std::string& why) {
+std::string read_text(const std::string& path, std::string& why, LoadStage& stage) {
   try {
-    return read_file_contents(path);
+    return read_file_contents(path, kMaxDecompressedBytes, &stage);
   } catch (const FileReadError& e) {
     why = e.reason();
     return {};
@@ -81,11 +81,13 @@ std::vector<Token> SceneParser::read_scene_file(const std::string& path, const S
                                         "its own includes?",
                                         kMaxIncludeDepth, canonical));
   std::string why;
-  std::string text = read_text(canonical, why);
+  LoadStage loading(monitor_, "loading " + fs::path(canonical).filename().string());
+  std::string text = read_text(canonical, why, loading);
   if (!why.empty()) {
     if (from) throw SceneError(*from, fmt::format("could not read included file '{}': {}", canonical, why));
     throw SceneError({path, 1, 1}, fmt::format("could not read scene file '{}': {}", path, why));
   }
+  loading.finish();
   return tokenize(text, from ? canonical : path);
 }
 
@@ -165,6 +167,7 @@ void SceneParser::run(TokenStream& ts, const std::string& dir) {
   ts.set_base_dir(dir);
   ts.set_file_access(file_access_);
   while (!ts.at_end()) {
+    if (monitor_ && monitor_->cancelled()) throw Interrupted();
     const Token d = ts.next();
     if (d.kind != Token::Kind::Identifier)
       throw SceneError(ts.loc(d), fmt::format("expected a directive, found {} '{}'", token_kind_name(d.kind), excerpt(d.text)));
@@ -618,19 +621,19 @@ void SceneParser::integrator(const Token& d, TokenStream& ts) {
 
 // ---------------------------------------------------------------- entry points
 
-SceneDesc parse_scene_file(const std::string& path, const FileAccessOptions& access) {
+SceneDesc parse_scene_file(const std::string& path, const FileAccessOptions& access, const LoadMonitor* monitor) {
   SceneDesc scene;
-  SceneParser parser(scene, access);
+  SceneParser parser(scene, access, monitor);
   parser.parse_file(path, nullptr);
   parser.finish(path, path);
   return scene;
 }
 
 SceneDesc parse_scene_string(const std::string& text, const std::string& name, const std::string& base_dir,
-                             const FileAccessOptions& access) {
+                             const FileAccessOptions& access, const LoadMonitor* monitor) {
   SceneDesc scene;
   scene.base_directory = resolve_path(".", base_dir);
-  SceneParser parser(scene, access);
+  SceneParser parser(scene, access, monitor);
   parser.parse_text(text, name, base_dir);
   parser.finish("", name);
   return scene;

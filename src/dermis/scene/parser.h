@@ -7,19 +7,24 @@
 #include <string>
 #include <vector>
 
+#include "dermis/core/load_monitor.h"
 #include "dermis/scene/file_access.h"
 #include "dermis/scene/scene_desc.h"
 
 namespace dermis {
 
 // Parses a pbrt-v4 file (and its Includes/Imports). `access`: which files the scene may
-// name (scene/file_access.h; by default any, as in pbrt-v4).
-SceneDesc parse_scene_file(const std::string& path, const FileAccessOptions& access = {});
+// name (scene/file_access.h; by default any, as in pbrt-v4). With a monitor, the files and
+// meshes read report their progress (core/load_monitor.h), and the parse stops with
+// Interrupted once the monitor's cancel flag is set.
+SceneDesc parse_scene_file(const std::string& path, const FileAccessOptions& access = {},
+                           const LoadMonitor* monitor = nullptr);
 
 // Same for a string; `name` is used in messages; relative paths resolve against base_dir
 // (which is also the scene's directory for `access`).
 SceneDesc parse_scene_string(const std::string& text, const std::string& name = "<string>",
-                             const std::string& base_dir = ".", const FileAccessOptions& access = {});
+                             const std::string& base_dir = ".", const FileAccessOptions& access = {},
+                             const LoadMonitor* monitor = nullptr);
 
 // Re-reads material `index` of a parsed scene with the parameters in `params_text`
 // (pbrt parameter text, e.g. "\"string method\" \"disk\" \"rgb mfp\" [1 2 3]") replacing

@@ -179,7 +179,7 @@ void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir)
     std::vector<uint32_t> idx = checked_indices(pl, P.size(), 3);
     const int levels = pl.get_int("levels", 3);
     try {
-      sh.mesh = loop_subdivision_surface(P, idx, levels);
+      sh.mesh = loop_subdivision_surface(P, idx, levels, monitor_);
     } catch (const std::invalid_argument& e) {
       throw SceneError(loc, fmt::format("Shape \"loopsubdiv\": {}", e.what()));
     }
@@ -230,13 +230,15 @@ void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir)
     std::string file = scene_path(pl.get_string("filename", ""), fp->value_loc, "mesh");
     try {
       if (type == "plymesh") {
-        sh.mesh = read_ply(file);
+        sh.mesh = read_ply(file, monitor_);
       } else {
-        ImportedMesh im = import_mesh_assimp(file);
+        ImportedMesh im = import_mesh_assimp(file, monitor_);
         for (const std::string& note : im.notes) s_.diagnostics.warn(loc, fmt::format("'{}': {}", file, note));
         sh.mesh = std::move(im.mesh);
       }
     } catch (const SceneError&) {
+      throw;
+    } catch (const Interrupted&) {
       throw;
     } catch (const FileReadError& e) {
       throw mesh_error(file, e.reason());  // the message names the file already

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 #include <vector>
@@ -66,6 +67,7 @@ class BodyReader {
 
   // Bytes of the body not read yet.
   size_t remaining() const { return data_.size() - pos_; }
+  double fraction_read() const { return data_.empty() ? 1.0 : double(pos_) / double(data_.size()); }
 
   // The fewest bytes one value of type `t` takes: its size in binary; in ASCII a digit and
   // a separator (the last value may lack its separator: see fits()).
@@ -216,8 +218,17 @@ uint32_t checked_index(double v, size_t nverts, const char* what, size_t which) 
 
 }  // namespace
 
-TriangleMeshDesc read_ply(const std::string& path) {
-  std::string data = read_file_contents(path);
+TriangleMeshDesc read_ply(const std::string& path, const LoadMonitor* monitor) {
+  const std::string name = std::filesystem::path(path).filename().string();
+  std::string data;
+  {
+    LoadStage loading(monitor, "loading " + name);
+    data = read_file_contents(path, kMaxDecompressedBytes, &loading);
+    loading.finish();
+  }
+  LoadStage reading(monitor, "reading " + name);
+  // Progress and the cancel flag every this many vertices or faces.
+  constexpr size_t kCheckEvery = size_t(1) << 14;
   Format format = Format::Ascii;
   std::vector<Element> elements;
   size_t body = read_header(data, format, elements);
@@ -252,6 +263,7 @@ TriangleMeshDesc read_ply(const std::string& path) {
       if (uvs) mesh.uvs.resize(e.count);
       std::vector<double> vals(e.props.size());
       for (size_t k = 0; k < e.count; ++k) {
+        if (k % kCheckEvery == 0) reading.update(reader.fraction_read());
         for (size_t i = 0; i < e.props.size(); ++i) {
           const Property& p = e.props[i];
           if (p.is_list) {
@@ -273,6 +285,7 @@ TriangleMeshDesc read_ply(const std::string& path) {
       bool strips = e.name == "tristrips";
       std::vector<uint32_t> poly;
       for (size_t k = 0; k < e.count; ++k) {
+        if (k % kCheckEvery == 0) reading.update(reader.fraction_read());
         for (const Property& p : e.props) {
           if (!p.is_list) {
             reader.read(p.type);
@@ -322,6 +335,7 @@ TriangleMeshDesc read_ply(const std::string& path) {
   }
   if (!have_vertices) throw std::runtime_error("the file has no vertex element");
   if (mesh.indices.empty()) throw std::runtime_error("the file has no faces or triangle strips");
+  reading.finish();
   return mesh;
 }
 

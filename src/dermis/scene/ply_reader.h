@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "dermis/core/load_monitor.h"
 #include "dermis/scene/scene_desc.h"
 
 namespace dermis {
@@ -22,6 +23,8 @@ namespace dermis {
 // Throws FileReadError when the file cannot be read (missing, corrupt gzip data...), and
 // std::runtime_error naming the problem otherwise (not a PLY file, unsupported property
 // type, file truncated, index out of range, non-finite coordinate...).
-TriangleMeshDesc read_ply(const std::string& path);
+// With a monitor: two stages, "loading NAME" (the file's bytes, inflated) and "reading
+// NAME" (its elements), and Interrupted thrown once the monitor's cancel flag is set.
+TriangleMeshDesc read_ply(const std::string& path, const LoadMonitor* monitor = nullptr);
 
 }  // namespace dermis

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "dermis/core/load_monitor.h"
 #include "dermis/scene/params.h"
 #include "dermis/scene/scene_desc.h"
 #include "dermis/scene/tokenizer.h"
@@ -18,7 +19,10 @@ namespace dermis {
 
 class SceneParser {
  public:
-  explicit SceneParser(SceneDesc& scene, FileAccessOptions access = {}) : s_(scene), access_options_(std::move(access)) {}
+  // `access`: which files the scene may name; `monitor` (may be null): progress of the
+  // files and meshes read, and Ctrl-C.
+  explicit SceneParser(SceneDesc& scene, FileAccessOptions access = {}, const LoadMonitor* monitor = nullptr)
+      : s_(scene), monitor_(monitor), access_options_(std::move(access)) {}
 
   // Parses one file; `from` is the Include directive's filename token, if any.
   void parse_file(const std::string& path, const SourceLoc* from);
@@ -107,6 +111,7 @@ class SceneParser {
   void medium_interface(const Token& d, TokenStream& ts);
 
   SceneDesc& s_;
+  const LoadMonitor* monitor_;
   GraphicsState gs_;
   std::vector<Block> blocks_;
   bool in_world_ = false;
