@@ -1,31 +1,35 @@
 #!/usr/bin/python3
-"""Equal-time comparison of backward guiding for the random walk (issue 6).
+"""Equal-time comparison of backward guiding for the random walk (issue 6), by `dermis study`.
 
-The random walk rendered for the same time with classical sampling, the seed's MIS
+The random walk rendered for the same CPU time with classical sampling, the seed's MIS
 (guiding toward the entry plane), MIS with backward guiding, and Dwivedi-only with
-backward guiding. With the `dielectric` boundary the reference is the brute-force
-volumetric path tracer, with the `diffuse` boundary (the production default) the
-classical walk itself; 20x the time, two halves. The measurement is
-bench/sss_methods.py's (CPU time, reference noise removed); this script only adds the
-geometries and the rows.
+backward guiding: one study (python/dermis/study.py, docs/study.md) per geometry and
+boundary, its rows the four settings as labelled method specs. With the `dielectric`
+boundary the reference is the brute-force volumetric path tracer, with the `diffuse`
+boundary (the production default) the classical walk itself. Geometries: slabs lit from
+behind (8 and 30 mm), and the fin, sphere and bust of bench/sss_methods.py, front-lit.
 
-  /usr/bin/python3 bench/walk_backward.py              # ~20 min on 2 cores
-  /usr/bin/python3 bench/walk_backward.py --scale 0.2  # smoke test
+  /usr/bin/python3 bench/walk_backward.py                 # the full run
+  /usr/bin/python3 bench/walk_backward.py --scale 0.1     # every time x0.1, a smoke test
 
 Writes docs/results-backward.md (tables; hand-written findings below the marker are kept)
-and docs/images/results-backward-*.png.
+and docs/images/results-backward-*.png; the studies' HTML reports stay in --work.
 """
 
 import argparse
 import datetime
+import json
 import os
 import subprocess
 import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import sss_methods as sm  # noqa: E402
+import sss_methods as sm  # noqa: E402  (the scenes, the study runner's conventions, the Markdown helpers)
+import dermis  # noqa: E402
+from dermis import study  # noqa: E402
 
+WORK = "/tmp/dermis-walk-backward"
 
 
 def slab(thickness):
@@ -52,104 +56,125 @@ AttributeEnd
 sm.GEOMETRY["slab"] = ("-120 -300 80   0 0 50   0 0 1", -0.3, slab(8))
 sm.GEOMETRY["thickslab"] = ("-120 -300 80   0 0 50   0 0 1", -0.3, slab(30))
 BACKLIT = ("slab", "thickslab")
-EQUAL_TIME = dict(bust=6, fin=4, sphere=4, slab=4, thickslab=4)
-REF_TIME = {g: 20 * t for g, t in EQUAL_TIME.items()}
-ROWS = [  # label, walksampling, backward guiding
-    ("classical", "classical", False),
-    ("mis", "mis", False),
-    ("mis + backward", "mis", True),
-    ("dwivedi + backward", "dwivedi", True),
-]
+TITLES = dict(slab="100 × 100 × 8 mm slab lit from behind (0.6–1.2 mfp thick)",
+              thickslab="100 × 100 × 30 mm slab lit from behind (2.3–4.5 mfp thick)",
+              fin="block with a 4 mm fin (0.3–0.6 mfp), front-lit", sphere="sphere of radius 20 mm (3–6 mfp across)",
+              bust="Nefertiti bust (≈ 40 mfp across)")
+EQUAL_TIME = 4  # CPU seconds per render (x --scale)
+REF_TIME = 60   # wall seconds of each reference, two halves (x --scale)
+REPEATS = 3
+THREADS = 2
+# The rows: label, walksampling, backward guiding. `mis` (the seed's guiding, the default
+# before backward guiding) first: the efficiency column is relative to the first row.
+ROWS = [("mis", "mis", False), ("classical", "classical", False), ("mis + backward", "mis", True),
+        ("dwivedi + backward", "dwivedi", True)]
 MARKER = "<!-- findings: written by hand below this line; kept when the script rewrites the tables -->"
 
 
-def scene(g, boundary, label, sampling, backward):
-    if sampling is None:
-        mat, name = f'{sm.WALK_MATERIAL} "string method" "volumetric"', f"{g}-volumetric"
-    else:
-        mat = (f'{sm.WALK_MATERIAL} "string method" "randomwalk" "string boundary" "{boundary}" '
-               f'"string walksampling" "{sampling}" "bool backwardguiding" {"true" if backward else "false"}')
-        name = f"{g}-walk-{boundary}-" + label.replace(" + ", "-").replace(" ", "-")
-    text = sm.scene_text(g, mat, name)
+def walk_spec(boundary, sampling, backward):
+    return (f"randomwalk:boundary={boundary}:walksampling={sampling}:"
+            f"backwardguiding={'true' if backward else 'false'}")
+
+
+def scene(g):
+    """The geometry with the walk material (the study sets the method of each row)."""
+    name = f"{g}-walk-backward"
+    text = sm.scene_text(g, f'{sm.WALK_MATERIAL} "string method" "randomwalk"', name)
     if g in BACKLIT:
         text = text.replace(sm.LIGHTS, BACKLIGHT)
     return sm.write_scene(name, text)
 
 
+def run_study(key, scene_path, boundary, scale, work):
+    """One study in this process; returns its study.json as a dict."""
+    methods = [f"{label}={walk_spec(boundary, s, b)}" for label, s, b in ROWS]
+    reference = "volumetric" if boundary == "dielectric" else walk_spec(boundary, "classical", False)
+    out = os.path.join(work, key)
+    argv = [os.path.relpath(scene_path, sm.ROOT), "--methods", ",".join(methods), "--time", f"{EQUAL_TIME * scale:g}",
+            "--budgets", f"{EQUAL_TIME * scale:g}", "--repeats", str(REPEATS), "--cpu-time", "--threads",
+            str(THREADS), "--reference-method", reference, "--reference-time", f"{REF_TIME * scale:g}", "--out", out]
+    print(f"[{key}] dermis study {' '.join(argv)}", flush=True)
+    cwd = os.getcwd()
+    os.chdir(sm.ROOT)
+    try:
+        rc = study.main(argv)
+    finally:
+        os.chdir(cwd)
+    if rc != 0:
+        sys.exit(f"[{key}] the study failed ({rc})")
+    with open(os.path.join(out, "study.json")) as f:
+        return json.load(f)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--scale", type=float, default=1.0, help="multiply every render time (default 1)")
-    ap.add_argument("--work", default="/tmp/dermis-walk-backward", help="scratch folder for EXR files")
+    ap.add_argument("--scale", type=float, default=1.0, help="multiply every time (default 1)")
+    ap.add_argument("--work", default=WORK, help="folder of the studies (their reports and images)")
     ap.add_argument("--geometries", default="slab,thickslab,fin,sphere,bust", help="comma-separated subset")
     ap.add_argument("--boundaries", default="dielectric,diffuse", help="comma-separated subset")
     ap.add_argument("--no-docs", action="store_true", help="do not write docs/results-backward.md")
     args = ap.parse_args()
+    args.work = os.path.abspath(args.work)
     os.makedirs(sm.SCENES, exist_ok=True)
-    os.makedirs(args.work, exist_ok=True)
-    sm.WORK = args.work
-    S = args.scale
     t0 = time.time()
-    fams = {}
-    masks = {g: sm.make_mask(g, args.work) for g in args.geometries.split(",")}
+    load_start = os.getloadavg()
+    results = {}
     for b in args.boundaries.split(","):
         for g in args.geometries.split(","):
-            print(f"[{b} {g}]", flush=True)
-            fam = sm.Family(f"{g}-{b}-backward", g, args.work, masks[g])
-            if b == "dielectric":
-                fam.reference(scene(g, b, None, None, None), REF_TIME[g] * S,
-                              f"`volumetric` on `scenes/bench/{g}-volumetric.pbrt`")
-            else:
-                fam.reference(scene(g, b, "classical", "classical", False), REF_TIME[g] * S,
-                              f"`randomwalk` {b} classical on `scenes/bench/{g}-walk-{b}-classical.pbrt`")
-            for label, sampling, backward in ROWS:
-                out = os.path.join(args.work, f"{g}-{b}-{label.replace(' + ', '-')}.exr")
-                fam.measure(label, sm.render(scene(g, b, label, sampling, backward), out, seconds=EQUAL_TIME[g] * S,
-                                             seed=1))
-            fams[(b, g)] = fam
+            key = f"{g}-{b}"
+            results[key] = (b, g, run_study(key, scene(g), b, args.scale, args.work))
     total = time.time() - t0
     print(f"total wall time {total:.0f} s", flush=True)
-    for (b, g), fam in fams.items():
-        print(f"\n{b} {g}\n" + sm.fmt_table(fam, "mis"))
     if not args.no_docs:
-        write_docs(fams, total, S)
+        write_docs(results, total, args, load_start)
 
 
-def write_docs(fams, total, S):
+def write_docs(results, total, args, load_start):
     os.makedirs(sm.IMAGES, exist_ok=True)
-    for (b, g), fam in fams.items():
-        pngs = [fam.ref_png] + [os.path.join(fam.work, f"{g}-{b}-{label.replace(' + ', '-')}.png")
-                                for label, _, _ in ROWS]
-        sm.strip(pngs, os.path.join(sm.IMAGES, f"results-backward-{b}-{g}.png"), ["reference"] + [r[0] for r in ROWS])
+    for key, (b, g, data) in results.items():
+        names = [m["name"] for m in data["methods"]]
+        sm.strip([dermis.read_image(os.path.join(args.work, key, "reference.exr"))] +
+                 [sm.exr(args.work, key, n) for n in names], ["reference"] + names,
+                 os.path.join(sm.IMAGES, f"results-backward-{key}.png"))
     path = os.path.join(sm.DOCS, "results-backward.md")
     kept = ""
     if os.path.exists(path):
         text = open(path).read()
         if MARKER in text:
-            kept = text[text.index(MARKER) + len(MARKER):]
+            kept = text[text.rindex(MARKER) + len(MARKER):]
     commit = subprocess.run(["git", "-C", sm.ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip()
-    cmd = "/usr/bin/python3 bench/walk_backward.py" + (f" --scale {S:g}" if S != 1 else "")
+    cmd = "nice -n 5 /usr/bin/python3 bench/walk_backward.py" + (f" --scale {args.scale:g}" if args.scale != 1 else "")
+    if args.geometries != "slab,thickslab,fin,sphere,bust":
+        cmd += f" --geometries {args.geometries}"
+    if args.boundaries != "dielectric,diffuse":
+        cmd += f" --boundaries {args.boundaries}"
+    any_data = next(iter(results.values()))[2]
+    load_end = os.getloadavg()
     out = ["# Results: backward guiding for the random walk, at equal time\n",
-           f"Produced by `{cmd}` on {datetime.date.today().isoformat()} (code at commit {commit}; 2 threads on a shared "
-           f"2-core machine; the script took {total:.0f} s). Measurement as in [results.md](results.md): CPU time, object "
-           "pixels, the reference's own noise removed; efficiency = MSE·CPU of `mis` (the seed's guiding, the default "
-           "before backward guiding) over MSE·CPU of the row.\n",
+           f"Produced by `{cmd}` on {datetime.date.today().isoformat()} (code at commit {commit}; {THREADS} threads; "
+           f"CPU: {any_data['machine']['CPU']}; cores: {any_data['machine']['cores']}; the script took {total:.0f} s). "
+           f"**The machine was shared and loaded**: load average (1, 5, 15 min) "
+           f"{', '.join(f'{x:.1f}' for x in load_start)} at the start, {', '.join(f'{x:.1f}' for x in load_end)} at "
+           "the end; equal **CPU** time keeps the comparison fair under load, but the references (rendered for a "
+           "wall time) reached fewer samples than on an idle machine: their sample counts and own noise are under "
+           "each table.\n",
+           "Each section is one `dermis study` ([study.md](study.md)) whose interactive report the script leaves in "
+           f"`{args.work}/<geometry>-<boundary>/index.html`; its rows are labelled method specs "
+           "(`mis + backward=randomwalk:boundary=…:walksampling=mis:backwardguiding=true`). How to read the tables: "
+           f"as in [results.md](results.md): {REPEATS} independent repeats per row, mean ± standard error; "
+           "*efficiency* = (relMSE × CPU time) of `mis` (the first row: the seed's guiding, the default before "
+           "backward guiding) / that of the row.\n",
            f"Material: `subsurface` {sm.WALK_MATERIAL} (mean free path 13 / 9.5 / 6.7 mm in R / G / B), "
            '`"string method" "randomwalk"`, the section\'s `boundary`, and the rows\' `walksampling` and '
-           "`backwardguiding`. Reference, 20× the time: for `dielectric` the `volumetric` method (the same medium "
-           "inside a smooth dielectric), for `diffuse` the classical walk (all rows are unbiased estimators of the same "
-           "image: tested).\n"]
-    titles = dict(slab="100 × 100 × 8 mm slab lit from behind (0.6–1.2 mfp thick)",
-                  thickslab="100 × 100 × 30 mm slab lit from behind (2.3–4.5 mfp thick)",
-                  fin="block with a 4 mm fin (0.3–0.6 mfp), front-lit", sphere="sphere of radius 20 mm (3–6 mfp across)",
-                  bust="Nefertiti bust (≈ 40 mfp across)")
-    for (b, g), fam in fams.items():
-        out.append(f"## `{b}` boundary: {titles[g]}, {EQUAL_TIME[g] * S:g} s each\n")
-        out.append(sm.fmt_table(fam, "mis") + "\n")
-        out.append(sm.ref_line(fam) + "\n")
-        out.append("Mean over the object (R, G, B): reference " + sm.means(fam.rows[0]["mean_obj_ref"]) + "; " +
-                   "; ".join(f"{row['label']} {sm.means(row['mean_obj'])}" for row in fam.rows) + ".\n")
-        out.append(f"![{b} {g}](images/results-backward-{b}-{g}.png)\n")
+           "`backwardguiding`. Reference: for `dielectric` the `volumetric` method (the same medium inside a smooth "
+           "dielectric), for `diffuse` the classical walk (all rows are unbiased estimators of the same image: "
+           "tested).\n"]
+    for key, (b, g, data) in results.items():
+        out.append(f"## `{b}` boundary: {TITLES[g]}, {data['main_budget']:g} CPU s each\n")
+        out.append(sm.table(data) + "\n")
+        out.append(sm.reference_line(data) + "\n")
+        out.append(f"![{b} {g}](images/results-backward-{key}.png)\n")
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n" + MARKER + (kept if kept else "\n"))
     print(f"wrote {path}")

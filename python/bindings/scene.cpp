@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <mutex>
@@ -14,6 +15,7 @@
 #include "dermis/render/film.h"
 #include "dermis/scene/params.h"
 #include "dermis/scene/parser.h"
+#include "dermis/scene/subsurface_params.h"
 
 namespace py = pybind11;
 
@@ -107,8 +109,9 @@ py::object param_value(const Param& p) {
 }
 
 // One Python keyword argument as pbrt parameter text: str -> string, bool -> bool,
-// int or float -> float (integer when the material already has it as one), a sequence
-// of 3 numbers -> rgb, of other lengths -> float array.
+// int or float -> float (integer when the material already has it as one, or when it is
+// a whole number and the subsurface parameter table declares it integer, e.g.
+// maxpoints), a sequence of 3 numbers -> rgb, of other lengths -> float array.
 std::string kwarg_text(const MaterialDesc& m, const std::string& name, const py::handle& value) {
   Param p;
   p.name = name;
@@ -122,6 +125,9 @@ std::string kwarg_text(const MaterialDesc& m, const std::string& name, const py:
     p.type = "float";
     if (m.params)
       if (const ParsedParam* q = m.params->find(name); q && q->type == "integer") p.type = "integer";
+    if (m.type == MaterialDesc::Type::Subsurface && value.cast<double>() == std::floor(value.cast<double>()))
+      for (const SubsurfaceParameter& row : subsurface_parameters())
+        if (name == row.name && std::string_view(row.type) == "integer") p.type = "integer";
     p.numbers = {p.type == "integer" ? double(value.cast<int64_t>()) : value.cast<double>()};
   } else if (py::isinstance<py::sequence>(value)) {
     p.numbers = value.cast<std::vector<double>>();
@@ -276,7 +282,8 @@ what and why") for bad input, FileNotFoundError-like SceneError for missing file
 material: the material's index (Scene.materials) or MakeNamedMaterial name.
 text: pbrt-v4 parameter text, e.g. '"string method" "disk" "texture reflectance" "skin"'.
 **params: the same as Python values: str -> "string", bool -> "bool", int or float ->
-  "float" (or "integer" if the material has it so), 3 numbers -> "rgb", e.g.
+  "float" (or "integer" if the material has it so, or a subsurface material's
+  integer parameter such as maxpoints), 3 numbers -> "rgb", e.g.
   set_material("skin", method="disk", mfp=(1.0, 0.5, 0.25)).
 Parameters named replace the material's; the rest stay. Meshes and textures are not read
 again; the next render rebuilds what depends on materials. Raises dermis.SceneError

@@ -12,7 +12,10 @@ maps, tables (mean ± standard error over the K repeats) and convergence plots
 Method specs: a `"string method"` value (docs/materials.md), optionally followed by
 parameters of the material, `name:key=value:key=value`, e.g.
 `randomwalk:walksampling=mis:boundary=dielectric`. A value is a bool (true/false), a
-number, three numbers a/b/c (rgb), else a string.
+number, three numbers a/b/c (rgb), else a string. The parameters override the scene's
+for that method only (each method starts from the scene as written). A spec may start
+with `LABEL=`, the name the report shows it under (default: the spec itself), e.g.
+`mis + backward=randomwalk:walksampling=mis:backwardguiding=true`.
 
 Cost: equal wall time (default): render(time_limit=T) with an unbounded sample count.
 Equal CPU time (--cpu-time): the budget is CPU seconds of the process (all threads);
@@ -46,12 +49,18 @@ REFERENCE_SEEDS = (1_000_001, 1_000_002)
 # ---------------------------------------------------------------------------- arguments
 
 class Method:
-    """A method spec: `name[:key=value...]`, the label it is shown under."""
+    """A method spec: `[LABEL=]name[:key=value...]`; `label` is the name shown (the spec
+    itself unless LABEL is given)."""
 
     def __init__(self, spec):
-        self.label = spec
+        self.label = spec.strip()
         parts = spec.split(":")
-        self.method = parts[0].strip()
+        label, eq, name = parts[0].rpartition("=")
+        if eq:  # "LABEL=name": the method's name holds no "=", the parameters come after ":"
+            self.label = label.strip()
+            if not self.label:
+                raise ValueError(f"method '{spec}': empty label before '='")
+        self.method = name.strip()
         if not self.method:
             raise ValueError(f"method '{spec}': empty method name")
         self.params = {}

@@ -66,6 +66,19 @@ def test_a_changed_material_renders_as_the_scene_written_with_it(dermis_module, 
     assert np.array_equal(before, dermis_module.render(sphere_scene, seed=5, spp=2))
 
 
+def test_integer_parameters_of_subsurface_from_python_numbers(dermis_module, sphere_scene):
+    # maxpoints is an integer parameter of `subsurface` (docs/materials.md): a whole Python
+    # number becomes "integer maxpoints", as the scene would write it; other numbers stay float.
+    sphere_scene.set_material("skin", method="pointcloud", maxpoints=3000, epsilon=0.1)
+    m = sphere_scene.materials[0]
+    assert m["types"]["maxpoints"] == "integer" and m["parameters"]["maxpoints"] == 3000
+    assert m["types"]["epsilon"] == "float"
+    sphere_scene.set_material("skin", maxpoints=4000.0)  # a float with a whole value: integer too
+    assert sphere_scene.materials[0]["types"]["maxpoints"] == "integer"
+    with pytest.raises(dermis_module.SceneError, match="maxpoints"):
+        sphere_scene.set_material("skin", maxpoints=3000.5)  # not a whole number: float, refused
+
+
 def test_scene_errors_carry_file_line_column(dermis_module, sphere_scene, tmp_path):
     bad = tmp_path / "bad.pbrt"
     bad.write_text('WorldBegin\nShape "sphere" "float radius" "one"\n')

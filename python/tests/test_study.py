@@ -120,3 +120,47 @@ def test_dermis_study_subcommand(dermis_binary, tiny):
     assert "--methods" in p.stdout and "study" in p.stdout.splitlines()[0]
     p = subprocess.run([dermis_binary, "study", str(tiny)], capture_output=True, text=True, timeout=60)
     assert p.returncode == 2 and "--methods" in p.stderr
+
+
+def test_method_specs_with_labels():
+    m = study.Method("mis + backward=randomwalk:walksampling=mis:backwardguiding=true:mfp=1/2/3")
+    assert (m.label, m.method) == ("mis + backward", "randomwalk")
+    assert m.params == {"walksampling": "mis", "backwardguiding": True, "mfp": (1.0, 2.0, 3.0)}
+    m = study.Method("randomwalk:boundary=diffuse")
+    assert (m.label, m.method, m.params) == ("randomwalk:boundary=diffuse", "randomwalk", {"boundary": "diffuse"})
+    for bad in ("=disk", "label=", "label=:walksampling=mis", "disk:walksampling"):
+        with pytest.raises(ValueError):
+            study.Method(bad)
+
+
+def test_each_method_renders_the_scene_written_with_its_overrides(tiny):
+    """A method's parameters override the scene's for that method only: its scene renders
+    bit for bit as the scene written with them, and the next method does not inherit them."""
+    args = study.parse_args([str(tiny), "--methods", "diffuse walk=randomwalk:boundary=diffuse:g=0.5,plain=randomwalk",
+                             "--time", "1"])
+    assert [m.label for m in args.methods] == ["diffuse walk", "plain"]
+    s = study.Study(args)
+    written = {
+        "diffuse walk": '"string method" "randomwalk" "string boundary" "diffuse" "float g" 0.5',
+        "plain": '"string method" "randomwalk"',
+    }
+    images = {}
+    for m in args.methods:
+        mine = dermis.render(s.scene(m), spp=2, seed=3, threads=1)
+        text = TINY_SCENE.replace('"float eta" 1.33', '"float eta" 1.33 ' + written[m.label])
+        expected = dermis.render(dermis.load_scene(text), spp=2, seed=3, threads=1)
+        assert (mine == expected).all(), m.label
+        images[m.label] = mine
+    assert not (images["diffuse walk"] == images["plain"]).all()  # the override changed the image
+
+
+def test_study_report_shows_labels(wall_study, tiny, tmp_path):
+    rc = study.main([str(tiny), "--methods", "probe rays=disk,walk=randomwalk:walksampling=mis", "--time", "0.2",
+                     "--budgets", "0.2", "--repeats", "2", "--threads", "1",
+                     "--reference", str(wall_study / "reference.exr"), "--out", str(tmp_path)])
+    assert rc == 0
+    data = json.loads((tmp_path / "study.json").read_text())
+    assert [(m["name"], m["method"], m["params"]) for m in data["methods"]] == [
+        ("probe rays", "disk", {}), ("walk", "randomwalk", {"walksampling": "mis"})]
+    assert (tmp_path / "probe_rays.exr").is_file() and (tmp_path / "walk.exr").is_file()
+    assert "<b>probe rays</b>" in (tmp_path / "index.html").read_text()
