@@ -121,7 +121,7 @@ def main():
     results = {}
     for b in args.boundaries.split(","):
         for g in args.geometries.split(","):
-            key = f"{g}-{b}"
+            key = f"{b}-{g}"
             results[key] = (b, g, run_study(key, scene(g), b, args.scale, args.work))
     total = time.time() - t0
     print(f"total wall time {total:.0f} s", flush=True)
@@ -160,7 +160,7 @@ def write_docs(results, total, args, load_start):
            "wall time) reached fewer samples than on an idle machine: their sample counts and own noise are under "
            "each table.\n",
            "Each section is one `dermis study` ([study.md](study.md)) whose interactive report the script leaves in "
-           f"`{args.work}/<geometry>-<boundary>/index.html`; its rows are labelled method specs "
+           f"`{args.work}/<boundary>-<geometry>/index.html`; its rows are labelled method specs "
            "(`mis + backward=randomwalk:boundary=…:walksampling=mis:backwardguiding=true`). How to read the tables: "
            f"as in [results.md](results.md): {REPEATS} independent repeats per row, mean ± standard error; "
            "*efficiency* = (relMSE × CPU time) of `mis` (the first row: the seed's guiding, the default before "
