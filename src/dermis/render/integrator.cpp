@@ -290,17 +290,28 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       const BSDF boundary = sm.entry_boundary(hit.ng);
       float F = fresnel_dielectric(cos_o, sm.entry_eta);
       if (boundary.is_rough()) {
-        // A rough boundary: the rough dielectric sampled. Reflection continues the path
-        // (no light sampling at rough glass: its emission counts in full); transmission
-        // enters the method along the sampled direction, the 1/eta^2 radiance factor
-        // omitted as for the smooth entry (the exit's cancels it).
+        // A rough boundary: the rough dielectric sampled. Reflection continues the path,
+        // its emission MIS-weighted against light sampling of the reflection lobe here
+        // (the transmitted side is the method's: no lights there); transmission enters
+        // the method along the sampled direction, the 1/eta^2 radiance factor omitted as
+        // for the smooth entry (the exit's cancels it).
+        const bool entry_nee = start.rough_glass_nee;
+        const Vec3 p_out = offset_ray_origin(hit.p, hit.ng, hit.ng);
+        if (entry_nee) {
+          L += beta * estimate_direct(sc, p_out, hit.ng, medium, sampler, counters, [&](Vec3 wi) {
+                 if (dot(wi, hit.ng) <= 0) return std::pair{RGB(0), 0.0f};
+                 return std::pair{bsdf_eval(boundary, wo, wi), bsdf_pdf(boundary, wo, wi)};
+               });
+        }
         const float u_lobe = sampler.get1d();
         const auto bs = bsdf_sample(boundary, wo, u_lobe, sampler.get2d());
         if (!bs) break;
         if (!bs->transmission) {
           beta *= bs->weight;
-          specular = true;
-          prev_p = hit.p;
+          specular = !entry_nee;  // without light sampling here: emission counts in full
+          prev_pdf = bs->pdf;
+          prev_p = entry_nee ? p_out : hit.p;
+          prev_n = hit.ng;
           ray = Ray{offset_ray_origin(hit.p, hit.ng, bs->wi), bs->wi};
           if (!beta.is_finite() || beta.is_black()) break;
           continue;
@@ -316,6 +327,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           const uint64_t resume = sampler.dimension();
           PathStart reflected;  // after a specular bounce: emission counts in full
           reflected.depth = depth;
+          reflected.rough_glass_nee = start.rough_glass_nee;
           reflected.first_dimension = Sampler::region(resume, 0x5e1fu);
           Vec3 wi = reflect(wo, hit.ng);
           L += beta * F * trace_path(sc, Ray{offset_ray_origin(hit.p, hit.ng, wi), wi}, medium, sampler, counters,
@@ -393,14 +405,17 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     // is in, since Lambertian reflection stays on the side of wo.
     const Vec3 p_out = offset_ray_origin(hit.p, hit.ng, wo);
     const Vec3 surface_n = dot(hit.ng, wo) >= 0 ? hit.ng : -hit.ng;
-    // Lights are sampled from the side of wo only: not at rough glass, whose transmitted
-    // light would be missed (its emission is then found by the sampled direction alone).
-    const bool nee = !bsdf.is_specular() && bsdf.type != BSDF::Type::Dielectric;
-    // Diffuse transmission samples the lights on both sides, each from a point and
-    // normal on its own side, each counting only the directions of its side: a direction
-    // sampled into either side then meets its emission MIS-weighted against the light
-    // sampling of that side (prev_p, prev_n below).
-    const bool two_sided_nee = bsdf.type == BSDF::Type::DiffuseTransmission;
+    // Lights are sampled wherever the BSDF has a density (not at smooth glass or mirrors).
+    // PathStart::rough_glass_nee off: none at rough glass, whose emission is then found by
+    // the sampled direction alone (the estimator before light sampling there; tests).
+    const bool rough_glass = bsdf.type == BSDF::Type::Dielectric && bsdf.is_rough();
+    const bool nee = !bsdf.is_specular() && (!rough_glass || start.rough_glass_nee);
+    // Diffuse transmission and rough glass sample the lights on both sides, each from a
+    // point and normal on its own side (the medium behind for transmission), each counting
+    // only the directions of its side: a direction sampled into either side then meets
+    // its emission MIS-weighted against the light sampling of that side (prev_p, prev_n
+    // below).
+    const bool two_sided_nee = nee && (bsdf.type == BSDF::Type::DiffuseTransmission || rough_glass);
     const Vec3 p_back = two_sided_nee ? offset_ray_origin(hit.p, hit.ng, -wo) : p_out;
     if (nee) {
       L += beta * estimate_direct(sc, p_out, surface_n, medium, sampler, counters, [&](Vec3 wi) {
@@ -429,6 +444,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           const uint64_t resume = sampler.dimension();
           PathStart rs;
           rs.depth = depth;
+          rs.rough_glass_nee = start.rough_glass_nee;
           rs.first_dimension = Sampler::region(resume, 0x5e1fu);
           L += beta * reflected->weight * F *
                trace_path(sc, Ray{offset_ray_origin(hit.p, hit.ng, reflected->wi), reflected->wi}, medium, sampler,

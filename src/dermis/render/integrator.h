@@ -47,6 +47,10 @@ struct PathStart {
   // A camera path follows both reflection and transmission at its first smooth
   // dielectric or subsurface hit (splitting; tests turn it off to compare).
   bool split_first_hit = true;
+  // Next-event estimation at rough glass, on both sides of the surface, and at a rough
+  // subsurface entry, for its reflection (tests turn it off to compare with the
+  // estimator that finds emission there by BSDF sampling alone).
+  bool rough_glass_nee = true;
 };
 
 // Radiance arriving along `ray` (from the camera), starting in `medium`.
