@@ -122,13 +122,17 @@ std::string kwarg_text(const MaterialDesc& m, const std::string& name, const py:
     p.type = "bool";
     p.bools = {value.cast<bool>()};
   } else if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)) {
+    // A Python float with a whole value (4000.0) is an integer too; one that is not stays
+    // float, and the parser refuses it where an integer is needed.
+    const double x = value.cast<double>();
+    const bool whole = x == std::floor(x);
     p.type = "float";
-    if (m.params)
+    if (m.params && whole)
       if (const ParsedParam* q = m.params->find(name); q && q->type == "integer") p.type = "integer";
-    if (m.type == MaterialDesc::Type::Subsurface && value.cast<double>() == std::floor(value.cast<double>()))
+    if (m.type == MaterialDesc::Type::Subsurface && whole)
       for (const SubsurfaceParameter& row : subsurface_parameters())
         if (name == row.name && std::string_view(row.type) == "integer") p.type = "integer";
-    p.numbers = {p.type == "integer" ? double(value.cast<int64_t>()) : value.cast<double>()};
+    p.numbers = {x};
   } else if (py::isinstance<py::sequence>(value)) {
     p.numbers = value.cast<std::vector<double>>();
     p.type = p.numbers.size() == 3 ? "rgb" : "float";
