@@ -1,10 +1,13 @@
 // Materials as the renderer holds them; bsdf_at() makes the BSDF at a hit.
 #pragma once
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <vector>
 
 #include "dermis/core/rgb.h"
+#include "dermis/core/microfacet.h"
 #include "dermis/core/rng.h"
 #include "dermis/geometry/ray.h"
 #include "dermis/materials/bsdf.h"
@@ -30,6 +33,15 @@ struct Material {
   // Dielectric, Conductor: Trowbridge-Reitz alpha along the two tangent axes (after
   // pbrt-v4's remaproughness); 0 (below kSmoothAlpha): smooth.
   float alpha_x = 0, alpha_y = 0;
+  // Textured parameters (float textures, -1: the constants): roughness along the two axes
+  // (Dielectric, Conductor, Coated's interface; Coated's conductor base), mapped to alpha per
+  // hit as pbrt-v4 does (remap: alpha = sqrt(roughness)); Coated's thickness and g, and its
+  // albedo (a spectrum texture). Conductor and a Coated conductor base given a textured
+  // `reflectance` take eta = 1 and k from it per hit.
+  int roughness_texture[2] = {-1, -1};
+  int base_roughness_texture[2] = {-1, -1};
+  bool remap_roughness = true;
+  int thickness_texture = -1, g_texture = -1, albedo_texture = -1;
   int subsurface = -1;  // Subsurface: index into RenderScene::subsurface
 
   // Interfaces only mark a change of medium; rays pass straight through them.
@@ -57,6 +69,28 @@ inline int resolve_material(const std::vector<Material>& materials, const std::v
   return index;
 }
 
+// pbrt-v4's conductor from a reflectance r: eta = 1, k = 2 sqrt(r) / sqrt(1 - r) (r below 1).
+inline RGB conductor_k_from_reflectance(RGB r) {
+  RGB k;
+  for (int c = 0; c < 3; ++c) {
+    const float rc = std::clamp(r[c], 0.0f, 0.9999f);
+    k[c] = 2 * std::sqrt(rc) / std::sqrt(1 - rc);
+  }
+  return k;
+}
+
+// A float texture's value at the hit, or `constant` where there is none.
+inline float textured_float(const std::vector<Texture>& textures, int texture, float constant, const SurfaceHit& hit) {
+  return texture >= 0 ? evaluate_texture(textures, texture, texture_context(hit))[0] : constant;
+}
+
+// Roughness along the two axes as alpha: the constants, or the textures mapped per hit.
+inline void textured_alpha(const std::vector<Texture>& textures, const int texture[2], bool remap,
+                           const SurfaceHit& hit, float& alpha_x, float& alpha_y) {
+  if (texture[0] >= 0) alpha_x = roughness_to_alpha(std::max(0.0f, textured_float(textures, texture[0], 0, hit)), remap);
+  if (texture[1] >= 0) alpha_y = roughness_to_alpha(std::max(0.0f, textured_float(textures, texture[1], 0, hit)), remap);
+}
+
 inline BSDF bsdf_at(const Material& m, const std::vector<Texture>& textures, const SurfaceHit& hit) {
   BSDF b;
   b.n = hit.ng;
@@ -65,9 +99,22 @@ inline BSDF bsdf_at(const Material& m, const std::vector<Texture>& textures, con
       b.type = BSDF::Type::Coated;
       b.coat = m.coat;
       if (m.coat.base == CoatedLayer::Base::Diffuse) {
-        RGB r = m.reflectance_texture >= 0 ? evaluate_texture(textures, m.reflectance_texture, hit.uv) : m.reflectance;
+        RGB r = m.reflectance_texture >= 0 ? evaluate_texture(textures, m.reflectance_texture, texture_context(hit)) : m.reflectance;
         for (int c = 0; c < 3; ++c) r[c] = std::clamp(r[c], 0.0f, 1.0f);
         b.coat.base_reflectance = r;
+      } else if (m.reflectance_texture >= 0) {
+        b.coat.conductor_eta = RGB(1);
+        b.coat.conductor_k = conductor_k_from_reflectance(evaluate_texture(textures, m.reflectance_texture, texture_context(hit)));
+      }
+      textured_alpha(textures, m.roughness_texture, m.remap_roughness, hit, b.coat.interface_alpha_x, b.coat.interface_alpha_y);
+      textured_alpha(textures, m.base_roughness_texture, m.remap_roughness, hit, b.coat.base_alpha_x, b.coat.base_alpha_y);
+      // pbrt-v4 clamps a textured thickness to at least its float epsilon and g to (-1, 1).
+      if (m.thickness_texture >= 0)
+        b.coat.thickness = std::max(textured_float(textures, m.thickness_texture, 0, hit), 0x1p-24f);
+      if (m.g_texture >= 0) b.coat.g = std::clamp(textured_float(textures, m.g_texture, 0, hit), -0.99f, 0.99f);
+      if (m.albedo_texture >= 0) {
+        b.coat.albedo = evaluate_texture(textures, m.albedo_texture, texture_context(hit));
+        for (int c = 0; c < 3; ++c) b.coat.albedo[c] = std::clamp(b.coat.albedo[c], 0.0f, 1.0f);
       }
       break;
     case Material::Type::DiffuseTransmission: {
@@ -97,13 +144,19 @@ inline BSDF bsdf_at(const Material& m, const std::vector<Texture>& textures, con
       b.eta = m.eta;
       b.alpha_x = m.alpha_x;
       b.alpha_y = m.alpha_y;
+      textured_alpha(textures, m.roughness_texture, m.remap_roughness, hit, b.alpha_x, b.alpha_y);
       break;
     case Material::Type::Conductor:
       b.type = BSDF::Type::Conductor;
       b.cond_eta = m.cond_eta;
       b.cond_k = m.cond_k;
+      if (m.reflectance_texture >= 0) {  // only a conductor given a "reflectance" has one
+        b.cond_eta = RGB(1);
+        b.cond_k = conductor_k_from_reflectance(evaluate_texture(textures, m.reflectance_texture, texture_context(hit)));
+      }
       b.alpha_x = m.alpha_x;
       b.alpha_y = m.alpha_y;
+      textured_alpha(textures, m.roughness_texture, m.remap_roughness, hit, b.alpha_x, b.alpha_y);
       break;
   }
   return b;

@@ -44,10 +44,7 @@ Material make_material(const MaterialDesc& d, [[maybe_unused]] Diagnostics& diag
       if (d.has_reflectance) {
         // pbrt-v4: a conductor given a reflectance r uses eta = 1 and k = 2 sqrt(r) / sqrt(1 - r).
         m.cond_eta = RGB(1);
-        for (int c = 0; c < 3; ++c) {
-          float r = std::clamp(d.reflectance.value[c], 0.0f, 0.9999f);
-          m.cond_k[c] = 2 * std::sqrt(r) / std::sqrt(1 - r);
-        }
+        m.cond_k = conductor_k_from_reflectance(d.reflectance.value);  // per hit when textured: bsdf_at()
       } else {
         m.cond_eta = d.conductor_eta;
         m.cond_k = d.conductor_k;
@@ -66,6 +63,9 @@ Material make_material(const MaterialDesc& d, [[maybe_unused]] Diagnostics& diag
       c.thickness = d.thickness;
       c.albedo = d.albedo;
       c.g = d.g;
+      m.thickness_texture = d.thickness_texture;
+      m.g_texture = d.g_texture;
+      m.albedo_texture = d.albedo_texture;
       c.max_depth = d.max_depth;
       c.n_samples = d.n_samples;
       if (d.type == MaterialDesc::Type::CoatedDiffuse) {
@@ -75,11 +75,8 @@ Material make_material(const MaterialDesc& d, [[maybe_unused]] Diagnostics& diag
         c.conductor_eta = d.conductor_eta;
         c.conductor_k = d.conductor_k;
         if (d.has_reflectance) {
-          c.conductor_eta = RGB(1);  // as the conductor's "reflectance" below
-          for (int i = 0; i < 3; ++i) {
-            const float r = std::clamp(d.reflectance.value[i], 0.0f, 0.9999f);
-            c.conductor_k[i] = 2 * std::sqrt(r) / std::sqrt(1 - r);
-          }
+          c.conductor_eta = RGB(1);  // as the conductor's "reflectance" above
+          c.conductor_k = conductor_k_from_reflectance(d.reflectance.value);
         }
         c.base_alpha_x = roughness_to_alpha(d.conductor_uroughness, d.remap_roughness);
         c.base_alpha_y = roughness_to_alpha(d.conductor_vroughness, d.remap_roughness);
@@ -104,6 +101,11 @@ Material make_material(const MaterialDesc& d, [[maybe_unused]] Diagnostics& diag
       m.type = Material::Type::Dielectric;
       break;
   }
+  m.remap_roughness = d.remap_roughness;
+  m.roughness_texture[0] = d.roughness_texture[0];
+  m.roughness_texture[1] = d.roughness_texture[1];
+  m.base_roughness_texture[0] = d.conductor_roughness_texture[0];
+  m.base_roughness_texture[1] = d.conductor_roughness_texture[1];
   if (d.type == MaterialDesc::Type::Dielectric || d.type == MaterialDesc::Type::Conductor) {
     m.alpha_x = roughness_to_alpha(d.uroughness, d.remap_roughness);  // pbrt-v4: alpha = sqrt(r)
     m.alpha_y = roughness_to_alpha(d.vroughness, d.remap_roughness);

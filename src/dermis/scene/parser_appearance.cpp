@@ -93,58 +93,55 @@ RGBTexture SceneParser::spectrum_or_texture(const ParamList& pl, const std::stri
 MaterialDesc SceneParser::build_material(const std::string& type, const ParamList& pl, const SourceLoc& loc) {
   MaterialDesc m;
   m.loc = loc;
+  // A float parameter, or a float texture (its index in `texture`; the default returned).
+  auto float_or_texture = [&](const std::string& name, float def, int& texture) {
+    const ParsedParam* p = pl.find(name);
+    if (!p || p->type != "texture") return pl.get_float(name, def);
+    const std::string tex = *pl.get_texture(name);
+    auto it = float_textures_.find(tex);
+    if (it == float_textures_.end())
+      throw SceneError(p->value_loc, fmt::format("unknown float texture \"{}\" for \"{}\"{} (defined: {})", tex, name,
+                                                 spectrum_textures_.count(tex) ? " (a spectrum texture has that name)" : "",
+                                                 names_of(float_textures_)));
+    texture = it->second;
+    return def;
+  };
   // dielectric, conductor: pbrt-v4's microfacet roughness. "roughness" sets both axes,
-  // "uroughness" / "vroughness" override one each; textured values are not supported
-  // (warned; the constant fallback is used). The renderer maps roughness to alpha.
-  // The coated materials' interface and conductor read the same names with a prefix
-  // ("interface.", "conductor.").
-  auto microfacet_roughness = [&](const std::string& prefix, const char* what, float& u, float& v) {
-    auto constant = [&](const std::string& name, float fallback) {
-      const ParsedParam* p = pl.find(name);
-      if (!p) return fallback;
-      if (p->type == "texture") {
-        p->used = true;
-        s_.diagnostics.warn(p->param.loc, fmt::format("textured {} ignored: {} uses {} instead", name, what, fallback));
-        return fallback;
-      }
-      const float r = pl.get_float(name, fallback);
-      if (!(r >= 0)) throw SceneError(p->value_loc, fmt::format("{} must be >= 0, got {}", name, r));
+  // "uroughness" / "vroughness" override one each; each may be a float texture (evaluated
+  // per hit, negative values taken as 0). The renderer maps roughness to alpha. The coated
+  // materials' interface and conductor read the same names with a prefix ("interface.",
+  // "conductor.").
+  auto microfacet_roughness = [&](const std::string& prefix, float& u, float& v, std::array<int, 2>& textures) {
+    auto read = [&](const std::string& name, float fallback, int fallback_texture, int& texture) {
+      texture = pl.has(name) ? -1 : fallback_texture;  // a value given here overrides "roughness"'s texture
+      const float r = float_or_texture(name, fallback, texture);
+      if (!(r >= 0)) throw SceneError(pl.find(name)->value_loc, fmt::format("{} must be >= 0, got {}", name, r));
       return r;
     };
-    const float r = constant(prefix + "roughness", 0);
-    u = constant(prefix + "uroughness", r);
-    v = constant(prefix + "vroughness", r);
+    int both = -1;
+    const float r = read(prefix + "roughness", 0, -1, both);
+    u = read(prefix + "uroughness", r, both, textures[0]);
+    v = read(prefix + "vroughness", r, both, textures[1]);
     m.remap_roughness = pl.get_bool("remaproughness", true);
-    m.roughness = std::max({m.roughness, u, v});
+    m.roughness = std::max({m.roughness, u, v, textures[0] >= 0 || textures[1] >= 0 ? 1.0f : 0.0f});
   };
-  // A constant parameter of the coating; a texture is warned and the default used.
-  auto constant_float = [&](const char* name, float def) {
-    const ParsedParam* p = pl.find(name);
-    if (p && p->type == "texture") {
-      p->used = true;
-      s_.diagnostics.warn(p->param.loc, fmt::format("textured \"{}\" is not supported; {} is used", name, def));
-      return def;
-    }
-    return pl.get_float(name, def);
-  };
-  // pbrt-v4's coating parameters, common to coateddiffuse and coatedconductor.
+  // pbrt-v4's coating parameters, common to coateddiffuse and coatedconductor; thickness and
+  // g may be float textures, albedo a spectrum texture (evaluated per hit, clamped to their
+  // ranges as pbrt-v4 does).
   auto coating = [&]() {
-    m.thickness = constant_float("thickness", 0.01f);
+    m.thickness = float_or_texture("thickness", 0.01f, m.thickness_texture);
     if (!(m.thickness >= 0) || !std::isfinite(m.thickness))
       throw SceneError(pl.find("thickness")->value_loc, fmt::format("thickness must be finite and >= 0, got {}",
                                                                     m.thickness));
-    m.g = constant_float("g", 0);
+    m.g = float_or_texture("g", 0, m.g_texture);
     if (!(m.g > -1 && m.g < 1))
       throw SceneError(pl.find("g")->value_loc, fmt::format("g must lie in (-1, 1), got {}", m.g));
-    if (const ParsedParam* p = pl.find("albedo"); p && p->type == "texture") {
-      p->used = true;
-      s_.diagnostics.warn(p->param.loc, "textured \"albedo\" is not supported; 0 is used");
-    } else {
-      m.albedo = rgb_param(pl, "albedo", RGB(0), s_.diagnostics);
-      for (int c = 0; c < 3; ++c)
-        if (!(m.albedo[c] >= 0 && m.albedo[c] <= 1))
-          throw SceneError(p->value_loc, fmt::format("albedo must lie in [0, 1], got {}", m.albedo[c]));
-    }
+    const RGBTexture albedo = spectrum_or_texture(pl, "albedo", RGB(0));
+    m.albedo = albedo.value;
+    m.albedo_texture = albedo.texture;
+    for (int c = 0; c < 3; ++c)
+      if (!(m.albedo[c] >= 0 && m.albedo[c] <= 1))
+        throw SceneError(pl.find("albedo")->value_loc, fmt::format("albedo must lie in [0, 1], got {}", m.albedo[c]));
     m.max_depth = pl.get_int("maxdepth", 10);
     if (m.max_depth < 1 || m.max_depth > 100000)
       throw SceneError(pl.find("maxdepth")->value_loc, fmt::format("maxdepth must lie in [1, 100000], got {}",
@@ -161,7 +158,7 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
     if (type == "thindielectric") s_.diagnostics.warn(loc, "thindielectric is rendered as dielectric");
     m.type = MaterialDesc::Type::Dielectric;
     if (const ParsedParam* p = pl.find("eta")) m.eta = ior_param(*p, s_.diagnostics);
-    microfacet_roughness("", "dielectric", m.uroughness, m.vroughness);
+    microfacet_roughness("", m.uroughness, m.vroughness, m.roughness_texture);
   } else if (type == "conductor") {
     m.type = MaterialDesc::Type::Conductor;
     if (pl.has("reflectance")) {
@@ -177,29 +174,23 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
       m.conductor_eta = rgb_param(pl, "eta", m.conductor_eta, s_.diagnostics);
       m.conductor_k = rgb_param(pl, "k", m.conductor_k, s_.diagnostics);
     }
-    microfacet_roughness("", "conductor", m.uroughness, m.vroughness);
+    microfacet_roughness("", m.uroughness, m.vroughness, m.roughness_texture);
   } else if (type == "interface" || type == "" || type == "none") {
     m.type = MaterialDesc::Type::Interface;
   } else if (type == "coateddiffuse") {
     m.type = MaterialDesc::Type::CoatedDiffuse;
     m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));
     if (const ParsedParam* p = pl.find("eta")) m.eta = ior_param(*p, s_.diagnostics);
-    microfacet_roughness("", "coateddiffuse", m.uroughness, m.vroughness);
+    microfacet_roughness("", m.uroughness, m.vroughness, m.roughness_texture);
     coating();
   } else if (type == "coatedconductor") {
     m.type = MaterialDesc::Type::CoatedConductor;
     if (const ParsedParam* p = pl.find("interface.eta")) m.eta = ior_param(*p, s_.diagnostics);
-    microfacet_roughness("interface.", "coatedconductor's interface", m.uroughness, m.vroughness);
-    microfacet_roughness("conductor.", "coatedconductor's conductor", m.conductor_uroughness, m.conductor_vroughness);
-    if (const ParsedParam* p = pl.find("reflectance")) {
+    microfacet_roughness("interface.", m.uroughness, m.vroughness, m.roughness_texture);
+    microfacet_roughness("conductor.", m.conductor_uroughness, m.conductor_vroughness, m.conductor_roughness_texture);
+    if (pl.has("reflectance")) {
       m.has_reflectance = true;
-      if (p->type == "texture") {
-        p->used = true;
-        s_.diagnostics.warn(p->param.loc, "coatedconductor: textured \"reflectance\" is not supported; 1 is used");
-        m.reflectance.value = RGB(1);
-      } else {
-        m.reflectance.value = rgb_param(pl, "reflectance", RGB(1), s_.diagnostics);
-      }
+      m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(1));
       for (const char* ignored : {"conductor.eta", "conductor.k"})
         if (const ParsedParam* q = pl.find(ignored)) {
           q->used = true;
@@ -215,7 +206,13 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
     m.type = MaterialDesc::Type::DiffuseTransmission;
     m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.25f));
     m.transmittance = spectrum_or_texture(pl, "transmittance", RGB(0.25f));
-    m.scale = constant_float("scale", 1);
+    // pbrt-v4 reads "scale" as a float only; a texture is warned and 1 used.
+    if (const ParsedParam* p = pl.find("scale"); p && p->type == "texture") {
+      p->used = true;
+      s_.diagnostics.warn(p->param.loc, "textured \"scale\" is not supported (pbrt-v4 reads a float); 1 is used");
+    } else {
+      m.scale = pl.get_float("scale", 1);
+    }
     if (!(m.scale >= 0) || !std::isfinite(m.scale))
       throw SceneError(pl.find("scale")->value_loc, fmt::format("scale must be finite and >= 0, got {}", m.scale));
   } else if (type == "mix") {

@@ -66,10 +66,11 @@ TEST(ParserMaterials, MicrofacetRoughness) {
   EXPECT_EQ(s.materials[2].type, MaterialDesc::Type::Dielectric);  // thindielectric, as dielectric
   EXPECT_FLOAT_EQ(s.materials[2].uroughness, 0.2f);
   EXPECT_FLOAT_EQ(s.materials[2].vroughness, 0.2f);
-  // Textured roughness: warned, the constant fallback used (here 0 along u).
-  EXPECT_FLOAT_EQ(s.materials[3].uroughness, 0.0f);
+  // Textured roughness: the float texture along u (evaluated per hit), the constant along v.
+  EXPECT_EQ(s.materials[3].roughness_texture[0], 0);
+  EXPECT_EQ(s.materials[3].roughness_texture[1], -1);
   EXPECT_FLOAT_EQ(s.materials[3].vroughness, 0.1f);
-  EXPECT_TRUE(has_warning(s, "test.pbrt:6:22: warning: textured roughness ignored: conductor uses 0 instead"));
+  EXPECT_FALSE(has_warning(s, "textured"));
   EXPECT_FALSE(has_warning(s, "dielectric roughness"));
   EXPECT_FALSE(has_warning(s, "conductor roughness"));
   EXPECT_FLOAT_EQ(s.materials[4].uroughness, 0.3f);  // coateddiffuse's interface, rendered rough

@@ -127,11 +127,17 @@ struct MaterialDesc {
   float uroughness = 0, vroughness = 0;
   float conductor_uroughness = 0, conductor_vroughness = 0;
   bool remap_roughness = true;
+  // Float textures (indices into SceneDesc::textures, -1: the constant above) for each of
+  // them, as pbrt-v4 allows: u and v of the dielectric, conductor or coating interface, and
+  // of coatedconductor's conductor.
+  std::array<int, 2> roughness_texture{-1, -1};
+  std::array<int, 2> conductor_roughness_texture{-1, -1};
   // coateddiffuse, coatedconductor: the layer between interface and base
   // (materials/layered_bsdf.h), pbrt-v4's parameters and defaults.
   float thickness = 0.01f;
   RGB albedo{0, 0, 0};
   float g = 0;
+  int thickness_texture = -1, albedo_texture = -1, g_texture = -1;  // textured: float, spectrum, float
   int max_depth = 10;
   int n_samples = 1;
   // diffusetransmission: "transmittance" and "scale" (reflectance above, default 0.25).
