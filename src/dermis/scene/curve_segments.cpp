@@ -1,5 +1,6 @@
 #include "dermis/scene/curve_segments.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -17,6 +18,14 @@ void elevate_quadratic(Vec3 q0, Vec3 q1, Vec3 q2, Vec3* out) {
   out[1] = q0 * (1.0f / 3) + q1 * (2.0f / 3);
   out[2] = q1 * (2.0f / 3) + q2 * (1.0f / 3);
   out[3] = q2;
+}
+
+// Spherical interpolation of unit vectors a to b (Shoemake 1985), linear where they are
+// nearly parallel; opposite vectors have no unique arc: the linear path is taken.
+Vec3 slerp(Vec3 a, Vec3 b, float t) {
+  const float c = std::clamp(dot(a, b), -1.0f, 1.0f), theta = std::acos(c), s = std::sin(theta);
+  if (!(s > 1e-4f)) return normalize(lerp(t, a, b));
+  return a * (std::sin((1 - t) * theta) / s) + b * (std::sin(t * theta) / s);
 }
 
 }  // namespace
@@ -84,7 +93,16 @@ CurveSegments curve_to_bezier_segments(const std::vector<Vec3>& points, CurveBas
       if (!(l0 > 0) || !(l1 > 0))
         throw std::invalid_argument(fmt::format("normal {} of the ribbon is zero", l0 > 0 ? k + 1 : k));
       const Vec3 n0 = normals[k] / l0, n1 = normals[k + 1] / l1;
-      for (int i = 0; i < 4; ++i) c.normals[4 * k + std::size_t(i)] = normalize(lerp(float(i) / 3, n0, n1));
+      // pbrt-v4 turns a ribbon's normal from n0 to n1 by spherical interpolation along the
+      // segment; Embree interpolates the normals' control points as a cubic Bézier. The
+      // inner two are chosen so that the Bézier passes through slerp at 1/3 and 2/3:
+      // B(1/3) = (8 P0 + 12 P1 + 6 P2 + P3) / 27 and B(2/3) = (P0 + 6 P1 + 12 P2 + 8 P3) / 27.
+      const Vec3 q1 = slerp(n0, n1, 1.0f / 3) * 27 - n0 * 8 - n1, q2 = slerp(n0, n1, 2.0f / 3) * 27 - n0 - n1 * 8;
+      Vec3* cp = &c.normals[4 * k];
+      cp[0] = n0;
+      cp[1] = (q1 * 2 - q2) / 18;
+      cp[2] = (q2 * 2 - q1) / 18;
+      cp[3] = n1;
     }
   }
   return c;
