@@ -6,10 +6,10 @@
 
 namespace dermis {
 
-PerspectiveCamera::PerspectiveCamera(const Transform& camera_to_world, float fov_degrees, float lens_radius,
-                                     float focal_distance, int xres, int yres,
-                                     const std::array<float, 4>* screen_window)
+Camera::Camera(const Transform& camera_to_world, float fov_degrees, float lens_radius, float focal_distance, int xres,
+               int yres, const std::array<float, 4>* screen_window, Projection projection)
     : camera_to_world_(camera_to_world),
+      projection_(projection),
       tan_half_fov_(std::tan(fov_degrees * kPi / 360.0f)),
       lens_radius_(lens_radius),
       focal_distance_(focal_distance),
@@ -27,16 +27,17 @@ PerspectiveCamera::PerspectiveCamera(const Transform& camera_to_world, float fov
   }
 }
 
-Ray PerspectiveCamera::generate_ray(Vec2 film, Vec2 u_lens) const {
+Ray Camera::generate_ray(Vec2 film, Vec2 u_lens) const {
   float sx = window_[0] + film.x / float(xres_) * (window_[1] - window_[0]);
   float sy = window_[3] - film.y / float(yres_) * (window_[3] - window_[2]);
-  Vec3 dir{sx * tan_half_fov_, sy * tan_half_fov_, 1};
-  Vec3 origin{0, 0, 0};
+  const bool ortho = projection_ == Projection::Orthographic;
+  Vec3 origin = ortho ? Vec3(sx, sy, 0) : Vec3(0, 0, 0);
+  Vec3 dir = ortho ? Vec3(0, 0, 1) : Vec3(sx * tan_half_fov_, sy * tan_half_fov_, 1);
   if (lens_radius_ > 0) {
     // Thin lens: the ray through the lens point meets the pinhole ray on the plane of focus.
     Vec2 lens = sample_uniform_disk_concentric(u_lens) * lens_radius_;
-    Vec3 focus = dir * focal_distance_;
-    origin = {lens.x, lens.y, 0};
+    Vec3 focus = origin + dir * focal_distance_;
+    origin = origin + Vec3(lens.x, lens.y, 0);
     dir = focus - origin;
   }
   Ray r;

@@ -1,5 +1,7 @@
-// pbrt-v4's perspective camera with a thin lens: raster (0,0) is the top-left
-// corner; fov spans the shorter image axis.
+// pbrt-v4's perspective and orthographic cameras with a thin lens: raster (0,0) is the
+// top-left corner; the screen window spans [-1, 1] on the shorter image axis unless given.
+// Perspective: fov spans the shorter axis. Orthographic: rays leave the screen window's
+// points on the plane z = 0 of camera space along +z (the window in camera-space units).
 #pragma once
 
 #include <array>
@@ -9,16 +11,18 @@
 
 namespace dermis {
 
-class PerspectiveCamera {
+class Camera {
  public:
-  PerspectiveCamera() = default;
-  PerspectiveCamera(const Transform& camera_to_world, float fov_degrees, float lens_radius, float focal_distance,
-                    int xres, int yres, const std::array<float, 4>* screen_window = nullptr);
+  enum class Projection { Perspective, Orthographic };
+  Camera() = default;
+  Camera(const Transform& camera_to_world, float fov_degrees, float lens_radius, float focal_distance, int xres,
+         int yres, const std::array<float, 4>* screen_window = nullptr, Projection projection = Projection::Perspective);
   // film: raster position in pixels; u_lens in [0,1)^2.
   Ray generate_ray(Vec2 film, Vec2 u_lens) const;
 
  private:
   Transform camera_to_world_;
+  Projection projection_ = Projection::Perspective;
   float tan_half_fov_ = 1, lens_radius_ = 0, focal_distance_ = 1e6f;
   int xres_ = 1, yres_ = 1;
   std::array<float, 4> window_{-1, 1, -1, 1};  // xmin xmax ymin ymax

@@ -57,7 +57,7 @@ struct RenderScene {
   // under a dielectric): next-event estimation there would only find the boundary.
   std::vector<char> medium_sees_lights;
   int camera_medium = -1;
-  PerspectiveCamera camera;
+  Camera camera;
   FilmDesc film;
   RenderSettingsDesc settings;
   bool prepared = false;  // scene_preparation.h has run

@@ -244,9 +244,9 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
   sc->film = desc.film;
   sc->settings = desc.settings;
   sc->camera_medium = desc.camera.medium;
-  sc->camera = PerspectiveCamera(desc.camera.camera_to_world, desc.camera.fov, desc.camera.lens_radius,
-                                 desc.camera.focal_distance, desc.film.xres, desc.film.yres,
-                                 desc.camera.screen_window ? &*desc.camera.screen_window : nullptr);
+  sc->camera = Camera(desc.camera.camera_to_world, desc.camera.fov, desc.camera.lens_radius, desc.camera.focal_distance,
+                      desc.film.xres, desc.film.yres, desc.camera.screen_window ? &*desc.camera.screen_window : nullptr,
+                      desc.camera.orthographic ? Camera::Projection::Orthographic : Camera::Projection::Perspective);
   check_scene_point(desc.camera.camera_to_world.point(Vec3(0, 0, 0)), desc.camera.loc, "the camera");
 
   for (const TextureDesc& t : desc.textures) sc->textures.push_back(make_texture(t));

@@ -452,14 +452,15 @@ void SceneParser::camera(const Token& d, TokenStream& ts) {
   std::string type = string_arg(ts, d, &type_loc);
   require_known_type(TypedDirective::Camera, type, type_loc);
   ParamList pl = ParamList::parse(ts);
-  if (type != "perspective")
+  if (type != "perspective" && type != "orthographic")
     s_.diagnostics.warn(loc, fmt::format("Camera \"{}\" is not supported; rendered as \"perspective\"", type));
   CameraDesc& c = s_.camera;
   c.loc = loc;
   c.camera_to_world = gs_.ctm.inverse();  // pbrt: the CTM at Camera is camera-from-world
   coordinate_systems_["camera"] = c.camera_to_world;
   c.medium = gs_.outside_medium;
-  c.fov = pl.get_float("fov", 90);
+  c.orthographic = type == "orthographic";
+  if (!c.orthographic) c.fov = pl.get_float("fov", 90);  // an orthographic camera leaves "fov" unused (warned)
   if (!(c.fov > 0 && c.fov < 180))
     throw SceneError(pl.find("fov")->value_loc, fmt::format("fov must be in (0, 180) degrees, got {}", c.fov));
   c.lens_radius = pl.get_float("lensradius", 0);

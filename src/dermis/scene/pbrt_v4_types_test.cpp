@@ -71,7 +71,7 @@ TEST(PbrtV4Types, AnUnknownNameIsAnErrorAtTheName) {
 // Known to pbrt-v4, not rendered by Dermis: one warning each, and the scene renders.
 TEST(PbrtV4Types, KnownButUnsupportedTypesAreWarnings) {
   const SceneDesc s = parse_scene_string(
-      "Camera \"orthographic\"\nWorldBegin\nTexture \"t\" \"float\" \"ptex\" \"string filename\" \"x.ptx\"\n"
+      "Camera \"realistic\"\nWorldBegin\nTexture \"t\" \"float\" \"ptex\" \"string filename\" \"x.ptx\"\n"
       "LightSource \"projection\"\nMaterial \"measured\"\n",
       "test.pbrt", ".");
   auto warned = [&](const std::string& what) {
@@ -79,7 +79,8 @@ TEST(PbrtV4Types, KnownButUnsupportedTypesAreWarnings) {
       if (w.find(what) != std::string::npos) return true;
     return false;
   };
-  EXPECT_TRUE(warned("test.pbrt:1:1: warning: Camera \"orthographic\" is not supported"));
+  EXPECT_TRUE(warned("test.pbrt:1:1: warning: Camera \"realistic\" is not supported"));
+  // (orthographic, once the camera here, is rendered now: CameraOrthographic.*)
   // (curve, once the shape here, is rendered now: ParserCurve.*)
   EXPECT_TRUE(warned("test.pbrt:3:1: warning: ptex textures are not supported"));
   EXPECT_TRUE(warned("test.pbrt:4:1: warning: LightSource \"projection\" is not supported"));

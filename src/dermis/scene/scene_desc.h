@@ -36,6 +36,7 @@ struct Param {
 
 struct CameraDesc {
   Transform camera_to_world;  // pbrt's camera space: +z forward, +y up
+  bool orthographic = false;  // pbrt-v4's "orthographic" camera; else "perspective"
   float fov = 90;             // degrees, across the shorter image axis
   float lens_radius = 0;
   float focal_distance = 1e6f;
