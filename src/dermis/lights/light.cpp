@@ -19,6 +19,12 @@ float smooth_step(float x, float a, float b) {
   return t * t * (3 - 2 * t);
 }
 
+// pbrt-v4's portal (PortalImageInfiniteLight): light only from the portal's front side.
+bool through_portal(const Light& l, Vec3 w) {
+  const Vec3 n = l.portal_normal;
+  return (n.x == 0 && n.y == 0 && n.z == 0) || dot(w, n) > 0;
+}
+
 }  // namespace
 
 RGB area_light_radiance(const Light& l, Vec3 n, Vec3 w) {
@@ -27,6 +33,7 @@ RGB area_light_radiance(const Light& l, Vec3 n, Vec3 w) {
 }
 
 RGB infinite_light_radiance(const Light& l, Vec3 w) {
+  if (!through_portal(l, w)) return RGB(0);
   return l.environment ? l.environment->eval(w) : l.emission;
 }
 
@@ -135,6 +142,7 @@ bool light_sample(const Light& l, const std::vector<Shape>& shapes, Vec3 ref, Ve
         s.pdf = uniform_sphere_pdf();
         s.L = l.emission;
       }
+      if (!through_portal(l, s.wi)) s.L = RGB(0);  // sampled over the whole sphere: unbiased, the portal's side is not favoured
       s.distance = kInf;
       s.delta = false;
       return !s.L.is_black();

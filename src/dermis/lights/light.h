@@ -30,6 +30,9 @@ struct Light {
   Vec3 position, direction;
   float cos_falloff_start = 1, cos_falloff_end = 1;
   std::shared_ptr<const EnvironmentMap> environment;  // infinite light with a map
+  // Infinite: pbrt-v4's portal, the unit normal (world space) of the side light comes from:
+  // directions w toward the light with dot(w, portal_normal) <= 0 carry none. Zero: no portal.
+  Vec3 portal_normal{0, 0, 0};
   int medium = -1;
 };
 

@@ -439,6 +439,13 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
           // pbrt-v4: uniform radiance L gives the illuminance pi L on any surface.
           l.emission = d.spectrum * (d.scale * d.illuminance / (kPi * d.spectrum.luminance()));
         }
+        if (!d.portal.empty()) {
+          // pbrt-v4: Frame::FromXY(p03, p01), its z = p03 x p01, in world space.
+          const Vec3 p0 = d.light_to_world.point(d.portal[0]);
+          const Vec3 z = cross(d.light_to_world.point(d.portal[3]) - p0, d.light_to_world.point(d.portal[1]) - p0);
+          if (!(length(z) > 0)) throw SceneError(d.loc, "infinite light \"portal\": the rectangle has no area");
+          l.portal_normal = normalize(z);
+        }
         sc->infinite_lights.push_back(int(sc->lights.size()));
         break;
       }

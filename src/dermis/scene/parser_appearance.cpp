@@ -604,9 +604,23 @@ void SceneParser::light_source(const Token& d, TokenStream& ts, const std::strin
         throw SceneError(p->value_loc, "infinite light \"illuminance\" must be finite and non-negative");
     }
     if (const ParsedParam* p = pl.find("portal")) {
-      p->used = true;
-      s_.diagnostics.warn(p->param.loc, "infinite light \"portal\" ignored (the map is importance-sampled over the "
-                                        "whole sphere: unbiased, noisier through a window)");
+      // pbrt-v4's portal: four points of a rectangle (its check: opposite edges parallel and
+      // adjacent ones perpendicular within 1e-3).
+      const std::vector<double> v = pl.get_numbers("portal", {"point3"}, 12);
+      if (v.size() != 12)
+        throw SceneError(p->value_loc, fmt::format("infinite light \"portal\" needs 4 points (12 numbers), got {}", v.size()));
+      for (int i = 0; i < 4; ++i) l.portal.push_back(Vec3(float(v[3 * i]), float(v[3 * i + 1]), float(v[3 * i + 2])));
+      const Vec3* q = l.portal.data();
+      const Vec3 e01 = q[1] - q[0], e12 = q[2] - q[1], e32 = q[2] - q[3], e03 = q[3] - q[0];
+      auto unit = [](Vec3 e) { return length(e) > 0 ? e / length(e) : e; };
+      const bool rectangle =
+          length(e01) > 0 && length(e12) > 0 && length(e32) > 0 && length(e03) > 0 &&
+          std::abs(dot(unit(e01), unit(e32)) - 1) <= 1e-3f && std::abs(dot(unit(e12), unit(e03)) - 1) <= 1e-3f &&
+          std::abs(dot(unit(e01), unit(e12))) <= 1e-3f && std::abs(dot(unit(e12), unit(e32))) <= 1e-3f &&
+          std::abs(dot(unit(e32), unit(e03))) <= 1e-3f && std::abs(dot(unit(e03), unit(e01))) <= 1e-3f;
+      if (!rectangle)
+        throw SceneError(p->value_loc, "infinite light \"portal\" is not a planar rectangle (pbrt-v4 needs p0 p1 p2 p3 "
+                                       "in order around a rectangle)");
     }
   } else {
     s_.diagnostics.warn(loc, fmt::format("LightSource \"{}\" is not supported and is ignored", type));

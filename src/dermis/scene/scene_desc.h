@@ -219,6 +219,9 @@ struct LightDesc {
   std::string filename;        // infinite: absolute path of the image
   bool latlong = false;        // infinite image: equirectangular ("string mapping" "latlong"), else equal-area
   float illuminance = -1;      // infinite, distant: pbrt-v4's "illuminance" (normalises the light), -1: unset
+  // infinite: pbrt-v4's "portal", a rectangle p0 p1 p2 p3 (light space): light arrives only from
+  // directions w with w . normalize((p3 - p0) x (p1 - p0)) > 0. Empty: no portal.
+  std::vector<Vec3> portal;
   int medium = -1;             // medium the light sits in
   SourceLoc loc;
 };
