@@ -90,22 +90,22 @@ RGBTexture SceneParser::spectrum_or_texture(const ParamList& pl, const std::stri
   return t;
 }
 
+float SceneParser::float_or_texture(const ParamList& pl, const std::string& name, float def, int& texture) {
+  const ParsedParam* p = pl.find(name);
+  if (!p || p->type != "texture") return pl.get_float(name, def);
+  const std::string tex = *pl.get_texture(name);
+  auto it = float_textures_.find(tex);
+  if (it == float_textures_.end())
+    throw SceneError(p->value_loc, fmt::format("unknown float texture \"{}\" for \"{}\"{} (defined: {})", tex, name,
+                                               spectrum_textures_.count(tex) ? " (a spectrum texture has that name)" : "",
+                                               names_of(float_textures_)));
+  texture = it->second;
+  return def;
+}
+
 MaterialDesc SceneParser::build_material(const std::string& type, const ParamList& pl, const SourceLoc& loc) {
   MaterialDesc m;
   m.loc = loc;
-  // A float parameter, or a float texture (its index in `texture`; the default returned).
-  auto float_or_texture = [&](const std::string& name, float def, int& texture) {
-    const ParsedParam* p = pl.find(name);
-    if (!p || p->type != "texture") return pl.get_float(name, def);
-    const std::string tex = *pl.get_texture(name);
-    auto it = float_textures_.find(tex);
-    if (it == float_textures_.end())
-      throw SceneError(p->value_loc, fmt::format("unknown float texture \"{}\" for \"{}\"{} (defined: {})", tex, name,
-                                                 spectrum_textures_.count(tex) ? " (a spectrum texture has that name)" : "",
-                                                 names_of(float_textures_)));
-    texture = it->second;
-    return def;
-  };
   // dielectric, conductor: pbrt-v4's microfacet roughness. "roughness" sets both axes,
   // "uroughness" / "vroughness" override one each; each may be a float texture (evaluated
   // per hit, negative values taken as 0). The renderer maps roughness to alpha. The coated
@@ -114,7 +114,7 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
   auto microfacet_roughness = [&](const std::string& prefix, float& u, float& v, std::array<int, 2>& textures) {
     auto read = [&](const std::string& name, float fallback, int fallback_texture, int& texture) {
       texture = pl.has(name) ? -1 : fallback_texture;  // a value given here overrides "roughness"'s texture
-      const float r = float_or_texture(name, fallback, texture);
+      const float r = float_or_texture(pl, name, fallback, texture);
       if (!(r >= 0)) throw SceneError(pl.find(name)->value_loc, fmt::format("{} must be >= 0, got {}", name, r));
       return r;
     };
@@ -129,11 +129,11 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
   // g may be float textures, albedo a spectrum texture (evaluated per hit, clamped to their
   // ranges as pbrt-v4 does).
   auto coating = [&]() {
-    m.thickness = float_or_texture("thickness", 0.01f, m.thickness_texture);
+    m.thickness = float_or_texture(pl, "thickness", 0.01f, m.thickness_texture);
     if (!(m.thickness >= 0) || !std::isfinite(m.thickness))
       throw SceneError(pl.find("thickness")->value_loc, fmt::format("thickness must be finite and >= 0, got {}",
                                                                     m.thickness));
-    m.g = float_or_texture("g", 0, m.g_texture);
+    m.g = float_or_texture(pl, "g", 0, m.g_texture);
     if (!(m.g > -1 && m.g < 1))
       throw SceneError(pl.find("g")->value_loc, fmt::format("g must lie in (-1, 1), got {}", m.g));
     const RGBTexture albedo = spectrum_or_texture(pl, "albedo", RGB(0));
@@ -238,18 +238,7 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
                                      named.type_name, named.type_name));
       m.mix_materials[std::size_t(i)] = it->second;
     }
-    if (const ParsedParam* a = pl.find("amount")) {
-      if (a->type == "texture") {
-        const std::string tex = *pl.get_texture("amount");
-        auto it = float_textures_.find(tex);
-        if (it == float_textures_.end())
-          throw SceneError(a->value_loc, fmt::format("unknown float texture \"{}\" for \"amount\" (defined: {})", tex,
-                                                     names_of(float_textures_)));
-        m.amount_texture = it->second;
-      } else {
-        m.amount = pl.get_float("amount", 0.5f);
-      }
-    }
+    m.amount = float_or_texture(pl, "amount", 0.5f, m.amount_texture);
   } else if (type == "subsurface") {
     m.type = MaterialDesc::Type::Subsurface;
     m.subsurface = read_subsurface_params(pl, loc, s_.diagnostics, [&](const ParsedParam& p) {
@@ -411,18 +400,6 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
                                    "\"{}\"", t.mapping));
     }
   };
-  // A float parameter or a float texture (its index in `index`).
-  auto float_or_texture = [&](const std::string& pname, float def, int& index) {
-    const ParsedParam* p = pl.find(pname);
-    if (!p || p->type != "texture") return pl.get_float(pname, def);
-    const std::string other = *pl.get_texture(pname);
-    auto it = float_textures_.find(other);
-    if (it == float_textures_.end())
-      throw SceneError(p->value_loc, fmt::format("unknown float texture \"{}\" for \"{}\" (defined: {})", other,
-                                                 pname, names_of(float_textures_)));
-    index = it->second;
-    return def;
-  };
   auto octaves_param = [&](const char* pname, int def) {
     const int v = pl.get_int(pname, def);
     if (v < 0 || v > 64)
@@ -470,7 +447,7 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
     t.type = TextureDesc::Type::Mix;
     t.value = value_or_texture("tex1", RGB(0), t.tex1);
     t.value2 = value_or_texture("tex2", RGB(1), t.tex2);
-    t.amount = float_or_texture("amount", 0.5f, t.amount_texture);
+    t.amount = float_or_texture(pl, "amount", 0.5f, t.amount_texture);
   } else if (cls == "directionmix") {
     // pbrt-v4: amount = |n . dir| (dir in the texture's space); amount tex1 + (1 - amount) tex2.
     t.type = TextureDesc::Type::DirectionMix;

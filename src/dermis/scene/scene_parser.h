@@ -104,6 +104,8 @@ class SceneParser {
   void named_material(const Token& d, TokenStream& ts);
   MaterialDesc build_material(const std::string& type, const ParamList& pl, const SourceLoc& loc);
   RGBTexture spectrum_or_texture(const ParamList& pl, const std::string& name, RGB def);
+  // A float parameter (or `def`), or a float texture: then its index in `texture` and `def` returned.
+  float float_or_texture(const ParamList& pl, const std::string& name, float def, int& texture);
   void texture(const Token& d, TokenStream& ts, const std::string& dir);
   void light_source(const Token& d, TokenStream& ts, const std::string& dir);
   void area_light_source(const Token& d, TokenStream& ts);
