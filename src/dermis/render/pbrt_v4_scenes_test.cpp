@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "dermis/render/renderer.h"
@@ -14,21 +17,38 @@
 namespace dermis {
 namespace {
 
+// The warnings these scenes may still raise: the Sampler Dermis maps to its own.
+bool sampler_warning(const std::string& w) { return w.find("Sampler \"halton\"") != std::string::npos; }
+
+struct RenderedScene {
+  SceneDesc desc;
+  std::unique_ptr<RenderScene> scene;
+  RenderResult image;
+};
+
+// Parses scenes/pbrt-v4/`path` (each warning must be `owed`), renders it at xres x yres with
+// spp samples per pixel, and checks that no sample was non-finite.
+RenderedScene render_pbrt_v4_scene(const std::string& path, int xres, int yres, int spp,
+                                   const std::function<bool(const std::string&)>& owed) {
+  RenderedScene r;
+  r.desc = parse_scene_file(std::string(DERMIS_SOURCE_DIR) + "/scenes/pbrt-v4/" + path);
+  for (const std::string& w : r.desc.diagnostics.warnings) EXPECT_TRUE(owed(w)) << w;
+  r.desc.film.xres = xres;
+  r.desc.film.yres = yres;
+  Diagnostics diag;
+  r.scene = build_render_scene(r.desc, diag);
+  RenderOptions o;
+  o.spp = spp;
+  r.image = render_image(*r.scene, o);
+  EXPECT_EQ(r.image.nonfinite, 0u);
+  return r;
+}
+
 // head: textured subsurface reflectance (warm on one half of the albedo map, cool on
 // the other) on the default random walk, under a grey sky: both hues reach the picture.
 TEST(PbrtV4Scenes, HeadRendersWithItsTexturedReflectance) {
-  SceneDesc d = parse_scene_file(std::string(DERMIS_SOURCE_DIR) + "/scenes/pbrt-v4/head/head.pbrt");
-  for (const std::string& w : d.diagnostics.warnings)
-    EXPECT_NE(w.find("Sampler \"halton\""), std::string::npos) << w;
-  d.film.xres = 160;
-  d.film.yres = 90;
-  Diagnostics diag;
-  auto sc = build_render_scene(d, diag);
-  RenderOptions o;
-  o.spp = 8;
-  RenderResult r = render_image(*sc, o);
+  const RenderResult r = render_pbrt_v4_scene("head/head.pbrt", 160, 90, 8, sampler_warning).image;
   EXPECT_EQ(r.width, 80);  // the cropwindow's half of the width
-  EXPECT_EQ(r.nonfinite, 0u);
   int warm = 0, cool = 0;
   for (std::size_t i = 0; i < r.rgb.size(); i += 3) {
     const float R = r.rgb[i], B = r.rgb[i + 2];
@@ -45,16 +65,7 @@ TEST(PbrtV4Scenes, HeadRendersWithItsTexturedReflectance) {
 // The bottom rows see only the floor, lit alike: their brighter squares are about twice
 // the darker ones.
 TEST(PbrtV4Scenes, SssDragonRendersItsCheckerboardFloor) {
-  SceneDesc d = parse_scene_file(std::string(DERMIS_SOURCE_DIR) + "/scenes/pbrt-v4/sssdragon/dragon_10.pbrt");
-  for (const std::string& w : d.diagnostics.warnings) EXPECT_NE(w.find("Sampler \"halton\""), std::string::npos) << w;
-  d.film.xres = 136;
-  d.film.yres = 102;
-  Diagnostics diag;
-  auto sc = build_render_scene(d, diag);
-  RenderOptions o;
-  o.spp = 8;
-  RenderResult r = render_image(*sc, o);
-  EXPECT_EQ(r.nonfinite, 0u);
+  const RenderResult r = render_pbrt_v4_scene("sssdragon/dragon_10.pbrt", 136, 102, 8, sampler_warning).image;
   std::vector<float> floor;
   for (int y = r.height - 10; y < r.height; ++y)
     for (int x = 0; x < r.width; ++x) floor.push_back(r.rgb[3 * (std::size_t(y) * r.width + x) + 1]);
@@ -65,12 +76,6 @@ TEST(PbrtV4Scenes, SssDragonRendersItsCheckerboardFloor) {
   EXPECT_LT(bright / dark, 3.0f) << "dark " << dark << " bright " << bright;
 }
 
-
-// The warnings these scenes may still raise: the Sampler Dermis maps to its own, and
-// coateddiffuse rendered as its diffuse base (until the layered BSDF lands).
-bool owed_warning(const std::string& w) {
-  return w.find("Sampler \"halton\"") != std::string::npos || w.find("coateddiffuse") != std::string::npos;
-}
 
 // Pixels whose hue is clearly one channel's: red (R above both others by 30%), green,
 // blue (by 10%; the killeroos' green is pale).
@@ -92,18 +97,10 @@ HueCounts count_hues(const RenderResult& r) {
 // reddish (0.4 0.2 0.2) and one greenish (0.4 0.5 0.4), on a bluish floor (0.5 0.5 0.8) lit by
 // a small sphere light. Without loopsubdiv the killeroos vanish and only blue remains.
 TEST(PbrtV4Scenes, KillerooSimpleRendersItsTwoSubdividedKilleroos) {
-  SceneDesc d = parse_scene_file(std::string(DERMIS_SOURCE_DIR) + "/scenes/pbrt-v4/killeroo-simple/killeroo-simple.pbrt");
-  for (const std::string& w : d.diagnostics.warnings) EXPECT_TRUE(owed_warning(w)) << w;
-  ASSERT_EQ(d.shapes.size(), 5u);  // light, floor, wall, two killeroos
-  for (int k : {3, 4}) EXPECT_EQ(d.shapes[k].mesh.indices.size(), 3u * 4 * 528);  // 528 triangles, one level
-  d.film.xres = 100;
-  d.film.yres = 100;
-  Diagnostics diag;
-  auto sc = build_render_scene(d, diag);
-  RenderOptions o;
-  o.spp = 8;
-  RenderResult r = render_image(*sc, o);
-  EXPECT_EQ(r.nonfinite, 0u);
+  const RenderedScene k = render_pbrt_v4_scene("killeroo-simple/killeroo-simple.pbrt", 100, 100, 8, sampler_warning);
+  ASSERT_EQ(k.desc.shapes.size(), 5u);  // light, floor, wall, two killeroos
+  for (int i : {3, 4}) EXPECT_EQ(k.desc.shapes[i].mesh.indices.size(), 3u * 4 * 528);  // 528 triangles, one level
+  const RenderResult& r = k.image;
   const HueCounts c = count_hues(r);
   // Each stand-in covers about 2% of the picture (200 pixels); at least half of that
   // must show its hue.
@@ -116,16 +113,7 @@ TEST(PbrtV4Scenes, KillerooSimpleRendersItsTwoSubdividedKilleroos) {
 // other), coateddiffuse, two quad lights (one ReverseOrientation) and an equal-area sky
 // behind a mirrored camera (Scale -1 1 1): both hues of the statue reach the picture.
 TEST(PbrtV4Scenes, GaneshaRendersItsTexturedStatue) {
-  SceneDesc d = parse_scene_file(std::string(DERMIS_SOURCE_DIR) + "/scenes/pbrt-v4/ganesha/ganesha.pbrt");
-  for (const std::string& w : d.diagnostics.warnings) EXPECT_TRUE(owed_warning(w)) << w;
-  d.film.xres = 96;
-  d.film.yres = 96;
-  Diagnostics diag;
-  auto sc = build_render_scene(d, diag);
-  RenderOptions o;
-  o.spp = 8;
-  RenderResult r = render_image(*sc, o);
-  EXPECT_EQ(r.nonfinite, 0u);
+  const RenderResult r = render_pbrt_v4_scene("ganesha/ganesha.pbrt", 96, 96, 8, sampler_warning).image;
   // The lights are warm themselves (R/B = 1.6 on the grey floor): the warm half of the
   // map (linear R/B = 5.9) shows R/B above 3, the cool half (B/R = 5.9) B above R.
   int warm = 0, cool = 0;
@@ -143,18 +131,11 @@ TEST(PbrtV4Scenes, GaneshaRendersItsTexturedStatue) {
 // sees it, is brighter than the limb away from it; read as lat-long, or with the light
 // transform ignored, the sun would be elsewhere.
 void expect_sss_dragon_lit_from_the_suns_side(const std::string& file, float scale) {
-  SceneDesc d = parse_scene_file(std::string(DERMIS_SOURCE_DIR) + "/scenes/pbrt-v4/sssdragon/" + file);
-  for (const std::string& w : d.diagnostics.warnings) EXPECT_NE(w.find("Sampler \"halton\""), std::string::npos) << w;
-  ASSERT_EQ(d.materials.size(), 2u);
-  EXPECT_EQ(d.materials[0].subsurface.scale, scale);
-  d.film.xres = 136;
-  d.film.yres = 102;
-  Diagnostics diag;
-  auto sc = build_render_scene(d, diag);
-  RenderOptions o;
-  o.spp = 16;
-  RenderResult r = render_image(*sc, o);
-  ASSERT_EQ(r.nonfinite, 0u);
+  const RenderedScene dragon = render_pbrt_v4_scene("sssdragon/" + file, 136, 102, 16, sampler_warning);
+  ASSERT_EQ(dragon.desc.materials.size(), 2u);
+  EXPECT_EQ(dragon.desc.materials[0].subsurface.scale, scale);
+  const RenderResult& r = dragon.image;
+  const RenderScene* sc = dragon.scene.get();
   const Vec3 centre(0.2f, 0.3f, 0.78f);  // the blob's centre (its Translate); radius 0.5 +- 15%
   const Vec3 sun = normalize(Vec3(0.682f, 0.731f, 0.5f));
   const Vec3 eye = sc->camera.generate_ray({68, 51}, {0.5f, 0.5f}).o;
@@ -201,9 +182,10 @@ TEST(PbrtV4Scenes, SssDragon250IsLitFromTheSunsSide) { expect_sss_dragon_lit_fro
 // floor and walls show the grid: the lines (8 of every 64 texels each way, 23% of the
 // area, linear reflectance 0.5 x 0.014 against 0.5 x 1) are the darker pixels.
 TEST(PbrtV4Scenes, KillerooCoatedGoldIsGoldOnAGrid) {
-  SceneDesc d = parse_scene_file(std::string(DERMIS_SOURCE_DIR) + "/scenes/pbrt-v4/killeroo-coated-gold/killeroo-coated-gold.pbrt");
+  const RenderedScene k = render_pbrt_v4_scene("killeroo-coated-gold/killeroo-coated-gold.pbrt", 171, 128, 16,
+                                               [](const std::string& w) { return w.find("reduced to RGB") != std::string::npos; });
+  const SceneDesc& d = k.desc;
   EXPECT_EQ(d.diagnostics.warnings.size(), 2u);
-  for (const std::string& w : d.diagnostics.warnings) EXPECT_NE(w.find("reduced to RGB"), std::string::npos) << w;
   ASSERT_EQ(d.shapes.size(), 5u);  // light, floor, two walls, killeroo
   EXPECT_EQ(d.shapes[4].mesh.indices.size(), 3u * 64 * 528);  // 528 triangles, three levels
   ASSERT_GE(d.shapes[4].material, 0);
@@ -213,14 +195,8 @@ TEST(PbrtV4Scenes, KillerooCoatedGoldIsGoldOnAGrid) {
     EXPECT_NEAR(gold.conductor_eta[c], (*named_spectrum_rgb("metal-Au-eta"))[c], 1e-4f);
     EXPECT_NEAR(gold.conductor_k[c], (*named_spectrum_rgb("metal-Au-k"))[c], 1e-4f);
   }
-  d.film.xres = 171;
-  d.film.yres = 128;
-  Diagnostics diag;
-  auto sc = build_render_scene(d, diag);
-  RenderOptions o;
-  o.spp = 16;
-  RenderResult r = render_image(*sc, o);
-  ASSERT_EQ(r.nonfinite, 0u);
+  const RenderResult& r = k.image;
+  const RenderScene* sc = k.scene.get();
   // What each pixel's centre ray sees first.
   int killeroo = 0, killeroo_lit = 0, gold_hue = 0;
   std::vector<float> grid;
