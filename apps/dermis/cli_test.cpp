@@ -272,6 +272,28 @@ Shape "trianglemesh" "point3 P" [-5 -5 0 5 -5 0 5 5 0 -5 5 0] "integer indices" 
   for (float v : img.pixels) ASSERT_TRUE(std::isfinite(v));
 }
 
+// A light whose power is beyond float's range is an error at its directive, exit 2, nothing
+// written (light selection used to stop the render with "Distribution1D: value 0 of the
+// function is inf", naming neither the light nor where it is).
+TEST_F(Cli, ALightWhosePowerOverflowsIsRefusedAtItsDirective) {
+  std::string scene = write("bright.pbrt", R"(LookAt 0 0 5  0 0 0  0 1 0
+Camera "perspective"
+Film "rgb" "integer xresolution" 8 "integer yresolution" 8
+WorldBegin
+Shape "sphere"
+LightSource "point" "point3 from" [0 0 4] "rgb I" [3e37 3e37 3e37]
+)");
+  CommandResult r = run_dermis("render " + scene + " -q -o " + path("bright.exr"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("bright.pbrt:6:1: error: the point light's power 4π·I = 4π × 3e+37 = 3.77e+38 is beyond "
+                          "the range of 32-bit floats"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("lower \"I\" or \"scale\""), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("Distribution1D"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("bright.exr")));
+}
+
 // --confine: the scene reads inside its directory and the --allow-path ones only, after
 // '..' and symbolic links; outside is an error at the file name, exit 2, nothing written.
 TEST_F(Cli, ConfineRefusesFilesOutsideTheSceneDirectory) {

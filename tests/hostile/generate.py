@@ -352,6 +352,40 @@ for name, fname, data, ex in images[:3] + images[10:14]:
     world(f'LightSource "infinite" "string filename" "{fname}"\nShape "sphere"\n', f"envmap_{name}", ex)
     cases[-1]["files"][fname] = data
 
+# ------------------------------------------------------------------ light powers
+# A light's power beyond float range (4 pi I for a point light of I >= 2.71e37) is an error
+# at its directive (render/light_power_range.h); lights at infinity of any radiance the
+# parser accepts render, whatever the scene's radius (their power is used only in double).
+QUAD = ('Shape "trianglemesh" "point3 P" [-1e5 -2 -1e5 1e5 -2 -1e5 1e5 -2 1e5 -1e5 -2 1e5] '
+        '"integer indices" [0 1 2 0 2 3]\n')
+LIGHT_POWERS = [
+    ("point_3e37", 'LightSource "point" "point3 from" [0 0 4] "rgb I" [3e37 3e37 3e37]\n', 2),
+    ("point_2p7e37", 'LightSource "point" "point3 from" [0 0 4] "rgb I" [2.7e37 2.7e37 2.7e37]\n', 0),
+    ("point_3e38_channels", 'LightSource "point" "rgb I" [3e38 3e38 3e38]\n', 2),
+    ("point_times_scale", 'LightSource "point" "rgb I" [1e30 1e30 1e30] "float scale" 1e8\n', 2),
+    ("spot_hemisphere", 'LightSource "spot" "point3 from" [0 0 4] "point3 to" [0 0 0] "rgb I" [1e38 1e38 1e38] '
+                        '"float coneangle" 90 "float conedelta" 0\n', 2),
+    ("spot_narrow", 'LightSource "spot" "point3 from" [0 0 4] "point3 to" [0 0 0] "rgb I" [1e38 1e38 1e38] '
+                    '"float coneangle" 5\n', 0),
+    ("area_quad", 'AttributeBegin\nAreaLightSource "diffuse" "rgb L" [3e27 3e27 3e27]\n' + QUAD + 'AttributeEnd\n', 2),
+    ("area_quad_two_sided", 'AttributeBegin\nAreaLightSource "diffuse" "rgb L" [2e27 2e27 2e27] "bool twosided" true\n'
+                            + QUAD + 'AttributeEnd\n', 2),
+    ("area_quad_in_range", 'AttributeBegin\nAreaLightSource "diffuse" "rgb L" [1e27 1e27 1e27]\n' + QUAD +
+                           'AttributeEnd\n', 0),
+    ("area_sphere", 'AttributeBegin\nAreaLightSource "diffuse" "rgb L" [1e30 1e30 1e30]\nTranslate 0 0 -1e5\n'
+                    'Shape "sphere" "float radius" 1e4\nAttributeEnd\n', 2),
+    ("distant_3e38", 'LightSource "distant" "rgb L" [3e38 3e38 3e38]\n', 0),
+    ("infinite_3e38", 'LightSource "infinite" "rgb L" [3e38 3e38 3e38]\n', 0),
+    ("distant_huge_scene", 'LightSource "distant" "rgb L" [3e38 3e38 3e38]\nTranslate 0 0 -1e16\n'
+                           'Shape "sphere" "float radius" 1e15\n', 0),
+    ("infinite_image_scale", 'LightSource "infinite" "string filename" "sky.png" "float scale" 1e38\n', 2),
+    ("infinite_image_scale_in_range", 'LightSource "infinite" "string filename" "sky.png" "float scale" 1e36\n', 0),
+]
+for name, text, ex in LIGHT_POWERS:
+    world(text + 'Shape "sphere"\n', f"light_power_{name}", ex)
+    if "sky.png" in text:
+        cases[-1]["files"]["sky.png"] = good_png
+
 # ------------------------------------------------------------------ garbage, empty files, huge tokens
 rng = random.Random(12)
 for i in range(12):

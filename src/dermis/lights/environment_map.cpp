@@ -57,6 +57,11 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<float> pixels,
       const float da = solid_angle_density(uv);  // per unit uv area
       const float* p = &pixels_[3 * (std::size_t(y) * width + x)];
       float lum = std::max(0.0f, RGB(p[0], p[1], p[2]).luminance() * scale);
+      if (!std::isfinite(lum * da))  // the sampling table is in floats, as is the radiance
+        throw std::invalid_argument(fmt::format(
+            "pixel ({}, {}) of luminance {:.3g} times the scale {:.3g} (and the pixel's solid angle) is beyond the "
+            "range of 32-bit floats; lower \"scale\" (or \"illuminance\")",
+            x, y, double(RGB(p[0], p[1], p[2]).luminance()), double(scale)));
       weight[std::size_t(y) * width + x] = lum * da;
       sum += double(lum) * da;
       solid_angle += da;

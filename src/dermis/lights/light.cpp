@@ -176,21 +176,23 @@ float light_pdf(const Light& l, Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light, V
   }
 }
 
-float light_power(const Light& l, float scene_radius) {
-  float r2 = std::max(scene_radius * scene_radius, 1e-6f);
+double light_power(const Light& l, double scene_radius) {
+  const double r2 = std::max(scene_radius * scene_radius, 1e-6);
+  // The channels' mean in double (their float sum may overflow).
+  const double e = (double(l.emission[0]) + double(l.emission[1]) + double(l.emission[2])) / 3;
   switch (l.type) {
     case Light::Type::Triangle:
-      return kPi * l.area * l.emission.average() * (l.two_sided ? 2 : 1);
+      return kPiD * double(l.area) * e * (l.two_sided ? 2 : 1);
     case Light::Type::Sphere:
-      return kPi * 4 * kPi * l.radius * l.radius * l.emission.average();
+      return 4 * kPiD * kPiD * double(l.radius) * double(l.radius) * e;
     case Light::Type::Point:
-      return 4 * kPi * l.emission.average();
+      return 4 * kPiD * e;
     case Light::Type::Spot:
-      return 2 * kPi * l.emission.average() * (1 - 0.5f * (l.cos_falloff_start + l.cos_falloff_end));
+      return 2 * kPiD * e * (1 - 0.5 * (double(l.cos_falloff_start) + double(l.cos_falloff_end)));
     case Light::Type::Distant:
-      return kPi * r2 * l.emission.average();
+      return kPiD * r2 * e;
     case Light::Type::Infinite:
-      return 4 * kPi * kPi * r2 * (l.environment ? l.environment->average_luminance() : l.emission.average());
+      return 4 * kPiD * kPiD * r2 * (l.environment ? double(l.environment->average_luminance()) : e);
   }
   return 0;
 }

@@ -64,7 +64,10 @@ float light_pdf(const Light& l, Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light, V
 RGB area_light_radiance(const Light& l, Vec3 n, Vec3 w);
 // Radiance of an infinite light arriving from direction w (toward the light).
 RGB infinite_light_radiance(const Light& l, Vec3 w);
-// Total emitted power (approximate for lights at infinity), for light selection.
-float light_power(const Light& l, float scene_radius);
+// Total emitted power (approximate for lights at infinity, whose power grows with the
+// scene's radius), for light selection. In double: a light whose power is beyond the range
+// of 32-bit floats (a point light of I = 3e37: 4 pi I) is seen as such (scene_assembly.cpp
+// refuses it at its directive) instead of as infinity.
+double light_power(const Light& l, double scene_radius);
 
 }  // namespace dermis

@@ -29,19 +29,29 @@ LightSelection::LightSelection(const std::vector<Light>& lights, float scene_rad
   // The power distribution (lights at infinity and finite lights as two groups, each
   // with probability 1/2 when both exist: the power of a light at infinity grows with
   // the scene's radius, which a large floor inflates).
-  std::vector<float> power(lights.size());
+  // Powers in double, each divided by its group's sum (or, with one group, by the sum of
+  // all), so that the table is finite in float whatever the scene's radius: a distant
+  // light's power grows with its square (the ratios are what selection uses).
+  std::vector<double> power(lights.size());
   double group_sum[2] = {0, 0};
   for (std::size_t i = 0; i < lights.size(); ++i) {
-    power[i] = std::max(0.0f, light_power(lights[i], scene_radius));
+    // Finite in double for any float emission and extent; NaN (an emission set by hand
+    // through the library, which the parser refuses) gets probability zero, as before.
+    const double p = light_power(lights[i], scene_radius);
+    power[i] = p > 0 ? p : 0.0;
     group_sum[at_infinity(lights[i])] += power[i];
   }
-  if (group_sum[0] > 0 && group_sum[1] > 0)
-    for (std::size_t i = 0; i < lights.size(); ++i) power[i] = float(power[i] / group_sum[at_infinity(lights[i])]);
-  power_ = Distribution1D(power);
+  const bool both_groups = group_sum[0] > 0 && group_sum[1] > 0;
+  std::vector<float> normalised(lights.size());
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const double sum = both_groups ? group_sum[at_infinity(lights[i])] : group_sum[0] + group_sum[1];
+    normalised[i] = sum > 0 ? float(power[i] / sum) : 0.0f;
+  }
+  power_ = Distribution1D(normalised);
 
   pointwise_ = lights.size() <= kPointwiseLightLimit;
   if (!pointwise_) return;
-  split_ = group_sum[0] > 0 && group_sum[1] > 0;
+  split_ = both_groups;
   group_.assign(lights.size(), 0);
   if (split_)
     for (std::size_t i = 0; i < lights.size(); ++i) group_[i] = at_infinity(lights[i]) ? 1 : 0;
@@ -50,7 +60,7 @@ LightSelection::LightSelection(const std::vector<Light>& lights, float scene_rad
     const Light& l = lights[i];
     Bounds& b = bounds_[i];
     b.type = l.type;
-    b.emission = std::max(0.0f, l.emission.average());
+    b.emission = float(std::max(0.0, (double(l.emission[0]) + double(l.emission[1]) + double(l.emission[2])) / 3));
     switch (l.type) {
       case Light::Type::Triangle: {
         b.center = (l.p0 + l.p1 + l.p2) / 3.0f;
@@ -83,6 +93,13 @@ LightSelection::LightSelection(const std::vector<Light>& lights, float scene_rad
         break;
     }
   }
+  // Importances are only compared with each other: emissions relative to the brightest
+  // light's, so that the products in importance() stay finite for a light near the range
+  // of floats (a sky of L = 3e38 made pi L infinite, and every probability NaN).
+  float brightest = 0;
+  for (const Bounds& b : bounds_) brightest = std::max(brightest, b.emission);
+  if (brightest > 0)
+    for (Bounds& b : bounds_) b.emission /= brightest;
 }
 
 float LightSelection::importance(std::size_t i, Vec3 p, Vec3 n) const {

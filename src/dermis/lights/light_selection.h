@@ -55,8 +55,8 @@ class LightSelection {
   // The probability that sample() for the light's group chooses `light` at (p, n).
   float pmf(int light, Vec3 p, Vec3 n) const;
 
-  // The unnormalised importance of light i at (p, n); zero only where it cannot
-  // contribute. Exposed for tests.
+  // The unnormalised importance of light i at (p, n) (emissions relative to the brightest
+  // light's); zero only where it cannot contribute. Exposed for tests.
   float importance(std::size_t i, Vec3 p, Vec3 n) const;
 
  private:
@@ -69,7 +69,8 @@ class LightSelection {
     Vec3 center;            // bounding sphere of an area light; position of point and spot
     float radius = 0;
     Vec3 normal;            // triangle's unit normal (either side); spot axis; toward a distant light
-    float emission = 0;     // average radiance (area, infinite), intensity (point, spot), irradiance (distant)
+    float emission = 0;     // average radiance (area, infinite), intensity (point, spot), irradiance (distant),
+                            // divided by the largest of them
     float area = 0;         // triangle: area; sphere: its cross-section
     float cos_falloff_end = -1;
   };

@@ -191,6 +191,48 @@ TEST(LightSelection, ManyLightsUseThePowerDistribution) {
     EXPECT_NEAR(sel.pmf(i, {0, 0, 0}, {0, 0, 1}), (1.0 + i) / sum, 1e-5);
 }
 
+// Lights near the range of floats: the probabilities stay finite and exact (a sky of
+// 3e38 made pi L infinite and every probability NaN; a distant light's power pi r^2 L in a
+// scene of radius 1e17 stopped the power table with "value 0 of the function is inf").
+TEST(LightSelection, LightsNearTheRangeOfFloatsKeepExactProbabilities) {
+  Light sun;
+  sun.type = Light::Type::Distant;
+  sun.direction = {0, 0, 1};
+  sun.emission = RGB(3e38f);
+  {
+    // Pointwise, one group (both at infinity): the sky's importance pi L, the sun's L cos.
+    LightSelection sel({sky(3e38f), sun}, 1e17f);
+    ASSERT_TRUE(sel.pointwise());
+    const Vec3 n = normalize(Vec3(0, 1, 1));
+    const double c = dot(n, sun.direction), pi = 3.14159265358979;
+    EXPECT_NEAR(sel.pmf(0, {0, 0, 0}, n), pi / (pi + c), 1e-6);
+    EXPECT_NEAR(sel.pmf(1, {0, 0, 0}, n), c / (pi + c), 1e-6);
+  }
+  {
+    // Two point lights of I = 2e37 (power 2.5e38, in range) at 0.1 and 0.2: I / d^2 is
+    // beyond float, the ratio 4 : 1 is not.
+    Light a, b;
+    a.type = b.type = Light::Type::Point;
+    a.emission = b.emission = RGB(2e37f);
+    a.position = {0, 0, 0.1f};
+    b.position = {0, 0, 0.2f};
+    LightSelection sel({a, b}, 1);
+    EXPECT_NEAR(sel.pmf(0, {0, 0, 0}, {0, 0, 1}), 0.8, 1e-6);
+    EXPECT_NEAR(sel.pmf(1, {0, 0, 0}, {0, 0, 1}), 0.2, 1e-6);
+  }
+  {
+    // The power table (more lights than the pointwise limit): the sun's group gets one half.
+    std::vector<Light> lights;
+    for (int i = 0; i < int(kPointwiseLightLimit); ++i)
+      lights.push_back(triangle({float(i), 0, 0}, {float(i) + 1, 0, 0}, {float(i), 1, 0}, 1));
+    lights.push_back(sun);
+    LightSelection sel(lights, 1e17f);
+    ASSERT_FALSE(sel.pointwise());
+    EXPECT_NEAR(sel.pmf(int(kPointwiseLightLimit), {0, 0, 0}, {0, 0, 1}), 0.5, 1e-6);
+    EXPECT_NEAR(sel.pmf(0, {0, 0, 0}, {0, 0, 1}), 0.5 / double(kPointwiseLightLimit), 1e-6);
+  }
+}
+
 TEST(LightSelection, NoLightsNoChoice) {
   LightSelection sel(std::vector<Light>{}, 1);
   float pmf = 1;

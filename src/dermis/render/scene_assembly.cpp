@@ -1,5 +1,6 @@
 #include "dermis/render/scene_assembly.h"
 
+#include "dermis/render/light_power_range.h"
 #include "dermis/render/scene_extent.h"
 
 #include <fmt/format.h>
@@ -327,6 +328,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
             sc->lights.push_back(l);
           }
         }
+        check_light_power(std::span(sc->lights).subspan(std::size_t(s.first_light)), d.loc);
       }
     }
     if (sc->materials[s.material].is_interface()) sc->has_interfaces = true;
@@ -455,6 +457,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
       throw SceneError(d.loc, fmt::format("the light's emission is beyond the range of 32-bit floats (\"scale\" {:g}, "
                                           "\"illuminance\" {:g}): lower them",
                                           double(d.scale), double(d.illuminance)));
+    check_light_power(std::span(&l, 1), d.loc);
     sc->lights.push_back(l);
   }
 
