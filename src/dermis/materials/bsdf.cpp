@@ -5,6 +5,7 @@
 #include "dermis/core/fresnel.h"
 #include "dermis/core/warp.h"
 #include "dermis/materials/microfacet_bsdf.h"
+#include "dermis/materials/rough_exit_lobe.h"
 
 namespace dermis {
 
@@ -13,6 +14,11 @@ float subsurface_exit_normalization(float eta) {
 }
 
 namespace {
+
+// The exit lobe's transmittance toward cos theta_i = mu: 1 - Fr, or the rough table's T.
+float exit_transmittance(const BSDF& b, float mu) {
+  return b.exit_table ? b.exit_table->at(mu) : 1 - fresnel_dielectric(mu, b.eta);
+}
 
 // The rough lobes in the local frame of n (anisotropy axes: Frame(n).s and .t).
 RGB rough_eval(const BSDF& b, Vec3 wo, Vec3 wi) {
@@ -72,7 +78,7 @@ RGB bsdf_eval(const BSDF& b, Vec3 wo, Vec3 wi) {
   if (b.type == BSDF::Type::SubsurfaceExit) {
     float ci = dot(wi, b.n);
     if (ci <= 0) return RGB(0);
-    return RGB((1 - fresnel_dielectric(ci, b.eta)) / (b.sw_norm * kPi) * ci);
+    return RGB(exit_transmittance(b, ci) / (b.sw_norm * kPi) * ci);
   }
   if (b.type == BSDF::Type::Coated) return coated_eval_world(b, wo, wi);
   float co = dot(wo, b.n), ci = dot(wi, b.n);
@@ -105,12 +111,12 @@ std::optional<BSDFSample> bsdf_sample(const BSDF& b, Vec3 wo, float u_lobe, Vec2
   if (b.is_rough()) return rough_sample(b, wo, u_lobe, u);
   BSDFSample s;
   if (b.type == BSDF::Type::SubsurfaceExit) {
-    // Cosine-weighted about the outward normal; weight (1 - Fr) / c.
+    // Cosine-weighted about the outward normal; weight (1 - Fr) / c, or T / c.
     Vec3 local = sample_cosine_hemisphere(u);
     if (local.z <= 0) return std::nullopt;
     s.wi = Frame(b.n).to_world(local);
     s.pdf = cosine_hemisphere_pdf(local.z);
-    s.weight = RGB((1 - fresnel_dielectric(local.z, b.eta)) / b.sw_norm);
+    s.weight = RGB(exit_transmittance(b, local.z) / b.sw_norm);
     return s;
   }
   if (b.type == BSDF::Type::Coated) {

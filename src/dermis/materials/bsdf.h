@@ -16,6 +16,8 @@
 
 namespace dermis {
 
+struct RoughExitTable;  // materials/rough_exit_lobe.h
+
 struct BSDF {
   enum class Type { Diffuse, Dielectric, Conductor, SubsurfaceExit, DiffuseTransmission, Coated };
   Type type = Type::Diffuse;
@@ -25,6 +27,9 @@ struct BSDF {
   float eta = 1.5f; // dielectric: index inside over outside (the side n points away from)
   RGB cond_eta, cond_k;
   float sw_norm = 1;  // SubsurfaceExit: c = 1 - 2 FM1(eta), see subsurface_exit_normalization()
+  // SubsurfaceExit through a rough boundary: T(mu) replaces 1 - Fr, and sw_norm is the
+  // table's c (materials/rough_exit_lobe.h). Null: the smooth lobe.
+  const RoughExitTable* exit_table = nullptr;
   // Dielectric, Conductor: Trowbridge-Reitz roughness; below kSmoothAlpha (both) the
   // surface is smooth, exactly as before roughness existed. There are no uv tangents
   // yet, so alpha_x runs along Frame(n).s and alpha_y along Frame(n).t (core/frame.h).
@@ -56,6 +61,8 @@ struct BSDF {
 // c = 1 - 2 FM1 with FM1 = integral_0^1 Fr(mu, eta) mu dmu (the first Fresnel moment), so
 // that Sw integrates to one against cos theta. FM1 by the Gauss-Legendre quadrature of
 // core/fresnel.h (fresnel_moment1), not by a polynomial fit.
+// Through a rough boundary, T(cos theta_i) / (c pi) with the rough dielectric's
+// transmittance T (materials/rough_exit_lobe.h). Either is sampled cosine-weighted.
 float subsurface_exit_normalization(float eta);
 
 struct BSDFSample {

@@ -80,10 +80,11 @@ RGB estimate_direct(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& 
 }  // namespace
 
 RGB transmitted_irradiance(const RenderScene& sc, Vec3 p, Vec3 n, float eta, int medium, Sampler& sampler,
-                           PathCounters& counters) {
+                           PathCounters& counters, const RoughExitTable* rough) {
   auto transmitted_cos = [&](Vec3 wi) {
     float c = dot(wi, n);
-    return c > 0 ? (1 - fresnel_dielectric(c, eta)) * c : 0.0f;
+    if (!(c > 0)) return 0.0f;
+    return (rough ? rough->at(c) : 1 - fresnel_dielectric(c, eta)) * c;
   };
   Vec3 p_out = offset_ray_origin(p, n, n);
   // Direct light by next-event estimation (MIS against the cosine sampling below).
@@ -348,7 +349,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       sampler.set_dimension(Sampler::region(after_exit, 0x55e1u), kStratifiedExitDimensions);
       const ObjectTracer tracer(*sc.embree, sc.object_of_shape, hit, counters);
       auto irradiance = [&](Vec3 p, Vec3 n, float eta, Sampler& smp) {
-        return transmitted_irradiance(sc, p, n, eta, medium, smp, counters);
+        return transmitted_irradiance(sc, p, n, eta, medium, smp, counters, sm.exit_table ? &*sm.exit_table : nullptr);
       };
       auto interior_albedo = [&](const SurfaceHit& h) {
         const Material& m = sc.materials[sc.shapes[h.shape].material];
@@ -374,12 +375,9 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         ray = Ray{offset_ray_origin(ex.hit.p, ex.hit.ng, ex.direction), ex.direction};
         continue;
       }
-      // Leave through the normalised-Fresnel lobe Sw at the exit point.
-      BSDF sw;
-      sw.type = BSDF::Type::SubsurfaceExit;
-      sw.n = ex.hit.ng;
-      sw.eta = sm.exit_eta;
-      sw.sw_norm = sm.sw_norm;
+      // Leave through the exit lobe Sw at the exit point (normalised Fresnel, or the
+      // rough boundary's transmittance).
+      const BSDF sw = sm.exit_lobe(ex.hit.ng);
       Vec3 p_out = offset_ray_origin(ex.hit.p, ex.hit.ng, ex.hit.ng);
       L += beta * estimate_direct(sc, p_out, ex.hit.ng, medium, sampler, counters, [&](Vec3 wi) {
              return std::pair{bsdf_eval(sw, ex.hit.ng, wi), bsdf_pdf(sw, ex.hit.ng, wi)};

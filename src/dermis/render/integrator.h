@@ -60,9 +60,10 @@ RGB trace_path(const RenderScene& scene, Ray ray, int medium, Sampler& sampler, 
 // One-sample estimate of the irradiance transmitted into a smooth dielectric surface
 // (index eta) at p with outward normal n: E = integral of L (1 - Fr(cos, eta)) cos dw over
 // the outside hemisphere, by next-event estimation and cosine sampling combined with
-// the power heuristic. The point cloud's pre-pass and its local term use it.
+// the power heuristic. The point cloud's pre-pass and its local term use it. Through a
+// rough boundary (rough: its table, materials/rough_exit_lobe.h) T(cos) replaces 1 - Fr.
 RGB transmitted_irradiance(const RenderScene& scene, Vec3 p, Vec3 n, float eta, int medium, Sampler& sampler,
-                           PathCounters& counters);
+                           PathCounters& counters, const RoughExitTable* rough = nullptr);
 
 // Transmittance from `origin` along unit `dir` over `distance` (infinity allowed),
 // starting in `medium`: zero if an opaque or refractive surface is in the way,

@@ -72,7 +72,10 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
   int k = 0;
   for (const auto& [object, shapes] : objects) {
     const Material& mat = sc.materials[sc.shapes[shapes[0]].material];
+    const SubsurfaceMaterial& material = *sc.subsurface[mat.subsurface];
     auto& m = std::get<PointCloudMethod>(sc.subsurface[mat.subsurface]->method);
+    // Light enters through the boundary: smooth (1 - Fr), or the rough one's T.
+    const RoughExitTable* rough = material.exit_table ? &*material.exit_table : nullptr;
     const SubsurfaceParams& params = m.params();
     const std::string suffix = k == 0 ? "" : fmt::format(".{}", k);
     ++k;
@@ -132,7 +135,8 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
           // Each point is a "pixel" of the sampler: its irradiance samples are stratified.
           Sampler sampler(options.sampler, options.seed, 0x70c10d00000000ull + (uint64_t(object) << 32) + j,
                           uint32_t(s));
-          RGB e = transmitted_irradiance(sc, p.position, p.normal, params.eta, outside_medium, sampler, counters);
+          RGB e = transmitted_irradiance(sc, p.position, p.normal, params.eta, outside_medium, sampler, counters,
+                                         rough);
           if (e.is_finite()) sum += e;
         }
         cloud.irradiance[j] = sum / float(samples);

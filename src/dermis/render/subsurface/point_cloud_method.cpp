@@ -9,8 +9,9 @@
 
 namespace dermis {
 
-PointCloudMethod::PointCloudMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures)
-    : params_(params), sw_norm_(subsurface_exit_normalization(params.eta)), textures_(textures),
+PointCloudMethod::PointCloudMethod(const SubsurfaceParams& params, float sw_norm,
+                                   const std::vector<Texture>* textures)
+    : params_(params), sw_norm_(sw_norm), textures_(textures),
       table_(profile_table(params)),
       profile_(std::make_unique<sss::ProfileRGB>(make_profile(params, medium_at(params), table_))) {
   const RGB l = albedo_and_mfp(params).mfp;

@@ -22,8 +22,9 @@ namespace dermis {
 // shading point (as the probes weight every exit with the entry point's profile).
 class PointCloudMethod {
  public:
+  // sw_norm: c of the exit lobe Sw (bsdf.h; the rough table's when the boundary is rough).
   // textures: the scene's (outlives the method); null when the parameters are constant.
-  explicit PointCloudMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures = nullptr);
+  PointCloudMethod(const SubsurfaceParams& params, float sw_norm, const std::vector<Texture>* textures = nullptr);
 
   bool sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const;
 

@@ -15,7 +15,7 @@ namespace dermis {
 
 struct SubsurfaceExit {
   enum class Kind {
-    ThroughLobe,  // leaves at `hit` through the normalised-Fresnel exit lobe Sw (bsdf.h)
+    ThroughLobe,  // leaves at `hit` through the exit lobe Sw (bsdf.h, materials/rough_exit_lobe.h)
     Along,        // leaves at `hit` along `direction` (a walk through a smooth boundary)
     Emitted,      // the method returns the radiance leaving the entry point itself (point cloud)
   };

@@ -13,9 +13,11 @@
 // and the volumetric path tracer renders it.
 #pragma once
 
+#include <optional>
 #include <variant>
 
 #include "dermis/materials/bsdf.h"
+#include "dermis/materials/rough_exit_lobe.h"
 
 #include "dermis/scene/subsurface_params.h"
 #include "dermis/render/subsurface/point_cloud_method.h"
@@ -33,6 +35,20 @@ struct SubsurfaceMaterial {
   float sw_norm = 1;        // c of the exit lobe Sw (bsdf.h)
   float alpha_x = 0, alpha_y = 0;  // the boundary's Trowbridge-Reitz alphas (0: smooth)
   SubsurfaceMethod method;
+  // A rough boundary's exit lobe: its transmittance table, whose c is sw_norm
+  // (materials/rough_exit_lobe.h). Unset when the boundary is smooth.
+  std::optional<RoughExitTable> exit_table;
+
+  // The exit lobe Sw at an exit point with outward normal n (bsdf.h).
+  BSDF exit_lobe(Vec3 n) const {
+    BSDF b;
+    b.type = BSDF::Type::SubsurfaceExit;
+    b.n = n;
+    b.eta = exit_eta;
+    b.sw_norm = sw_norm;
+    b.exit_table = exit_table ? &*exit_table : nullptr;
+    return b;
+  }
 
   // The entry as a BSDF: a smooth or rough dielectric about the entry's normal n.
   BSDF entry_boundary(Vec3 n) const {
@@ -46,7 +62,8 @@ struct SubsurfaceMaterial {
   }
 };
 
-// Builds the method of a material (profiles, probe tables; for the walk, the albedo
+// Builds the method of a material (profiles, probe tables, a rough boundary's exit
+// table; for the walk, the albedo
 // inversion when the user gave reflectance + mfp, which may take seconds the first
 // time). Throws std::invalid_argument for parameters a method cannot use.
 // textures: the scene's, which textured parameters read (must outlive the material).

@@ -1,0 +1,78 @@
+#include "dermis/materials/rough_exit_lobe.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dermis/core/fresnel.h"
+#include "dermis/core/microfacet.h"
+#include "dermis/core/vec.h"
+#include "dermis/materials/microfacet_bsdf.h"
+
+namespace dermis {
+
+namespace {
+
+constexpr int kTableResolution = 64;  // k of the quadrature at each node
+// Azimuths of wo over a quarter turn: the distribution is even in x and in y, so T(phi)
+// has the symmetry of the rectangle and this midpoint rule equals 16 over the whole turn.
+constexpr int kAnisotropicAzimuths = 4;
+
+}  // namespace
+
+float RoughExitTable::at(float mu) const {
+  if (!(mu > 0)) return 0;
+  const float x = std::min(mu, 1.0f) * (kNodes - 1);
+  const int i = std::min(int(x), kNodes - 2);
+  const float t = x - float(i);
+  return transmittance[i] * (1 - t) + transmittance[i + 1] * t;
+}
+
+double rough_dielectric_transmittance(float eta, float alpha_x, float alpha_y, float mu, int k) {
+  const TrowbridgeReitz d(alpha_x, alpha_y);
+  mu = std::clamp(mu, 1e-4f, 1.0f);  // at mu = 0 the sampler is undefined: the node takes mu = 1e-4
+  const float sin_theta = std::sqrt(std::max(0.0f, 1 - mu * mu));
+  const int n_phi = alpha_x == alpha_y ? 1 : kAnisotropicAzimuths;
+  double sum = 0;
+  for (int a = 0; a < n_phi; ++a) {
+    const float phi = 0.5f * kPi * (a + 0.5f) / n_phi;
+    const Vec3 wo(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu);
+    for (int i = 0; i < k; ++i) {
+      // The sampler's radial coordinate u1 (the disk radius is sqrt(u1), the lift onto the
+      // hemisphere sqrt(1 - r^2)) through u1 = t^2 (3 - 2 t), whose derivative 6 t (1 - t)
+      // vanishes at both ends: the square roots there become smooth in t, and the
+      // midpoint rule in t converges as h^2 (in u1 it converged as h).
+      const double t = (i + 0.5) / k, u1 = t * t * (3 - 2 * t), du1 = 6 * t * (1 - t);
+      for (int j = 0; j < k; ++j) {
+        // T = integral of f_t |cos wi| dwi through the change of variables u -> m -> wi of
+        // the visible-normal sampler: density D_wo(m) (Heitz 2018, eq. 1) times the
+        // refraction Jacobian (Walter et al. 2007, eq. 17); eval's 1/eta^2 taken out.
+        const Vec3 m = d.sample_visible(wo, {float(u1), (j + 0.5f) / k});
+        const auto wi = refract(wo, m, eta);
+        if (!wi || wi->z >= 0) continue;  // refracted back up: the model loses it
+        const float density = d.visible_pdf(wo, m) * refraction_jacobian(wo, *wi, m, eta);
+        if (!(density > 0)) continue;
+        sum += double(rough_dielectric_eval(d, eta, wo, *wi)) * eta * eta / density * du1;
+      }
+    }
+  }
+  return sum / (double(k) * k * n_phi);
+}
+
+RoughExitTable make_rough_exit_table(float eta, float alpha_x, float alpha_y) {
+  RoughExitTable t;
+  constexpr int n = RoughExitTable::kNodes;
+  for (int i = 0; i < n; ++i)
+    t.transmittance[i] = float(rough_dielectric_transmittance(eta, alpha_x, alpha_y, float(i) / (n - 1),
+                                                              kTableResolution));
+  // 2 integral of the piecewise-linear T times mu: on [a, b], h (Ta (2a + b) + Tb (a + 2b)) / 6.
+  double c = 0;
+  const double h = 1.0 / (n - 1);
+  for (int i = 0; i + 1 < n; ++i) {
+    const double a = i * h, b = (i + 1) * h;
+    c += h * (double(t.transmittance[i]) * (2 * a + b) + double(t.transmittance[i + 1]) * (a + 2 * b)) / 6;
+  }
+  t.norm = float(2 * c);
+  return t;
+}
+
+}  // namespace dermis
