@@ -110,7 +110,7 @@ def write_docs(data, out, total, args, load_start):
             kept = text[text.rindex(MARKER) + len(MARKER):]
     commit = subprocess.run(["git", "-C", sm.ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip()
-    cmd = "nice -n 5 /usr/bin/python3 bench/pointcloud_comparison.py" + (
+    cmd = "/usr/bin/python3 bench/pointcloud_comparison.py" + (
         f" --scale {args.scale:g}" if args.scale != 1 else "")
     load_end = os.getloadavg()
     prep = "; ".join(f"{m['name']} {m['warmup_seconds']:.1f} s" for m in data["methods"])
@@ -121,10 +121,11 @@ def write_docs(data, out, total, args, load_start):
              "Dermis' reproduction on the Nefertiti bust, as one `dermis study` ([study.md](study.md)).\n")
     w.append(f"Produced by `{cmd}` on {datetime.date.today().isoformat()} (code at commit {commit}; {THREADS} "
              f"threads; CPU: {data['machine']['CPU']}; cores: {data['machine']['cores']}; the script took "
-             f"{total:.0f} s). **The machine was shared and loaded**: load average (1, 5, 15 min) "
+             f"{total:.0f} s). Load average (1, 5, 15 min) "
              f"{', '.join(f'{x:.1f}' for x in load_start)} at the start, {', '.join(f'{x:.1f}' for x in load_end)} "
-             "at the end; equal CPU time keeps the rows comparable, but the reference (rendered for a wall time) "
-             "reached fewer samples than on an idle machine: its sample count and own noise are under the table. "
+             f"at the end (the study's own {THREADS} threads count in it); equal CPU time keeps the rows comparable "
+             "on a loaded machine, but the reference (rendered for a wall time) then reaches fewer samples: its "
+             "sample count and own noise are under the table. "
              f"The interactive report (convergence plots, error maps) is left in `{out}/index.html`.\n")
     w.append("Scene `scenes/bench/bust-pc.pbrt` (written by the script): the demo's bust with "
              f"`{MATERIAL}` (mm), η 1.4, the dipole profile; the demo's key light made 3× wider and 9× dimmer (same "
