@@ -144,7 +144,7 @@ def write_docs(results, total, args, load_start):
             kept = text[text.rindex(MARKER) + len(MARKER):]
     commit = subprocess.run(["git", "-C", sm.ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip()
-    cmd = "nice -n 5 /usr/bin/python3 bench/walk_backward.py" + (f" --scale {args.scale:g}" if args.scale != 1 else "")
+    cmd = "/usr/bin/python3 bench/walk_backward.py" + (f" --scale {args.scale:g}" if args.scale != 1 else "")
     if args.geometries != "slab,thickslab,fin,sphere,bust":
         cmd += f" --geometries {args.geometries}"
     if args.boundaries != "dielectric,diffuse":
@@ -154,11 +154,11 @@ def write_docs(results, total, args, load_start):
     out = ["# Results: backward guiding for the random walk, at equal time\n",
            f"Produced by `{cmd}` on {datetime.date.today().isoformat()} (code at commit {commit}; {THREADS} threads; "
            f"CPU: {any_data['machine']['CPU']}; cores: {any_data['machine']['cores']}; the script took {total:.0f} s). "
-           f"**The machine was shared and loaded**: load average (1, 5, 15 min) "
+           f"Load average (1, 5, 15 min) "
            f"{', '.join(f'{x:.1f}' for x in load_start)} at the start, {', '.join(f'{x:.1f}' for x in load_end)} at "
-           "the end; equal **CPU** time keeps the comparison fair under load, but the references (rendered for a "
-           "wall time) reached fewer samples than on an idle machine: their sample counts and own noise are under "
-           "each table.\n",
+           f"the end (the studies' own {THREADS} threads count in it); equal **CPU** time keeps the comparison fair "
+           "on a loaded machine, but the references (rendered for a wall time) then reach fewer samples: their "
+           "sample counts and own noise are under each table.\n",
            "Each section is one `dermis study` ([study.md](study.md)) whose interactive report the script leaves in "
            f"`{args.work}/<boundary>-<geometry>/index.html`; its rows are labelled method specs "
            "(`mis + backward=randomwalk:boundary=…:walksampling=mis:backwardguiding=true`). How to read the tables: "
