@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <functional>
 #include <mutex>
+#include <utility>
+#include <vector>
 #include <fmt/format.h>
 
 #include "bindings.h"
@@ -44,32 +46,34 @@ std::shared_ptr<Scene> load_scene(const py::object& source, const std::string& b
   scene->source = is_text ? "<string>" : path;
 
   // The parse runs on a worker thread (meshes may take a while to read); this thread
-  // waits without the GIL, hands the latest stage and fraction to `progress`, and stops
-  // the parse on Ctrl-C.
+  // waits without the GIL, hands the stages reported since the last poll to `progress`
+  // (each stage's latest fraction, so that a stage shorter than a poll is still seen),
+  // and stops the parse on Ctrl-C.
   std::mutex mutex;
-  std::string stage, reported_stage;  // guarded by mutex (stage)
-  double fraction = -1, reported_fraction = -1;
+  std::vector<std::pair<std::string, double>> pending;  // guarded by mutex
+  std::pair<std::string, double> reported{"", -1};
   std::atomic<bool> cancel{false};
   LoadMonitor monitor;
   monitor.cancel = &cancel;
   if (!progress.is_none())
     monitor.progress = [&](const std::string& s, double f) {
       std::lock_guard<std::mutex> lock(mutex);
-      stage = s;
-      fraction = f;
+      if (!pending.empty() && pending.back().first == s)
+        pending.back().second = f;
+      else
+        pending.emplace_back(s, f);
     };
   auto poll = [&] {
-    std::string s;
-    double f;
+    std::vector<std::pair<std::string, double>> states;
     {
       std::lock_guard<std::mutex> lock(mutex);
-      s = stage;
-      f = fraction;
+      states.swap(pending);
     }
-    if (f < 0 || (s == reported_stage && f == reported_fraction)) return;
-    reported_stage = s;
-    reported_fraction = f;
-    progress(s, f);
+    for (auto& state : states) {
+      if (state == reported) continue;
+      reported = state;
+      progress(state.first, state.second);
+    }
   };
   auto error = run_interruptible(
       [&] {
@@ -189,7 +193,8 @@ source: a path (str or os.PathLike) of a .pbrt file (gzip-compressed or not), or
 progress: a callable progress(stage, fraction), called on this thread about every 50 ms
   with the stage running ('loading bust.ply', 'reading bust.ply', 'subdividing
   (loopsubdiv)', ...) and the fraction of it done, in [0, 1], non-decreasing within a
-  stage; the last state is always handed over.
+  stage. Every stage is handed over at least once, with its latest fraction (a stage
+  shorter than 50 ms too); the last state is always handed over.
   An exception it raises stops the load.
 The file is read without the GIL; Ctrl-C stops it promptly (KeyboardInterrupt).
 Meshes and textures are read once; materials can then be changed between renders
