@@ -355,10 +355,20 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         const Material& m = sc.materials[sc.shapes[h.shape].material];
         return m.type == Material::Type::Diffuse ? bsdf_at(m, sc.textures, h).albedo : RGB(0);
       };
+      // Light sampled through a rough boundary from inside (a walk's exits), on the
+      // outside, in the medium the path entered from.
+      auto light_through = [&](Vec3 p, Vec3 n, const BSDF& b, Vec3 wo_in, Sampler& smp) {
+        if (!start.rough_glass_nee) return RGB(0);
+        return estimate_direct(sc, offset_ray_origin(p, n, n), n, medium, smp, counters, [&](Vec3 wi) {
+          if (dot(wi, n) <= 0) return std::pair{RGB(0), 0.0f};
+          return std::pair{bsdf_eval(b, wo_in, wi), bsdf_pdf(b, wo_in, wi)};
+        });
+      };
       SubsurfaceExit ex;
-      const bool exited =
-          sample_subsurface_exit(sm, {hit, wo, tracer, irradiance, interior_albedo, refracted}, sampler, ex);
+      const bool exited = sample_subsurface_exit(
+          sm, {hit, wo, tracer, irradiance, interior_albedo, light_through, refracted}, sampler, ex);
       sampler.set_dimension(after_exit);
+      L += beta * ex.gathered;
       if (!exited) {
         if (ex.truncated) ++counters.truncated;
         break;
@@ -370,8 +380,13 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       beta *= ex.weight;
       if (!beta.is_finite() || beta.is_black()) break;
       if (ex.kind == SubsurfaceExit::Kind::Along) {
-        specular = true;
-        prev_p = ex.hit.p;
+        // Through a rough boundary whose lights were sampled: light found along the
+        // direction is weighed against those samples, taken from the same point and normal.
+        const bool weighed = ex.direction_pdf > 0 && start.rough_glass_nee;
+        specular = !weighed;
+        prev_pdf = ex.direction_pdf;
+        prev_p = weighed ? offset_ray_origin(ex.hit.p, ex.hit.ng, ex.hit.ng) : ex.hit.p;
+        prev_n = ex.hit.ng;
         ray = Ray{offset_ray_origin(ex.hit.p, ex.hit.ng, ex.direction), ex.direction};
         continue;
       }

@@ -1,5 +1,5 @@
-// Light sampling at rough glass (both sides of the surface) and at a rough subsurface
-// entry (its reflection lobe) changes the noise, never the mean: each scene rendered with
+// Light sampling at rough glass (both sides of the surface), at a rough subsurface entry
+// (its reflection lobe) and at a walk's rough exits (through the boundary from inside) changes the noise, never the mean: each scene rendered with
 // and without it (PathStart::rough_glass_nee, the estimator that finds emission there by
 // BSDF sampling alone), independent samples, region means within 4 standard errors of the
 // difference. The variance ratio (without / with) is printed; it must exceed one.
@@ -59,6 +59,17 @@ AttributeBegin
 AttributeEnd
 )";
 
+// A bright, scattering walk behind a rough `dielectric` boundary: most of its picture is
+// light that leaves through the boundary from inside, sampled there at every crossing.
+const char* kWalkExit = R"(Material "subsurface" "rgb sigma_a" [0.05 0.1 0.2] "rgb sigma_s" [2 3 4] "float g" 0.3
+  "float eta" 1.4 "float roughness" 0.3 "bool remaproughness" false "string method" "randomwalk"
+  "string boundary" "dielectric"
+AttributeBegin
+  Translate -0.8 0 0.8
+  Shape "sphere" "float radius" 0.75
+AttributeEnd
+)";
+
 // Region means agree; returns the ratio of the summed per-pixel variances, without / with.
 double expect_same_mean_and_variance_ratio(const std::string& scene, int spp, uint64_t seed) {
   Diagnostics diag;
@@ -86,6 +97,12 @@ TEST(RoughGlassLightSampling, BothSidesKeepTheMeanAndLowerTheVariance) {
 TEST(RoughGlassLightSampling, RoughSubsurfaceEntryKeepsTheMeanAndLowersTheVariance) {
   const double ratio = expect_same_mean_and_variance_ratio(std::string(kHeader) + kSubsurface, 400, 80);
   std::printf("rough subsurface entry: variance without / with light sampling %.2f\n", ratio);
+  EXPECT_GT(ratio, 1.0);
+}
+
+TEST(RoughGlassLightSampling, RoughWalkExitKeepsTheMeanAndLowersTheVariance) {
+  const double ratio = expect_same_mean_and_variance_ratio(std::string(kHeader) + kWalkExit, 400, 90);
+  std::printf("rough walk exit: variance without / with light sampling %.2f\n", ratio);
   EXPECT_GT(ratio, 1.0);
 }
 

@@ -63,6 +63,26 @@ TEST(SubsurfaceRandomWalk, RoughDielectricBoundaryEqualsAMediumInsideARoughDiele
   expect_same_picture(volumetric, volume, 96);
 }
 
+// The same rough boundary lit only by delta lights (a distant and a point light): they are
+// reached from inside only by sampling them through the boundary at the walk's exits, as
+// the volumetric path tracer samples them through rough glass from inside.
+TEST(SubsurfaceRandomWalk, RoughDielectricBoundarySeesDeltaLights) {
+  const std::string header = R"(LookAt 0 -4 1.5  0 0 0  0 0 1
+Camera "perspective" "float fov" 34
+Film "rgb" "integer xresolution" 16 "integer yresolution" 16
+Integrator "volpath" "integer maxdepth" 100000
+WorldBegin
+LightSource "distant" "point3 from" [1 -1 2] "point3 to" [0 0 0] "rgb L" [2 2 2]
+LightSource "point" "point3 from" [-1.5 -1 -1] "rgb I" [3 3 3]
+)";
+  const std::string rough = " \"float eta\" 1.4 \"float roughness\" 0.3";
+  std::string walk = header + "Material \"subsurface\" " + kCoefficients + rough +
+                     " \"string method\" \"randomwalk\" \"string boundary\" \"dielectric\"\nShape \"sphere\"\n";
+  std::string volume = header + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " + kCoefficients +
+                       "\nMediumInterface \"m\" \"\"\nMaterial \"dielectric\"" + rough + "\nShape \"sphere\"\n";
+  expect_same_picture(walk, volume, 96);
+}
+
 // The default sampler (Owen-scrambled Sobol') changes the noise, never the mean: the
 // walk behind a dielectric (MIS sampling, internal reflections, exit lobe, NEE at the
 // exit) with 12 randomisations of 32 Sobol' samples against 256 independent samples.

@@ -85,7 +85,8 @@ TEST(WalkMethodOnItsOwn, ConservesEnergyInANonAbsorbingSphere) {
   const ObjectTracer tracer(s.embree, objects, entry, counters);
   auto no_irradiance = [](Vec3, Vec3, float, Sampler&) { return RGB(0); };
   auto black = [](const SurfaceHit&) { return RGB(0); };
-  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance, black};
+  auto no_light = [](Vec3, Vec3, const BSDF&, Vec3, Sampler&) { return RGB(0); };
+  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance, black, no_light};
   const int n = 20000;
   double sum[3] = {}, sum2[3] = {};
   for (int i = 0; i < n; ++i) {
@@ -119,7 +120,8 @@ TEST(ProbeMethodOnItsOwn, ExitsLieOnTheObject) {
   const ObjectTracer tracer(s.embree, objects, entry, counters);
   auto no_irradiance = [](Vec3, Vec3, float, Sampler&) { return RGB(0); };
   auto black = [](const SurfaceHit&) { return RGB(0); };
-  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance, black};
+  auto no_light = [](Vec3, Vec3, const BSDF&, Vec3, Sampler&) { return RGB(0); };
+  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance, black, no_light};
   int exits = 0;
   for (int i = 0; i < 2000; ++i) {
     Sampler sampler(SamplerKind::Independent, 5, uint64_t(i), 0);

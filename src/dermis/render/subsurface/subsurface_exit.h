@@ -9,6 +9,7 @@
 #include "dermis/core/rgb.h"
 #include "dermis/core/sampler.h"
 #include "dermis/geometry/ray.h"
+#include "dermis/materials/bsdf.h"
 #include "dermis/render/subsurface/object_tracer.h"
 
 namespace dermis {
@@ -16,14 +17,23 @@ namespace dermis {
 struct SubsurfaceExit {
   enum class Kind {
     ThroughLobe,  // leaves at `hit` through the exit lobe Sw (bsdf.h, materials/rough_exit_lobe.h)
-    Along,        // leaves at `hit` along `direction` (a walk through a smooth boundary)
+    Along,        // leaves at `hit` along `direction` (a walk through its boundary)
     Emitted,      // the method returns the radiance leaving the entry point itself (point cloud)
   };
   Kind kind = Kind::ThroughLobe;
   SurfaceHit hit;    // ThroughLobe, Along: the exit point; hit.ng points out of the object
   RGB weight{1};     // ThroughLobe, Along: multiplies the path throughput (estimate / pdf)
   Vec3 direction;    // Along
+  // Along: the solid-angle density with which `direction` was sampled through a rough
+  // boundary whose lights the method sampled (SubsurfaceEntry::light_through): light
+  // found along it is weighed against those samples. 0: a delta direction (smooth or
+  // matched boundary), whose light counts in full.
+  float direction_pdf = 0;
   RGB radiance{0};   // Emitted: radiance toward the viewer, per unit transmitted throughput
+  // Direct light the method gathered on its way (light sampled through a rough boundary
+  // wherever the path met it), per unit transmitted throughput: counts whether or not
+  // the method then found an exit.
+  RGB gathered{0};
   bool truncated = false;  // no exit: the random walk hit its step cap
 };
 
@@ -36,6 +46,13 @@ using TransmittedIrradiance = FunctionRef<RGB(Vec3 p, Vec3 n, float eta, Sampler
 // first_boundary): light there is reflected diffusely with it (a black surface absorbs).
 using InteriorAlbedo = FunctionRef<RGB(const SurfaceHit& hit)>;
 
+// Direct light reaching the outside of the object at p (outward normal n) and carried
+// through `boundary` (a rough dielectric seen from inside) toward wo inside: one light
+// sample per group, f(wo, wi)|cos wi| L / pdf over the directions wi outside, MIS-weighted
+// against sampling `boundary` (integrator.h estimate_direct). Zero when the integrator does
+// no light sampling there (PathStart::rough_glass_nee off).
+using LightThrough = FunctionRef<RGB(Vec3 p, Vec3 n, const BSDF& boundary, Vec3 wo, Sampler& sampler)>;
+
 // Everything an exit sampler may use besides its own parameters.
 struct SubsurfaceEntry {
   const SurfaceHit& hit;  // where the path entered; hit.ng points out of the object
@@ -43,6 +60,7 @@ struct SubsurfaceEntry {
   const ObjectTracer& tracer;
   TransmittedIrradiance irradiance;
   InteriorAlbedo interior_albedo;
+  LightThrough light_through;
   // The direction the path took into the medium when the integrator sampled a rough
   // entry; unset for a smooth one (the method refracts wo itself).
   std::optional<Vec3> refracted = {};

@@ -125,14 +125,19 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3
       return true;
     }
     if (alpha_x_ > 0 || alpha_y_ > 0) {
-      // A rough boundary: the rough dielectric seen from inside, sampled; its 1/eta^2
-      // radiance factor omitted as at the entry.
+      // A rough boundary: the rough dielectric seen from inside. The lights outside are
+      // sampled through it here (at every crossing, internal reflections included), and
+      // it is sampled for the way on: out, weighed against those light samples
+      // (direction_pdf), or back in. Its 1/eta^2 radiance factor is omitted as at the
+      // entry: a transmission from inside carries eta^2 (Veach 1997, sec. 5.2), times
+      // eta_scale = 1/eta^2.
       BSDF b;
       b.type = BSDF::Type::Dielectric;
       b.n = res.exit_n;
       b.eta = eta_;
       b.alpha_x = alpha_x_;
       b.alpha_y = alpha_y_;
+      out.gathered += weight * entry.light_through(res.exit_p, res.exit_n, b, -d, sampler) / (eta_ * eta_);
       const float u_lobe = sampler.uniform(), u1 = sampler.uniform(), u2 = sampler.uniform();
       const auto bs = bsdf_sample(b, -d, u_lobe, {u1, u2});
       if (!bs) return false;  // a microfacet sample lost below the surface
@@ -141,6 +146,7 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3
       if (bs->transmission) {
         out.weight = weight;
         out.direction = bs->wi;
+        out.direction_pdf = bs->pdf;
         return true;
       }
       dir = bs->wi;
