@@ -58,12 +58,11 @@ double rough_dielectric_transmittance(float eta, float alpha_x, float alpha_y, f
   return sum / (double(k) * k * n_phi);
 }
 
-RoughExitTable make_rough_exit_table(float eta, float alpha_x, float alpha_y) {
-  RoughExitTable t;
+namespace {
+
+// c of a table whose nodes are filled in.
+void set_norm(RoughExitTable& t) {
   constexpr int n = RoughExitTable::kNodes;
-  for (int i = 0; i < n; ++i)
-    t.transmittance[i] = float(rough_dielectric_transmittance(eta, alpha_x, alpha_y, float(i) / (n - 1),
-                                                              kTableResolution));
   // 2 integral of the piecewise-linear T times mu: on [a, b], h (Ta (2a + b) + Tb (a + 2b)) / 6.
   double c = 0;
   const double h = 1.0 / (n - 1);
@@ -72,7 +71,50 @@ RoughExitTable make_rough_exit_table(float eta, float alpha_x, float alpha_y) {
     c += h * (double(t.transmittance[i]) * (2 * a + b) + double(t.transmittance[i + 1]) * (a + 2 * b)) / 6;
   }
   t.norm = float(2 * c);
+}
+
+}  // namespace
+
+RoughExitTable make_rough_exit_table(float eta, float alpha_x, float alpha_y) {
+  RoughExitTable t;
+  constexpr int n = RoughExitTable::kNodes;
+  for (int i = 0; i < n; ++i)
+    t.transmittance[i] = float(rough_dielectric_transmittance(eta, alpha_x, alpha_y, float(i) / (n - 1),
+                                                              kTableResolution));
+  set_norm(t);
   return t;
+}
+
+RoughExitTable make_smooth_exit_table(float eta) {
+  RoughExitTable t;
+  constexpr int n = RoughExitTable::kNodes;
+  for (int i = 0; i < n; ++i) t.transmittance[i] = 1 - fresnel_dielectric(std::max(float(i) / (n - 1), 1e-4f), eta);
+  set_norm(t);
+  return t;
+}
+
+RoughExitTables::RoughExitTables(float eta) {
+  tables_.reserve(kAlphaNodes);
+  tables_.push_back(make_smooth_exit_table(eta));
+  for (int k = 1; k < kAlphaNodes; ++k) {
+    const float alpha = node_alpha(k);
+    tables_.push_back(make_rough_exit_table(eta, alpha, alpha));
+  }
+}
+
+float RoughExitTables::node_alpha(int k) {
+  const float t = float(k) / (kAlphaNodes - 1);
+  return t * t;
+}
+
+void RoughExitTables::at(float alpha, RoughExitTable& out) const {
+  const float x = std::sqrt(std::clamp(alpha, 0.0f, 1.0f)) * (kAlphaNodes - 1);
+  const int k = std::min(int(x), kAlphaNodes - 2);
+  const float w = x - float(k);
+  const RoughExitTable &a = tables_[std::size_t(k)], &b = tables_[std::size_t(k) + 1];
+  for (int i = 0; i < RoughExitTable::kNodes; ++i)
+    out.transmittance[i] = a.transmittance[i] * (1 - w) + b.transmittance[i] * w;
+  out.norm = a.norm * (1 - w) + b.norm * w;  // c is linear in T: the blend's own c
 }
 
 }  // namespace dermis

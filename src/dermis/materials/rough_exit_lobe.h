@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 namespace dermis {
 
@@ -36,5 +37,27 @@ double rough_dielectric_transmittance(float eta, float alpha_x, float alpha_y, f
 
 // The table of a material: T at every node (k = 64), and c.
 RoughExitTable make_rough_exit_table(float eta, float alpha_x, float alpha_y);
+
+// The smooth boundary's T = 1 - Fr(mu, eta) at the nodes (node 0 at mu = 1e-4), and the
+// c of that piecewise-linear T (within 1e-4 of the exact smooth lobe's).
+RoughExitTable make_smooth_exit_table(float eta);
+
+// A textured (isotropic) roughness: tables at alpha = (k / 16)^2, k = 0 .. 16 (k = 0 the
+// smooth table; nodes uniform in sqrt(alpha), because T changes fastest in alpha near
+// 0, at grazing mu), blended linearly in sqrt(alpha) at each exit point. Blending tables
+// blends their c as well (c is linear in T), so the blend integrates to one as each node
+// does. About one second to make (16 rough tables).
+class RoughExitTables {
+ public:
+  static constexpr int kAlphaNodes = 17;
+  explicit RoughExitTables(float eta);
+  // The table at `alpha` (clamped to [0, 1]), written into `out` (no allocation).
+  void at(float alpha, RoughExitTable& out) const;
+  const RoughExitTable& node(int k) const { return tables_[std::size_t(k)]; }
+  static float node_alpha(int k);  // (k / 16)^2
+
+ private:
+  std::vector<RoughExitTable> tables_;
+};
 
 }  // namespace dermis

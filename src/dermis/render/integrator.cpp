@@ -288,7 +288,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         continue;
       }
       std::optional<Vec3> refracted;
-      const BSDF boundary = sm.entry_boundary(hit.ng);
+      const BSDF boundary = sm.entry_boundary(hit);
       float F = fresnel_dielectric(cos_o, sm.entry_eta);
       if (boundary.is_rough()) {
         // A rough boundary: the rough dielectric sampled. Reflection continues the path,
@@ -392,7 +392,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       }
       // Leave through the exit lobe Sw at the exit point (normalised Fresnel, or the
       // rough boundary's transmittance).
-      const BSDF sw = sm.exit_lobe(ex.hit.ng);
+      RoughExitTable exit_table_here;  // a textured roughness: the table of the exit point's alpha
+      const BSDF sw = sm.exit_lobe(ex.hit, exit_table_here);
       Vec3 p_out = offset_ray_origin(ex.hit.p, ex.hit.ng, ex.hit.ng);
       L += beta * estimate_direct(sc, p_out, ex.hit.ng, medium, sampler, counters, [&](Vec3 wi) {
              return std::pair{bsdf_eval(sw, ex.hit.ng, wi), bsdf_pdf(sw, ex.hit.ng, wi)};

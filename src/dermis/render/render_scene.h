@@ -18,6 +18,7 @@
 #include "dermis/scene/subsurface_params.h"
 #include "dermis/materials/texture.h"
 #include "dermis/render/camera.h"
+#include "dermis/render/subsurface/coefficients.h"
 #include "dermis/render/subsurface/subsurface_method.h"
 #include "dermis/scene/scene_desc.h"
 
@@ -39,10 +40,12 @@ struct RenderScene {
   struct VolumetricMedium {
     SubsurfaceParams params;
     int medium = -1;
-    const sss::AlbedoInversion* inversion = nullptr;  // the dielectric table (null: coefficients or the fit)
+    AlbedoInversions inversions;  // the dielectric tables (empty: coefficients or the fit)
+    BoundaryRoughness roughness;  // the dielectric's alphas per point (a textured roughness: the inversion's)
   };
   std::vector<VolumetricMedium> volumetric_media;
-  // Per medium: its entry in volumetric_media when its parameters are textured, else -1
+  // Per medium: its entry in volumetric_media when its parameters (or the roughness its
+  // inversion depends on) are textured, else -1
   // (filled by preparation; empty when no volumetric material is textured).
   std::vector<int> textured_volumetric_of_medium;
   // The subsurface object of each shape (subsurface/object_tracer.h): walks and probes

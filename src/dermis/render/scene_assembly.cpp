@@ -279,6 +279,10 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
     sc->materials[i].eta = sp.eta;
     sc->materials[i].alpha_x = roughness_to_alpha(sp.uroughness, sp.remap_roughness);
     sc->materials[i].alpha_y = roughness_to_alpha(sp.vroughness, sp.remap_roughness);
+    // A textured roughness: per hit, as the walk's boundary (clamped alike:
+    // subsurface/boundary_roughness.h).
+    sc->materials[i].roughness_texture[0] = sc->materials[i].roughness_texture[1] = sp.roughness_texture;
+    sc->materials[i].remap_roughness = sp.remap_roughness;
     subsurface_medium[i] = int(sc->media.size());
     sc->volumetric_media.push_back({sp, subsurface_medium[i]});
     sc->media.push_back(HomogeneousMedium{});

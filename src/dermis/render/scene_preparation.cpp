@@ -53,10 +53,12 @@ PreparationReport prepare_scene(RenderScene& sc, const PreparationOptions& optio
       check_cancel();
       SubsurfaceParams as_dielectric = v.params;
       as_dielectric.boundary = SubsurfaceParams::Boundary::Dielectric;
-      v.inversion = albedo_inversion_for(as_dielectric);
-      const Coefficients k = coefficients_from(medium_at(as_dielectric), v.inversion);
+      v.inversions = AlbedoInversions(as_dielectric);
+      v.roughness = BoundaryRoughness(as_dielectric, false, &sc.textures);
+      const Coefficients k = coefficients_from(medium_at(as_dielectric), v.inversions, v.roughness.constant().x);
       sc.media[v.medium] = HomogeneousMedium::from_coefficients(k.sigma_a, k.sigma_s, 1, v.params.g);
-      if (v.params.textured()) {
+      const bool inversion_per_entry = v.roughness.textured() && !v.inversions.empty() && !v.inversions.single();
+      if (v.params.textured() || inversion_per_entry) {
         sc.textured_volumetric_of_medium.resize(sc.media.size(), -1);
         sc.textured_volumetric_of_medium[v.medium] = int(i);
       }

@@ -241,8 +241,11 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
     m.amount = float_or_texture(pl, "amount", 0.5f, m.amount_texture);
   } else if (type == "subsurface") {
     m.type = MaterialDesc::Type::Subsurface;
-    m.subsurface = read_subsurface_params(pl, loc, s_.diagnostics, [&](const ParsedParam& p) {
-      return spectrum_or_texture(pl, p.param.name, RGB(1.0f)).texture;
+    m.subsurface = read_subsurface_params(pl, loc, s_.diagnostics, [&](const ParsedParam& p, bool is_float) {
+      int texture = -1;
+      if (is_float) float_or_texture(pl, p.param.name, 0, texture);
+      else texture = spectrum_or_texture(pl, p.param.name, RGB(1.0f)).texture;
+      return texture;
     });
     m.eta = m.subsurface.eta;
   } else if (type == "hair") {

@@ -65,7 +65,7 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"scale", "float", "1", "multiplies the coefficients, divides mfp"},
     {"eta", "float", "1.33", "index of refraction of the boundary, in [1, 3]"},
     {"g", "float", "0", "Henyey-Greenstein anisotropy, in (-1, 1)"},
-    {"roughness", "float", "0", "Trowbridge-Reitz roughness of the boundary (both tangent axes)"},
+    {"roughness", "float", "0", "Trowbridge-Reitz roughness of the boundary (both tangent axes; or a float texture)"},
     {"uroughness", "float", "0", "roughness along the first tangent (overrides roughness)"},
     {"vroughness", "float", "0", "roughness along the second tangent (overrides roughness)"},
     {"remaproughness", "bool", "true", "alpha = sqrt(roughness) as pbrt-v4; false: alpha = roughness"},
@@ -195,7 +195,12 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
     }
     else if (n == "roughness" || n == "uroughness" || n == "vroughness") {
       if (p.type == "texture") {
-        diag.warn(p.param.loc, fmt::format("subsurface: textured \"{}\" is not supported; 0 used", n));
+        if (n == "roughness") {
+          s.roughness_texture = texture_index_of(p, true);
+          continue;
+        }
+        diag.warn(p.param.loc, fmt::format("subsurface: textured \"{}\" is not supported (a textured \"roughness\", "
+                                           "the same on both axes, is); 0 used", n));
         continue;
       }
       const float r = read_float(p);
@@ -211,12 +216,17 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
   // A spectrum parameter: its value, or its texture (the value is then a stand-in).
   auto spectrum = [&](const ParsedParam& p, int& texture, RGB stand_in) {
     if (p.type != "texture") return read_rgb(p, diag);
-    texture = texture_index_of(p);
+    texture = texture_index_of(p, false);
     return stand_in;
   };
   // pbrt-v4: "roughness" sets both axes, "uroughness" / "vroughness" override one each.
   s.uroughness = uroughness.value_or(roughness.value_or(0));
   s.vroughness = vroughness.value_or(roughness.value_or(0));
+  if (s.roughness_texture >= 0 && (uroughness || vroughness)) {
+    diag.warn(loc, "subsurface: \"uroughness\" / \"vroughness\" ignored beside a textured \"roughness\" "
+                   "(a textured boundary is isotropic)");
+    s.uroughness = s.vroughness = 0;
+  }
   if (scale <= 0) throw SceneError(loc, "subsurface: \"scale\" must be positive");
   s.scale = scale;
   if (s.eta < 1.0f || s.eta > 3.0f)
@@ -224,6 +234,12 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
   if (s.g <= -1 || s.g >= 1) throw SceneError(loc, "subsurface: \"g\" must be in (-1, 1)");
   if (!(s.epsilon > 0)) throw SceneError(loc, "subsurface: \"epsilon\" must be positive");
   if (!(s.point_density > 0)) throw SceneError(loc, "subsurface: \"pointdensity\" must be positive");
+  if (s.method == SubsurfaceParams::Method::PointCloud && s.roughness_texture >= 0) {
+    // Its points carry no surface coordinates at which to evaluate the texture.
+    diag.warn(loc, "subsurface: a textured \"roughness\" is not supported by the \"pointcloud\" method "
+                   "(its points carry no texture coordinates); 0 used");
+    s.roughness_texture = -1;
+  }
   // The point cloud's profile is the dipole by default, as in Jensen & Buehler 2002.
   if (s.method == SubsurfaceParams::Method::PointCloud && !profile_given) s.profile = SubsurfaceParams::Profile::Dipole;
 

@@ -38,6 +38,9 @@ struct SubsurfaceParams {
   // walk's `dielectric` boundary.
   float uroughness = 0, vroughness = 0;
   bool remap_roughness = true;
+  // A float texture for "roughness" (both axes, per surface point), -1 for none; the
+  // constants above are then 0. uroughness / vroughness cannot be textured.
+  int roughness_texture = -1;
   float g = 0;
   float scale = 1;  // as written (already applied to the coefficients and lengths above)
   Method method = Method::RandomWalk;
@@ -80,7 +83,9 @@ std::span<const SubsurfaceParameter> subsurface_parameters();
 
 // The spectrum texture a "texture NAME" parameter names (its index in
 // SceneDesc::textures); throws SceneError when there is none.
-using TextureIndexOf = std::function<int(const ParsedParam&)>;
+// The scene's index of the texture a parameter names: a spectrum texture, or a float
+// texture when `is_float`. Throws SceneError when there is none of that kind.
+using TextureIndexOf = std::function<int(const ParsedParam&, bool is_float)>;
 
 // Reads every parameter of a `subsurface` material (marking them used). Throws
 // SceneError (file:line:col) for wrong types, unknown names or invalid values; warns

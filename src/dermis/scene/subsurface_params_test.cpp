@@ -50,6 +50,42 @@ TEST(SubsurfaceParams, RoughnessAsPbrtV4) {
   EXPECT_THROW(params_of("Material \"subsurface\" \"float roughness\" -0.1"), SceneError);
 }
 
+// A float texture for "roughness" (both axes); uroughness / vroughness cannot be
+// textured (warned), nor can the point cloud take one (warned).
+TEST(SubsurfaceParams, TexturedRoughness) {
+  auto scene = [](const std::string& material) {
+    return parse_scene_string(std::string(kHeader) + "Texture \"r\" \"float\" \"constant\" \"float value\" 0.3\n" +
+                              "Texture \"c\" \"spectrum\" \"constant\" \"rgb value\" [0.3 0.3 0.3]\n" + material +
+                              "\nShape \"sphere\"\n");
+  };
+  auto warned = [](const SceneDesc& d, const std::string& what) {
+    for (const std::string& w : d.diagnostics.warnings)
+      if (w.find(what) != std::string::npos) return true;
+    return false;
+  };
+  const SceneDesc d = scene("Material \"subsurface\" \"texture roughness\" \"r\"");
+  const SubsurfaceParams& p = d.materials.at(0).subsurface;
+  EXPECT_EQ(p.roughness_texture, 0);
+  EXPECT_EQ(p.uroughness, 0.0f);
+  EXPECT_FALSE(warned(d, "roughness"));
+  const SceneDesc u = scene("Material \"subsurface\" \"texture uroughness\" \"r\"");
+  EXPECT_EQ(u.materials.at(0).subsurface.roughness_texture, -1);
+  EXPECT_TRUE(warned(u, "textured \"uroughness\" is not supported"));
+  const SceneDesc both = scene("Material \"subsurface\" \"texture roughness\" \"r\" \"float vroughness\" 0.1");
+  EXPECT_TRUE(warned(both, "ignored beside a textured \"roughness\""));
+  EXPECT_EQ(both.materials.at(0).subsurface.vroughness, 0.0f);
+  const SceneDesc cloud = scene("Material \"subsurface\" \"texture roughness\" \"r\" \"string method\" \"pointcloud\"");
+  EXPECT_EQ(cloud.materials.at(0).subsurface.roughness_texture, -1);
+  EXPECT_TRUE(warned(cloud, "not supported by the \"pointcloud\" method"));
+  // A spectrum texture where a float one is needed: an error at the value.
+  try {
+    scene("Material \"subsurface\" \"texture roughness\" \"c\"");
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown float texture \"c\""), std::string::npos) << e.what();
+  }
+}
+
 TEST(SubsurfaceParams, PresetNameUsesJensenTableTimesScale) {
   SubsurfaceParams p = params_of("Material \"subsurface\" \"string name\" \"Skin1\" \"float scale\" 0.5");
   ASSERT_TRUE(p.sigma_a);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -39,7 +40,8 @@ sss::AlbedoTableConfig table_config(const TableKey& key) {
 // A rough boundary (the alphas the renderer uses: subsurface_method.cpp, walk_method.cpp)
 // is rough in the table too: at the entry for both, at every exit for the dielectric.
 // Only the walk and the volumetric reference invert with a table.
-std::optional<TableKey> table_key(const SubsurfaceParams& p) {
+// A textured roughness (AlbedoInversions): the table at alpha_node on both axes.
+std::optional<TableKey> table_key(const SubsurfaceParams& p, std::optional<float> alpha_node = std::nullopt) {
   using Method = SubsurfaceParams::Method;
   if (!p.reflectance || p.albedo_inversion_fit) return std::nullopt;
   if (p.method != Method::RandomWalk && p.method != Method::Volumetric) return std::nullopt;
@@ -47,11 +49,33 @@ std::optional<TableKey> table_key(const SubsurfaceParams& p) {
   const bool matched = p.boundary == Boundary::Matched;
   float ax = 0, ay = 0;
   if (!matched) {
-    ax = roughness_to_alpha(p.uroughness, p.remap_roughness);
-    ay = roughness_to_alpha(p.vroughness, p.remap_roughness);
+    ax = alpha_node ? *alpha_node : roughness_to_alpha(p.uroughness, p.remap_roughness);
+    ay = alpha_node ? *alpha_node : roughness_to_alpha(p.vroughness, p.remap_roughness);
     if (std::max(ax, ay) < kSmoothAlpha) ax = ay = 0;
   }
   return TableKey{matched ? 1.0 : p.eta, p.g, p.boundary == Boundary::Diffuse, ax, ay};
+}
+
+bool alpha_interpolated(const SubsurfaceParams& p) {
+  return p.roughness_texture >= 0 && p.boundary != SubsurfaceParams::Boundary::Matched;
+}
+
+// Nodes uniform in sqrt(alpha): A_max of a rough `dielectric` boundary falls fastest near 0.
+float inversion_alpha_node(int k) {
+  const float t = float(k) / (AlbedoInversions::kAlphaNodes - 1);
+  return t * t;
+}
+
+// Every table a material needs.
+std::vector<TableKey> table_keys(const SubsurfaceParams& p) {
+  std::vector<TableKey> keys;
+  if (!alpha_interpolated(p)) {
+    if (auto key = table_key(p)) keys.push_back(*key);
+    return keys;
+  }
+  for (int k = 0; k < AlbedoInversions::kAlphaNodes; ++k)
+    if (auto key = table_key(p, inversion_alpha_node(k))) keys.push_back(*key);
+  return keys;
 }
 
 const sss::AlbedoInversion& albedo_inversion(const TableKey& key) {
@@ -125,16 +149,16 @@ void prepare_albedo_inversions(std::span<const SubsurfaceParams> params, Process
   std::set<TableKey> missing;
   {
     std::lock_guard<std::mutex> lock(g_tables_mutex);
-    for (const SubsurfaceParams& p : params) {
-      const auto key = table_key(p);
-      if (!key || g_tables.count(*key)) continue;
-      try {
-        sss::check_albedo_table_config(table_config(*key));
-      } catch (const std::invalid_argument&) {
-        continue;  // the material reports it, with its place in the scene
+    for (const SubsurfaceParams& p : params)
+      for (const TableKey& key : table_keys(p)) {
+        if (g_tables.count(key)) continue;
+        try {
+          sss::check_albedo_table_config(table_config(key));
+        } catch (const std::invalid_argument&) {
+          continue;  // the material reports it, with its place in the scene
+        }
+        missing.insert(key);
       }
-      missing.insert(*key);
-    }
   }
   for (const TableKey& key : missing) {
     const sss::AlbedoTableConfig config = table_config(key);
@@ -142,6 +166,41 @@ void prepare_albedo_inversions(std::span<const SubsurfaceParams> params, Process
     std::lock_guard<std::mutex> lock(g_tables_mutex);
     g_tables[key] = std::move(t);
   }
+}
+
+AlbedoInversions::AlbedoInversions(const SubsurfaceParams& params) {
+  for (const TableKey& key : table_keys(params)) tables_.push_back(&albedo_inversion(key));
+}
+
+double AlbedoInversions::single_scattering_albedo(double surface_albedo, float boundary_alpha) const {
+  if (tables_.size() == 1) return tables_[0]->single_scattering_albedo(surface_albedo);
+  const float x = std::sqrt(std::clamp(boundary_alpha, 0.0f, 1.0f)) * float(kAlphaNodes - 1);
+  const int k = std::min(int(x), kAlphaNodes - 2);
+  const double w = x - float(k);
+  const sss::AlbedoInversion &a = *tables_[std::size_t(k)], &b = *tables_[std::size_t(k) + 1];
+  // A(alpha) interpolated between the two tables (it is smooth in the boundary's alpha;
+  // its inverse is steep near a rough dielectric's A_max), inverted by bisection as one
+  // table inverts its own interpolant; above the blend's A(1): alpha = 1.
+  auto blended = [&](double alpha) { return a.surface_albedo(alpha) * (1 - w) + b.surface_albedo(alpha) * w; };
+  if (surface_albedo >= blended(1.0)) return 1.0;
+  double lo = 0, hi = 1;
+  for (int i = 0; i < 48; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (blended(mid) < surface_albedo ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+Coefficients coefficients_from(const MediumAt& m, const AlbedoInversions& inversions, float boundary_alpha) {
+  if (m.sigma_a || inversions.empty()) return coefficients_from(m, nullptr);
+  Coefficients k;
+  for (int c = 0; c < 3; ++c) {
+    const double st = 1.0 / (*m.mfp)[c];
+    const double alpha = inversions.single_scattering_albedo((*m.reflectance)[c], boundary_alpha);
+    k.sigma_s[c] = float(alpha * st);
+    k.sigma_a[c] = float((1 - alpha) * st);
+  }
+  return k;
 }
 
 Coefficients coefficients_from(const MediumAt& m, const sss::AlbedoInversion* table) {

@@ -39,7 +39,30 @@ struct Coefficients {
 // g (sss/walk/albedo_inversion.h): a half-space table built once per process (and
 // cached on disk by the table itself; may take seconds the first time: call it while
 // preparing a scene). Null when the material gives coefficients or asks for the fit.
+// A textured roughness: the smooth boundary's table (see AlbedoInversions).
 const sss::AlbedoInversion* albedo_inversion_for(const SubsurfaceParams& params);
+
+// A material's exact albedo inversions: its one table, or, when its roughness is
+// textured, one table per boundary alpha (k / 8)^2 (k = 0 .. 8; uniform in sqrt(alpha),
+// where A_max of a rough `dielectric` boundary changes fastest near 0) between which the
+// surface albedo A(single-scattering albedo) is interpolated linearly in sqrt(alpha) at
+// the entry point and inverted (the error this makes is measured in docs/materials.md).
+// Empty: coefficients, or the fit.
+class AlbedoInversions {
+ public:
+  static constexpr int kAlphaNodes = 9;
+  AlbedoInversions() = default;
+  explicit AlbedoInversions(const SubsurfaceParams& params);  // makes or looks up the tables
+
+  bool empty() const { return tables_.empty(); }
+  // alpha(A) at the boundary alpha (ignored with one table).
+  double single_scattering_albedo(double surface_albedo, float boundary_alpha) const;
+  // The one table (null when interpolated in alpha, or empty).
+  const sss::AlbedoInversion* single() const { return tables_.size() == 1 ? tables_[0] : nullptr; }
+
+ private:
+  std::vector<const sss::AlbedoInversion*> tables_;
+};
 
 // Makes the tables these materials need now (albedo_inversion_for then only looks them
 // up), shared by the group: rank 0 reads each from the cache and broadcasts it, or
@@ -50,6 +73,9 @@ void prepare_albedo_inversions(std::span<const SubsurfaceParams> params, Process
 // Coefficients per scene unit: as given, or from (reflectance, mfp) through `table`
 // (albedo_inversion_for) or, when null, van de Hulst's fit.
 Coefficients coefficients_from(const MediumAt& medium, const sss::AlbedoInversion* table);
+// The same through a material's inversions at the boundary alpha of the entry point
+// (empty: van de Hulst's fit).
+Coefficients coefficients_from(const MediumAt& medium, const AlbedoInversions& inversions, float boundary_alpha);
 inline Coefficients resolve_coefficients(const SubsurfaceParams& params) {
   return coefficients_from(medium_at(params), albedo_inversion_for(params));
 }

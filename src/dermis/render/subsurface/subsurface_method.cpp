@@ -34,19 +34,18 @@ SubsurfaceMaterial make_subsurface_material(const SubsurfaceParams& params, cons
   const bool matched_walk =
       params.method == SubsurfaceParams::Method::RandomWalk && params.boundary == SubsurfaceParams::Boundary::Matched;
   const float entry_eta = matched_walk ? 1 : params.eta;
-  float alpha_x = 0, alpha_y = 0;
-  if (entry_eta != 1) {
-    alpha_x = roughness_to_alpha(params.uroughness, params.remap_roughness);
-    alpha_y = roughness_to_alpha(params.vroughness, params.remap_roughness);
-  }
+  const BoundaryRoughness roughness(params, entry_eta == 1, textures);
   // A rough boundary: light leaves through its transmittance (rough_exit_lobe.h), in the
-  // lobe Sw and in the point cloud's normalisation alike.
+  // lobe Sw and in the point cloud's normalisation alike; a textured one through the
+  // table of each exit point's alpha.
   std::optional<RoughExitTable> exit_table;
-  if (std::max(alpha_x, alpha_y) >= kSmoothAlpha) exit_table = make_rough_exit_table(params.eta, alpha_x, alpha_y);
+  std::shared_ptr<const RoughExitTables> exit_tables;
+  const BoundaryAlphas a = roughness.constant();
+  if (a.rough()) exit_table = make_rough_exit_table(params.eta, a.x, a.y);
+  if (roughness.textured()) exit_tables = std::make_shared<const RoughExitTables>(params.eta);
   const float sw_norm = exit_table ? exit_table->norm : subsurface_exit_normalization(params.eta);
-  return SubsurfaceMaterial{params,  entry_eta, params.eta,
-                            sw_norm, alpha_x,   alpha_y,
-                            make_method(params, textures, sw_norm), exit_table};
+  return SubsurfaceMaterial{params,    entry_eta,  params.eta, sw_norm, roughness,
+                            make_method(params, textures, sw_norm), exit_table, exit_tables};
 }
 
 }  // namespace dermis

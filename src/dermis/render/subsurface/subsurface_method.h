@@ -13,6 +13,7 @@
 // and the volumetric path tracer renders it.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <variant>
 
@@ -20,6 +21,7 @@
 #include "dermis/materials/rough_exit_lobe.h"
 
 #include "dermis/scene/subsurface_params.h"
+#include "dermis/render/subsurface/boundary_roughness.h"
 #include "dermis/render/subsurface/point_cloud_method.h"
 #include "dermis/render/subsurface/probe_method.h"
 #include "dermis/render/subsurface/walk_method.h"
@@ -32,32 +34,45 @@ struct SubsurfaceMaterial {
   SubsurfaceParams params;
   float entry_eta = 1.33f;  // index the entry's Fresnel reflection sees (1 for a matched walk)
   float exit_eta = 1.33f;   // index of the exit lobe Sw
-  float sw_norm = 1;        // c of the exit lobe Sw (bsdf.h)
-  float alpha_x = 0, alpha_y = 0;  // the boundary's Trowbridge-Reitz alphas (0: smooth)
+  float sw_norm = 1;        // c of the exit lobe Sw (bsdf.h); a textured roughness: the smooth lobe's
+  BoundaryRoughness roughness;  // the boundary's alphas, per surface point
   SubsurfaceMethod method;
   // A rough boundary's exit lobe: its transmittance table, whose c is sw_norm
-  // (materials/rough_exit_lobe.h). Unset when the boundary is smooth.
+  // (materials/rough_exit_lobe.h). Unset when the boundary is smooth or textured.
   std::optional<RoughExitTable> exit_table;
+  // A textured roughness: the tables at alpha nodes, blended at each exit point.
+  std::shared_ptr<const RoughExitTables> exit_tables;
 
-  // The exit lobe Sw at an exit point with outward normal n (bsdf.h).
-  BSDF exit_lobe(Vec3 n) const {
+  // The exit lobe Sw at an exit point (its outward normal hit.ng; bsdf.h). A textured
+  // roughness blends the table of the point's alpha into `scratch`, which the lobe
+  // points to (it must outlive the lobe's use).
+  BSDF exit_lobe(const SurfaceHit& hit, RoughExitTable& scratch) const {
     BSDF b;
     b.type = BSDF::Type::SubsurfaceExit;
-    b.n = n;
+    b.n = hit.ng;
     b.eta = exit_eta;
     b.sw_norm = sw_norm;
     b.exit_table = exit_table ? &*exit_table : nullptr;
+    if (exit_tables) {
+      const BoundaryAlphas a = roughness.at(hit);
+      if (a.rough()) {
+        exit_tables->at(a.x, scratch);
+        b.exit_table = &scratch;
+        b.sw_norm = scratch.norm;
+      }
+    }
     return b;
   }
 
-  // The entry as a BSDF: a smooth or rough dielectric about the entry's normal n.
-  BSDF entry_boundary(Vec3 n) const {
+  // The entry as a BSDF: a smooth or rough dielectric about the entry's normal.
+  BSDF entry_boundary(const SurfaceHit& hit) const {
     BSDF b;
     b.type = BSDF::Type::Dielectric;
-    b.n = n;
+    b.n = hit.ng;
     b.eta = entry_eta;
-    b.alpha_x = alpha_x;
-    b.alpha_y = alpha_y;
+    const BoundaryAlphas a = roughness.at(hit);
+    b.alpha_x = a.x;
+    b.alpha_y = a.y;
     return b;
   }
 };

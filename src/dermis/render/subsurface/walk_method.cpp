@@ -34,24 +34,22 @@ sss::WalkMedium walk_medium(const Coefficients& k, float g) {
 }  // namespace
 
 WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures)
-    : params_(params), textures_(textures), table_(albedo_inversion_for(params)), boundary_(params.boundary),
-      eta_(params.eta) {
-  if (boundary_ == SubsurfaceParams::Boundary::Dielectric) {
-    alpha_x_ = roughness_to_alpha(params.uroughness, params.remap_roughness);
-    alpha_y_ = roughness_to_alpha(params.vroughness, params.remap_roughness);
-    if (std::max(alpha_x_, alpha_y_) < kSmoothAlpha) alpha_x_ = alpha_y_ = 0;
-  }
-  medium_ = walk_medium(coefficients_from(medium_at(params), table_), params.g);
+    : params_(params), textures_(textures), inversions_(params), boundary_(params.boundary), eta_(params.eta),
+      roughness_(params, params.boundary == SubsurfaceParams::Boundary::Matched, textures) {
+  medium_per_entry_ = textures_ && (params.textured() || (roughness_.textured() && !inversions_.single() &&
+                                                          !inversions_.empty()));
+  medium_ = walk_medium(coefficients_from(medium_at(params), inversions_, roughness_.constant().x), params.g);
   settings_.sampling = walk_sampling(params.walk_sampling);
   settings_.backward_guiding = params.backward_guiding;
   step_ = std::make_unique<sss::MixtureWalkStep<3>>(sss::make_walk_step(medium_, settings_));
 }
 
 bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
-  if (!params_.textured()) return walk(entry, *step_, sampler, out);
+  if (!medium_per_entry_) return walk(entry, *step_, sampler, out);
   // The entry point's own medium.
-  const sss::WalkMedium m =
-      walk_medium(coefficients_from(medium_at(params_, textures_, texture_context(entry.hit)), table_), params_.g);
+  const sss::WalkMedium m = walk_medium(coefficients_from(medium_at(params_, textures_, texture_context(entry.hit)),
+                                                          inversions_, roughness_.at(entry.hit).x),
+                                        params_.g);
   for (int c = 0; c < 3; ++c)
     if (!(m.sigma_t[c] > 0) || !std::isfinite(m.sigma_t[c])) return false;  // a texture without extinction
   return walk(entry, sss::make_walk_step(m, settings_), sampler, out);
@@ -124,7 +122,7 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3
       out.direction = d;
       return true;
     }
-    if (alpha_x_ > 0 || alpha_y_ > 0) {
+    if (const BoundaryAlphas alpha = roughness_.at(last); boundary_ == Boundary::Dielectric && alpha.rough()) {
       // A rough boundary: the rough dielectric seen from inside. The lights outside are
       // sampled through it here (at every crossing, internal reflections included), and
       // it is sampled for the way on: out, weighed against those light samples
@@ -135,8 +133,8 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3
       b.type = BSDF::Type::Dielectric;
       b.n = res.exit_n;
       b.eta = eta_;
-      b.alpha_x = alpha_x_;
-      b.alpha_y = alpha_y_;
+      b.alpha_x = alpha.x;
+      b.alpha_y = alpha.y;
       out.gathered += weight * entry.light_through(res.exit_p, res.exit_n, b, -d, sampler) / (eta_ * eta_);
       const float u_lobe = sampler.uniform(), u1 = sampler.uniform(), u2 = sampler.uniform();
       const auto bs = bsdf_sample(b, -d, u_lobe, {u1, u2});

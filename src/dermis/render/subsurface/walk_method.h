@@ -6,13 +6,15 @@
 // Textured parameters: the medium of a walk is the one at its entry point (its
 // coefficients from the exact albedo inversion's table: a lookup, no simulation), kept
 // for the whole walk, as in Cycles: a texture varying under the surface is blurred
-// over the walk's extent, not followed.
+// over the walk's extent, not followed. A textured roughness is the boundary's at each
+// point the walk meets it (entry and exits); the albedo inversion takes the entry's.
 #pragma once
 
 #include <memory>
 #include <vector>
 
 #include "dermis/scene/subsurface_params.h"
+#include "dermis/render/subsurface/boundary_roughness.h"
 #include "dermis/render/subsurface/coefficients.h"
 #include "dermis/render/subsurface/subsurface_exit.h"
 #include "dermis/sss/walk/albedo_inversion.h"
@@ -36,10 +38,13 @@ class WalkMethod {
 
   SubsurfaceParams params_;
   const std::vector<Texture>* textures_;
-  const sss::AlbedoInversion* table_;  // (reflectance, mfp) -> coefficients; null: given, or the fit
+  AlbedoInversions inversions_;  // (reflectance, mfp) -> coefficients; empty: given, or the fit
   SubsurfaceParams::Boundary boundary_;
   float eta_;
-  float alpha_x_ = 0, alpha_y_ = 0;  // a rough `dielectric` boundary's exits (0: smooth)
+  BoundaryRoughness roughness_;  // the boundary's alphas per point (the `dielectric` boundary's exits)
+  // The medium differs from one entry point to another: textured parameters, or a
+  // textured roughness that the albedo inversion depends on.
+  bool medium_per_entry_ = false;
   sss::WalkMedium medium_;  // the constant parameters' medium
   sss::WalkSettings settings_;
   std::unique_ptr<sss::MixtureWalkStep<3>> step_;
