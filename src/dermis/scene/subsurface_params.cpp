@@ -62,7 +62,7 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"sigma_a", "rgb | texture", "0.0011 0.0024 0.014", "absorption coefficient per scene unit"},
     {"sigma_s", "rgb | texture", "2.55 3.21 3.77", "scattering coefficient per scene unit"},
     {"name", "string", "none", "a measured medium of Jensen et al. 2001, Table 2 (per mm)"},
-    {"scale", "float", "1", "multiplies the coefficients, divides mfp"},
+    {"scale", "float", "1", "multiplies the coefficients, divides mfp (or a float texture: per entry point)"},
     {"eta", "float", "1.33", "index of refraction of the boundary, in [1, 3]"},
     {"g", "float", "0", "Henyey-Greenstein anisotropy, in (-1, 1)"},
     {"roughness", "float", "0", "Trowbridge-Reitz roughness of the boundary (both tangent axes; or a float texture)"},
@@ -157,7 +157,10 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
     else if (n == "reflectance") reflectance = &p;
     else if (n == "mfp") mfp = &p;
     else if (n == "name") name = &p;
-    else if (n == "scale") scale = read_float(p);
+    else if (n == "scale") {
+      if (p.type == "texture") s.scale_texture = texture_index_of(p, true);
+      else scale = read_float(p);
+    }
     else if (n == "eta") s.eta = read_float(p);
     else if (n == "g") s.g = read_float(p);
     else if (n == "profile") {

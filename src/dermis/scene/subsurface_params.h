@@ -32,6 +32,10 @@ struct SubsurfaceParams {
   // point, -1 for none; the value above is then the texture's mean, for what needs one
   // number per material (e.g. the point spacing of a point cloud).
   int sigma_a_texture = -1, sigma_s_texture = -1, reflectance_texture = -1, mfp_texture = -1;
+  // A float texture for `scale` (-1: none): at each entry point it multiplies the
+  // coefficients and divides the lengths (mfp, the Skin6 profile's mm) on top of `scale`
+  // below, which is then 1.
+  int scale_texture = -1;
   float eta = 1.33f;
   // The boundary's microfacet roughness (pbrt-v4's parameters; alpha = sqrt(r) when
   // remapped): a rough dielectric at the entry of every method and at the exits of the
@@ -68,7 +72,8 @@ struct SubsurfaceParams {
   SourceLoc loc;
 
   bool textured() const {
-    return sigma_a_texture >= 0 || sigma_s_texture >= 0 || reflectance_texture >= 0 || mfp_texture >= 0;
+    return sigma_a_texture >= 0 || sigma_s_texture >= 0 || reflectance_texture >= 0 || mfp_texture >= 0 ||
+           scale_texture >= 0;
   }
 };
 

@@ -123,7 +123,7 @@ std::unique_ptr<sss::AlbedoInversion> shared_table(const sss::AlbedoTableConfig&
 }  // namespace
 
 MediumAt medium_at(const SubsurfaceParams& p, const std::vector<Texture>* textures, const TextureContext& at) {
-  MediumAt m{p.sigma_a, p.sigma_s, p.reflectance, p.mfp};
+  MediumAt m{p.sigma_a, p.sigma_s, p.reflectance, p.mfp, p.scale};
   if (!textures || !p.textured()) return m;
   // Lengths are divided by scale, coefficients multiplied (pbrt-v4), as for constants.
   auto texture = [&](int index, float factor, float lo, float hi) {
@@ -136,6 +136,14 @@ MediumAt medium_at(const SubsurfaceParams& p, const std::vector<Texture>* textur
   if (p.mfp_texture >= 0) m.mfp = texture(p.mfp_texture, 1 / p.scale, kTiny, kHuge);
   if (p.sigma_a_texture >= 0) m.sigma_a = texture(p.sigma_a_texture, p.scale, 0, kHuge);
   if (p.sigma_s_texture >= 0) m.sigma_s = texture(p.sigma_s_texture, p.scale, 0, kHuge);
+  if (p.scale_texture >= 0) {
+    // On top of the constant scale (1 when textured): coefficients times s, lengths over s.
+    const float s = texture(p.scale_texture, 1, kTiny, kHuge)[0];
+    m.scale *= s;
+    if (m.sigma_a) *m.sigma_a = *m.sigma_a * s;
+    if (m.sigma_s) *m.sigma_s = *m.sigma_s * s;
+    if (m.mfp) *m.mfp = *m.mfp / s;
+  }
   return m;
 }
 

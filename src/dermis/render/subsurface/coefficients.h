@@ -24,6 +24,7 @@ namespace dermis {
 // coefficients or (reflectance, mfp).
 struct MediumAt {
   std::optional<RGB> sigma_a, sigma_s, reflectance, mfp;
+  float scale = 1;  // the scale there (already applied above): the material's, times its texture
 };
 
 // The material's textures evaluated at `at` (textures: the scene's; reflectance clamped

@@ -40,7 +40,7 @@ sss::ProfileRGB make_profile(const SubsurfaceParams& p, const MediumAt& at,
       // d'Eon & Luebke's variances are in mm; `scale` multiplies coefficients, i.e.
       // divides lengths, so scene units per mm = 1 / scale. Weights times the albedo
       // when reflectance is given.
-      return sss::make_skin_rgb(1.0 / p.scale, at.reflectance ? *at.reflectance : RGB(1.0f));
+      return sss::make_skin_rgb(1.0 / at.scale, at.reflectance ? *at.reflectance : RGB(1.0f));
     case Profile::Tabulated:
       return sss::make_tabulated_rgb(table, A, l);
   }
