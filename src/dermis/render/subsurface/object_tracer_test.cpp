@@ -106,6 +106,38 @@ TEST(WalkMethodOnItsOwn, ConservesEnergyInANonAbsorbingSphere) {
   }
 }
 
+// A walk's exit is a hit of its own: its surface coordinates are those of the exit point
+// (where a textured roughness is read), not the entry's: against a direct intersection
+// of the sphere at the exit point.
+TEST(WalkMethodOnItsOwn, ExitsCarryTheirOwnSurfaceCoordinates) {
+  Spheres s({sphere({0, 0, 0}, 1)});
+  const std::vector<int> objects{0};
+  SubsurfaceParams p;
+  p.method = SubsurfaceParams::Method::RandomWalk;
+  p.sigma_a = RGB(0.1f);
+  p.sigma_s = RGB(2);
+  const SubsurfaceMaterial m = make_subsurface_material(p);
+  PathCounters counters;
+  const SurfaceHit entry = hit_from(s.embree, {0, 0, 5}, {0, 0, -1});
+  const ObjectTracer tracer(s.embree, objects, entry, counters);
+  auto no_irradiance = [](Vec3, Vec3, float, Sampler&) { return RGB(0); };
+  auto black = [](const SurfaceHit&) { return RGB(0); };
+  auto no_light = [](Vec3, Vec3, const BSDF&, Vec3, Sampler&) { return RGB(0); };
+  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance, black, no_light};
+  int far = 0;
+  for (int i = 0; i < 500; ++i) {
+    Sampler sampler(SamplerKind::Independent, 7, uint64_t(i), 0);
+    SubsurfaceExit ex;
+    if (!sample_subsurface_exit(m, e, sampler, ex)) continue;
+    const Vec3 n = normalize(ex.hit.p);
+    const SurfaceHit direct = hit_from(s.embree, n * 1.5f, -n);
+    EXPECT_NEAR(ex.hit.uv.x, direct.uv.x, 1e-3f) << i;
+    EXPECT_NEAR(ex.hit.uv.y, direct.uv.y, 1e-3f) << i;
+    far += length(ex.hit.p - entry.p) > 0.5f;
+  }
+  EXPECT_GT(far, 50);  // exits away from the entry, whose coordinates differ
+}
+
 // A probe exit on a sphere lies on the sphere, with a finite, non-negative weight.
 TEST(ProbeMethodOnItsOwn, ExitsLieOnTheObject) {
   Spheres s({sphere({0, 0, 0}, 1), sphere({0, 0, -1.5f}, 0.3f)});

@@ -108,7 +108,7 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3
       start_n = n;
       continue;
     }
-    out.hit = in;
+    out.hit = last;  // the exit's own shape and surface coordinates (a textured roughness there)
     out.hit.p = res.exit_p;
     out.hit.ng = out.hit.ns = res.exit_n;
     out.weight = weight;
