@@ -11,23 +11,13 @@
 #include "dermis/geometry/sphere_tessellation.h"
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
+#include "support/lit_sphere_scene.h"
 #include "support/pixel_statistics.h"
 
 namespace dermis {
 namespace {
 
-const char* kHeader = R"(LookAt 0 -4 1.5  0 0 0  0 0 1
-Camera "perspective" "float fov" 34
-Film "rgb" "integer xresolution" 12 "integer yresolution" 12
-Integrator "volpath" "integer maxdepth" 100000
-WorldBegin
-LightSource "infinite" "rgb L" [0.6 0.7 0.8]
-AttributeBegin
-  AreaLightSource "diffuse" "rgb L" [6 6 6]
-  Translate 2 -2 3
-  Shape "sphere" "float radius" 0.5
-AttributeEnd
-)";
+const std::string kHeader = testing::lit_sphere_header(12);
 
 // A unit sphere as triangle meshes: whole, or its triangles with centroid z > 0 and
 // z <= 0 as two shapes (the lit top and the bottom: light must cross between them).
@@ -50,7 +40,7 @@ std::string sphere_meshes(bool split, const std::string& material_top, const std
 
 testing::PixelStatistics render(const std::string& scene, uint64_t seed, int spp = 64) {
   Diagnostics diag;
-  auto sc = build_render_scene(parse_scene_string(std::string(kHeader) + scene), diag);
+  auto sc = build_render_scene(parse_scene_string(kHeader + scene), diag);
   return testing::pixel_statistics(*sc, spp, seed);
 }
 

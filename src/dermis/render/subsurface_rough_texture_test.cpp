@@ -16,31 +16,16 @@
 #include "dermis/render/scene_preparation.h"
 #include "dermis/render/volumetric_texture.h"
 #include "dermis/scene/parser.h"
-#include "support/pixel_statistics.h"
+#include "support/lit_sphere_scene.h"
 
 namespace dermis {
 namespace {
 
-const char* kHeader = R"(LookAt 0 -4 1.5  0 0 0  0 0 1
-Camera "perspective" "float fov" 34
-Film "rgb" "integer xresolution" 16 "integer yresolution" 16
-Integrator "volpath" "integer maxdepth" 100000
-WorldBegin
-LightSource "infinite" "rgb L" [0.6 0.7 0.8]
-LightSource "distant" "point3 from" [1 -1 2] "point3 to" [0 0 0] "rgb L" [2 2 2]
-AttributeBegin
-  AreaLightSource "diffuse" "rgb L" [6 6 6]
-  Translate 2 -2 3
-  Shape "sphere" "float radius" 0.5
-AttributeEnd
-)";
+const std::string kHeader = testing::lit_sphere_header(
+    16, "LightSource \"distant\" \"point3 from\" [1 -1 2] \"point3 to\" [0 0 0] \"rgb L\" [2 2 2]\n");
 
 void expect_same_picture(const std::string& a, const std::string& b, int spp) {
-  Diagnostics diag;
-  auto sa = build_render_scene(parse_scene_string(a), diag);
-  auto sb = build_render_scene(parse_scene_string(b), diag);
-  testing::expect_same_region_means(testing::pixel_statistics(*sa, spp, 41), testing::pixel_statistics(*sb, spp, 42), 4,
-                                    4);
+  testing::expect_same_picture(a, b, spp, 41);
 }
 
 // Roughness 0.0625: alpha 0.25, a node of the exit-lobe tables ((k / 16)^2) and of the albedo
@@ -61,9 +46,9 @@ TEST(SubsurfaceTexturedRoughness, AConstantTextureRendersAsTheConstant) {
         Case{"volumetric", albedo + R"("string method" "volumetric")", 256}}) {
     SCOPED_TRACE(c.what);
     const std::string textured =
-        std::string(kHeader) + texture + "Material \"subsurface\" " + c.params + " \"texture roughness\" \"r\"\nShape \"sphere\"\n";
+        kHeader + texture + "Material \"subsurface\" " + c.params + " \"texture roughness\" \"r\"\nShape \"sphere\"\n";
     const std::string constant =
-        std::string(kHeader) + "Material \"subsurface\" " + c.params + " \"float roughness\" 0.0625\nShape \"sphere\"\n";
+        kHeader + "Material \"subsurface\" " + c.params + " \"float roughness\" 0.0625\nShape \"sphere\"\n";
     expect_same_picture(textured, constant, c.spp);
   }
 }
@@ -74,11 +59,11 @@ TEST(SubsurfaceTexturedRoughness, TheVolumetricMediumAtAnEntryIsTheConstantsMedi
   const std::string material = R"(Material "subsurface" "rgb reflectance" [0.7 0.5 0.3] "rgb mfp" [0.4 0.3 0.2] "float eta" 1.4 "string method" "volumetric" )";
   Diagnostics diag;
   auto textured = build_render_scene(
-      parse_scene_string(std::string(kHeader) + "Texture \"r\" \"float\" \"constant\" \"float value\" 0.0625\n" +
+      parse_scene_string(kHeader + "Texture \"r\" \"float\" \"constant\" \"float value\" 0.0625\n" +
                          material + "\"texture roughness\" \"r\"\nShape \"sphere\"\n"),
       diag);
   auto constant = build_render_scene(
-      parse_scene_string(std::string(kHeader) + material + "\"float roughness\" 0.0625\nShape \"sphere\"\n"), diag);
+      parse_scene_string(kHeader + material + "\"float roughness\" 0.0625\nShape \"sphere\"\n"), diag);
   ASSERT_EQ(textured->volumetric_media.size(), 1u);
   const int m = textured->volumetric_media[0].medium;
   ASSERT_EQ(textured_volumetric(*textured, m), 0);  // a medium per entry point
@@ -94,10 +79,10 @@ TEST(SubsurfaceTexturedRoughness, ACheckerboardWalkEqualsAMediumInsideTheSameTex
   const std::string texture =
       "Texture \"r\" \"float\" \"checkerboard\" \"float uscale\" 16 \"float vscale\" 8 \"float tex1\" 0.02 \"float tex2\" 0.6\n";
   const char* coefficients = R"("rgb sigma_a" [0.05 0.15 0.3] "rgb sigma_s" [2 3 4] "float g" 0.3)";
-  const std::string walk = std::string(kHeader) + texture + "Material \"subsurface\" " + coefficients +
+  const std::string walk = kHeader + texture + "Material \"subsurface\" " + coefficients +
                            R"( "float eta" 1.4 "texture roughness" "r" "string method" "randomwalk" "string boundary" "dielectric")"
                            "\nShape \"sphere\"\n";
-  const std::string volume = std::string(kHeader) + texture + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " +
+  const std::string volume = kHeader + texture + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " +
                              coefficients + "\nMediumInterface \"m\" \"\"\n" +
                              R"(Material "dielectric" "float eta" 1.4 "texture roughness" "r")" + "\nShape \"sphere\"\n";
   expect_same_picture(walk, volume, 128);

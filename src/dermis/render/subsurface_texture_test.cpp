@@ -22,7 +22,7 @@
 #include "dermis/render/subsurface/profile_from_params.h"
 #include "dermis/scene/parser.h"
 #include "dermis/sss/profiles/quadrature.h"
-#include "support/pixel_statistics.h"
+#include "support/lit_sphere_scene.h"
 
 namespace dermis {
 namespace {
@@ -135,34 +135,17 @@ TEST(SubsurfaceTextures, CheckerboardSlabReturnsEachSquaresReflectanceForEveryMe
 // probes (reflectance and mfp; the Skin6 profile, whose mm it converts) and the volumetric
 // reference; region means within 4 standard errors of the difference.
 TEST(SubsurfaceTextures, ATexturedScaleRendersAsTheSameConstantScale) {
-  const std::string header = R"(LookAt 0 -4 1.5  0 0 0  0 0 1
-Camera "perspective" "float fov" 34
-Film "rgb" "integer xresolution" 16 "integer yresolution" 16
-Integrator "volpath" "integer maxdepth" 100000
-WorldBegin
-LightSource "infinite" "rgb L" [0.6 0.7 0.8]
-AttributeBegin
-  AreaLightSource "diffuse" "rgb L" [6 6 6]
-  Translate 2 -2 3
-  Shape "sphere" "float radius" 0.5
-AttributeEnd
-Texture "s" "float" "constant" "float value" 2.5
-)";
+  const std::string header =
+      testing::lit_sphere_header(16) + "Texture \"s\" \"float\" \"constant\" \"float value\" 2.5\n";
   for (const std::string params :
        {R"("rgb sigma_a" [0.02 0.06 0.12] "rgb sigma_s" [0.8 1.2 1.6] "string method" "randomwalk")",
         R"("rgb reflectance" [0.7 0.5 0.3] "rgb mfp" [1 0.75 0.5] "string method" "disk")",
         R"("rgb reflectance" [0.7 0.5 0.3] "rgb mfp" [1 1 1] "string profile" "skin6" "string method" "disk")",
         R"("rgb reflectance" [0.7 0.5 0.3] "rgb mfp" [1 0.75 0.5] "string method" "volumetric")"}) {
     SCOPED_TRACE(params);
-    Diagnostics diag;
-    auto textured = build_render_scene(
-        parse_scene_string(header + "Material \"subsurface\" " + params + " \"texture scale\" \"s\"\nShape \"sphere\"\n"),
-        diag);
-    auto constant = build_render_scene(
-        parse_scene_string(header + "Material \"subsurface\" " + params + " \"float scale\" 2.5\nShape \"sphere\"\n"),
-        diag);
-    testing::expect_same_region_means(testing::pixel_statistics(*textured, 64, 51),
-                                      testing::pixel_statistics(*constant, 64, 52), 4, 4);
+    testing::expect_same_picture(header + "Material \"subsurface\" " + params + " \"texture scale\" \"s\"\nShape \"sphere\"\n",
+                                 header + "Material \"subsurface\" " + params + " \"float scale\" 2.5\nShape \"sphere\"\n",
+                                 64, 51);
   }
 }
 

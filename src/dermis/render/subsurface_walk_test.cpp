@@ -8,40 +8,26 @@
 
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
+#include "support/lit_sphere_scene.h"
 #include "support/pixel_statistics.h"
 
 namespace dermis {
 namespace {
 
-const char* kHeader = R"(LookAt 0 -4 1.5  0 0 0  0 0 1
-Camera "perspective" "float fov" 34
-Film "rgb" "integer xresolution" 16 "integer yresolution" 16
-Integrator "volpath" "integer maxdepth" 100000
-WorldBegin
-LightSource "infinite" "rgb L" [0.6 0.7 0.8]
-AttributeBegin
-  AreaLightSource "diffuse" "rgb L" [6 6 6]
-  Translate 2 -2 3
-  Shape "sphere" "float radius" 0.5
-AttributeEnd
-)";
+const std::string kHeader = testing::lit_sphere_header(16);
 const char* kCoefficients = R"("rgb sigma_a" [0.05 0.15 0.3] "rgb sigma_s" [2 3 4] "float g" 0.3)";
 
 void expect_same_picture(const std::string& a, const std::string& b, int spp) {
-  Diagnostics diag;
-  auto sa = build_render_scene(parse_scene_string(a), diag);
-  auto sb = build_render_scene(parse_scene_string(b), diag);
-  testing::expect_same_region_means(testing::pixel_statistics(*sa, spp, 31), testing::pixel_statistics(*sb, spp, 32), 4,
-                                    4);
+  testing::expect_same_picture(a, b, spp, 31);
 }
 
 TEST(SubsurfaceRandomWalk, DielectricBoundaryEqualsAMediumInsideADielectric) {
   for (const char* sampling : {"classical", "mis"}) {
     SCOPED_TRACE(sampling);
-    std::string walk = std::string(kHeader) + "Material \"subsurface\" " + kCoefficients +
+    std::string walk = kHeader + "Material \"subsurface\" " + kCoefficients +
                        " \"float eta\" 1.4 \"string method\" \"randomwalk\" \"string boundary\" \"dielectric\" "
                        "\"string walksampling\" \"" + sampling + "\"\nShape \"sphere\"\n";
-    std::string volume = std::string(kHeader) + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " + kCoefficients +
+    std::string volume = kHeader + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " + kCoefficients +
                          "\nMediumInterface \"m\" \"\"\nMaterial \"dielectric\" \"float eta\" 1.4\nShape \"sphere\"\n";
     expect_same_picture(walk, volume, 96);
   }
@@ -52,13 +38,13 @@ TEST(SubsurfaceRandomWalk, DielectricBoundaryEqualsAMediumInsideADielectric) {
 // sampling it from inside; the same physics as the medium inside a rough dielectric.
 TEST(SubsurfaceRandomWalk, RoughDielectricBoundaryEqualsAMediumInsideARoughDielectric) {
   const std::string rough = " \"float eta\" 1.4 \"float roughness\" 0.3";
-  std::string walk = std::string(kHeader) + "Material \"subsurface\" " + kCoefficients + rough +
+  std::string walk = kHeader + "Material \"subsurface\" " + kCoefficients + rough +
                      " \"string method\" \"randomwalk\" \"string boundary\" \"dielectric\"\nShape \"sphere\"\n";
-  std::string volume = std::string(kHeader) + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " + kCoefficients +
+  std::string volume = kHeader + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " + kCoefficients +
                        "\nMediumInterface \"m\" \"\"\nMaterial \"dielectric\"" + rough + "\nShape \"sphere\"\n";
   expect_same_picture(walk, volume, 96);
   // And the volumetric method with the same parameters is that rough dielectric.
-  std::string volumetric = std::string(kHeader) + "Material \"subsurface\" " + kCoefficients + rough +
+  std::string volumetric = kHeader + "Material \"subsurface\" " + kCoefficients + rough +
                            " \"string method\" \"volumetric\"\nShape \"sphere\"\n";
   expect_same_picture(volumetric, volume, 96);
 }
@@ -89,7 +75,7 @@ LightSource "point" "point3 from" [-1.5 -1 -1] "rgb I" [3 3 3]
 TEST(SubsurfaceRandomWalk, SobolSamplerGivesTheMeanOfIndependentSampling) {
   Diagnostics diag;
   auto sc = build_render_scene(
-      parse_scene_string(std::string(kHeader) + "Material \"subsurface\" " + kCoefficients +
+      parse_scene_string(kHeader + "Material \"subsurface\" " + kCoefficients +
                          " \"float eta\" 1.4 \"string method\" \"randomwalk\" \"string boundary\" \"dielectric\"\n"
                          "Shape \"sphere\"\n"),
       diag);
@@ -102,7 +88,7 @@ TEST(SubsurfaceRandomWalk, SobolSamplerGivesTheMeanOfIndependentSampling) {
 TEST(SubsurfaceRandomWalk, SplittingTheEntryKeepsTheMean) {
   Diagnostics diag;
   auto sc = build_render_scene(
-      parse_scene_string(std::string(kHeader) + "Material \"subsurface\" " + kCoefficients +
+      parse_scene_string(kHeader + "Material \"subsurface\" " + kCoefficients +
                          " \"float eta\" 1.4 \"string method\" \"randomwalk\"\nShape \"sphere\"\n"),
       diag);
   PathStart no_split;
@@ -143,9 +129,9 @@ AttributeEnd
 }
 
 TEST(SubsurfaceRandomWalk, MatchedBoundaryEqualsAMediumInsideAnInterface) {
-  std::string walk = std::string(kHeader) + "Material \"subsurface\" " + kCoefficients +
+  std::string walk = kHeader + "Material \"subsurface\" " + kCoefficients +
                      " \"string method\" \"randomwalk\" \"string boundary\" \"matched\"\nShape \"sphere\"\n";
-  std::string volume = std::string(kHeader) + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " + kCoefficients +
+  std::string volume = kHeader + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " + kCoefficients +
                        "\nMediumInterface \"m\" \"\"\nMaterial \"interface\"\nShape \"sphere\"\n";
   // The walk leaves straight through the matched boundary without next-event estimation
   // at its exit; the medium inside an interface does next-event estimation inside:

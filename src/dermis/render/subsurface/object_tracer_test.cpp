@@ -37,6 +37,15 @@ SurfaceHit hit_from(const EmbreeScene& scene, Vec3 o, Vec3 d) {
   return h;
 }
 
+// What a method on its own sees around an entry (seen along +z): no light, and no other
+// object inside its own.
+const auto kNoIrradiance = [](Vec3, Vec3, float, Sampler&) { return RGB(0); };
+const auto kBlack = [](const SurfaceHit&) { return RGB(0); };
+const auto kNoLight = [](Vec3, Vec3, const BSDF&, Vec3, Sampler&) { return RGB(0); };
+SubsurfaceEntry bare_entry(const SurfaceHit& hit, const ObjectTracer& tracer) {
+  return {hit, Vec3(0, 0, 1), tracer, kNoIrradiance, kBlack, kNoLight};
+}
+
 TEST(ObjectTracer, SeesOnlyTheShapesOfItsObject) {
   // Three spheres on the x axis; shapes 0 and 2 form object 0, shape 1 is object 1.
   Spheres s({sphere({0, 0, 0}, 1), sphere({3, 0, 0}, 1), sphere({6, 0, 0}, 1)});
@@ -83,10 +92,7 @@ TEST(WalkMethodOnItsOwn, ConservesEnergyInANonAbsorbingSphere) {
   PathCounters counters;
   const SurfaceHit entry = hit_from(s.embree, {0, 0, 5}, {0, 0, -1});
   const ObjectTracer tracer(s.embree, objects, entry, counters);
-  auto no_irradiance = [](Vec3, Vec3, float, Sampler&) { return RGB(0); };
-  auto black = [](const SurfaceHit&) { return RGB(0); };
-  auto no_light = [](Vec3, Vec3, const BSDF&, Vec3, Sampler&) { return RGB(0); };
-  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance, black, no_light};
+  const SubsurfaceEntry e = bare_entry(entry, tracer);
   const int n = 20000;
   double sum[3] = {}, sum2[3] = {};
   for (int i = 0; i < n; ++i) {
@@ -120,10 +126,7 @@ TEST(WalkMethodOnItsOwn, ExitsCarryTheirOwnSurfaceCoordinates) {
   PathCounters counters;
   const SurfaceHit entry = hit_from(s.embree, {0, 0, 5}, {0, 0, -1});
   const ObjectTracer tracer(s.embree, objects, entry, counters);
-  auto no_irradiance = [](Vec3, Vec3, float, Sampler&) { return RGB(0); };
-  auto black = [](const SurfaceHit&) { return RGB(0); };
-  auto no_light = [](Vec3, Vec3, const BSDF&, Vec3, Sampler&) { return RGB(0); };
-  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance, black, no_light};
+  const SubsurfaceEntry e = bare_entry(entry, tracer);
   int far = 0;
   for (int i = 0; i < 500; ++i) {
     Sampler sampler(SamplerKind::Independent, 7, uint64_t(i), 0);
@@ -150,10 +153,7 @@ TEST(ProbeMethodOnItsOwn, ExitsLieOnTheObject) {
   PathCounters counters;
   const SurfaceHit entry = hit_from(s.embree, {0, 0, 5}, {0, 0, -1});
   const ObjectTracer tracer(s.embree, objects, entry, counters);
-  auto no_irradiance = [](Vec3, Vec3, float, Sampler&) { return RGB(0); };
-  auto black = [](const SurfaceHit&) { return RGB(0); };
-  auto no_light = [](Vec3, Vec3, const BSDF&, Vec3, Sampler&) { return RGB(0); };
-  const SubsurfaceEntry e{entry, Vec3(0, 0, 1), tracer, no_irradiance, black, no_light};
+  const SubsurfaceEntry e = bare_entry(entry, tracer);
   int exits = 0;
   for (int i = 0; i < 2000; ++i) {
     Sampler sampler(SamplerKind::Independent, 5, uint64_t(i), 0);
