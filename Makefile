@@ -11,6 +11,8 @@ FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS ?= scene_parser ply_reader obj_assimp image_texture point_cloud
 SANITIZE_BUILD ?= build-asan
+# A compiler launcher for the sanitizer build (e.g. CCACHE=ccache); none by default.
+CCACHE ?=
 # Left out of the sanitizer run, each for a reason (docs/robustness.md):
 #   python_module  CPython is not built with ASan: the extension would need libasan
 #                  preloaded into /usr/bin/python3 (LD_PRELOAD) and LeakSanitizer would
@@ -58,7 +60,8 @@ fuzz: deps
 # hostile corpus runs with its CPU limit scaled for ASan (tests/hostile/CMakeLists.txt).
 test-sanitize: deps
 	cmake -S . -B $(SANITIZE_BUILD) -DDERMIS_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g"
+	  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g" \
+	  $(if $(CCACHE),-DCMAKE_CXX_COMPILER_LAUNCHER=$(CCACHE) -DCMAKE_C_COMPILER_LAUNCHER=$(CCACHE))
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target dermis dermis_tests \
 	  $(addsuffix _replay,$(addprefix fuzz_,$(FUZZ_TARGETS)))
 	$(SANITIZE_ENV) ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS) -E '$(SANITIZE_EXCLUDE)'
