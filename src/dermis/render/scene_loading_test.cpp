@@ -162,10 +162,38 @@ TEST(SceneLoading, LoopSubdivisionReportsByLevelAndStops) {
   };
   const LoadMonitor m = r.monitor();
   EXPECT_THROW(parse_scene_string(scene_with(tetra), "s.pbrt", ".", {}, &m), Interrupted);
-  // Stopped at the next level: 0, then the report that set the flag (level 4, the first
-  // one past 1%: 1360 of 38229 triangles), nothing after.
+  // Stopped at the next check: 0, then the report that set the flag (inside level 4, the
+  // first one past 1% of 38229 triangles), nothing after.
   EXPECT_EQ(r.count("subdividing (loopsubdiv)"), 2u);
   EXPECT_LT(r.last("subdividing (loopsubdiv)"), 0.1);
+}
+
+TEST(SceneLoading, LoopSubdivisionStopsInsideALevel) {
+  // One level of a flat 100 x 100 grid: 19602 triangles in, 78408 out. The stage counts
+  // the level as 78408 of 78408 (1 + 4/3) triangles, so the level ends at 3/7.
+  const int n = 100;
+  std::string points, indices;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) points += fmt::format("{} {} 0 ", i, j);
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i;
+      indices += fmt::format("{} {} {} {} {} {} ", a, a + 1, a + n + 1, a, a + n + 1, a + n);
+    }
+  const std::string grid = "Shape \"loopsubdiv\" \"integer levels\" 1 \"point3 P\" [" + points +
+                           "] \"integer indices\" [" + indices + "]";
+  Recorder r;
+  r.on_call = [&r](const std::string& stage, double f) {
+    if (stage == "subdividing (loopsubdiv)" && f > 0) r.cancel = true;
+  };
+  const LoadMonitor m = r.monitor();
+  EXPECT_THROW(parse_scene_string(scene_with(grid), "s.pbrt", ".", {}, &m), Interrupted);
+  // 0, then the first report past 1% (the check at triangle 4096 of the level's first
+  // pass: 3/7 * 0.4 * 4096 / 19602 = 0.036), which set the flag; the next check, 4096
+  // triangles later, stopped the level before its end at 3/7.
+  EXPECT_EQ(r.count("subdividing (loopsubdiv)"), 2u);
+  EXPECT_GT(r.last("subdividing (loopsubdiv)"), 0.0);
+  EXPECT_LT(r.last("subdividing (loopsubdiv)"), 3.0 / 7.0 - 0.05);
 }
 
 TEST(SceneLoading, ObjThroughAssimpReportsAndStops) {

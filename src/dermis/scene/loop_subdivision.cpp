@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <unordered_map>
@@ -24,16 +25,38 @@ struct Topology {
   std::vector<char> boundary;
 };
 
+// The part [from, to] of a caller's pass that one loop of `steps` iterations is:
+// reports (from + (to - from) i / steps) to the progress every kLoopCheckEvery steps.
+class PassPart {
+ public:
+  PassPart(const LoopProgress& progress, double from, double to, std::size_t steps)
+      : progress_(progress), from_(from), to_(to), steps_(steps) {}
+  void at(std::size_t i) const {
+    if (progress_ && i % kLoopCheckEvery == 0)
+      progress_(from_ + (to_ - from_) * double(i) / double(std::max<std::size_t>(steps_, 1)));
+  }
+
+ private:
+  const LoopProgress& progress_;
+  double from_, to_;
+  std::size_t steps_;
+};
+
 uint64_t edge_key(uint32_t a, uint32_t b) { return a < b ? (uint64_t(a) << 32) | b : (uint64_t(b) << 32) | a; }
 
-Topology build_topology(const LoopMesh& m) {
+// Reports its triangles over [from, (from + to) / 2] of the progress, its vertices over
+// the rest.
+Topology build_topology(const LoopMesh& m, const LoopProgress& progress, double from, double to) {
   const std::size_t nv = m.positions.size(), nf = m.indices.size() / 3;
   Topology t;
   t.face_edges.resize(3 * nf);
   std::unordered_map<uint64_t, uint32_t> edge_of;
   edge_of.reserve(3 * nf);
   std::vector<std::vector<uint32_t>> faces_of(nv);
+  const double mid = (from + to) / 2;
+  const PassPart faces_part(progress, from, mid, nf), vertices_part(progress, mid, to, nv);
   for (std::size_t f = 0; f < nf; ++f) {
+    faces_part.at(f);
     const uint32_t* tri = &m.indices[3 * f];
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0])
       throw std::invalid_argument(fmt::format("triangle {} repeats a vertex ({} {} {})", f, tri[0], tri[1], tri[2]));
@@ -61,6 +84,7 @@ Topology build_topology(const LoopMesh& m) {
   // triangle of the fan has as its `prev`.
   t.ring.resize(nv);
   for (uint32_t v = 0; v < nv; ++v) {
+    vertices_part.at(v);
     const std::vector<uint32_t>& fs = faces_of[v];
     if (fs.empty()) continue;
     auto next_prev = [&](uint32_t f, uint32_t& next, uint32_t& prev) {
@@ -125,12 +149,16 @@ double loop_beta(std::size_t n) {
 
 }  // namespace
 
-LoopMesh loop_refine(const LoopMesh& m) {
-  const Topology t = build_topology(m);
+LoopMesh loop_refine(const LoopMesh& m, const LoopProgress& progress) {
+  // The topology is most of the work: 0.8 of the pass; the new points and triangles the rest.
+  const Topology t = build_topology(m, progress, 0, 0.8);
   const std::size_t nv = m.positions.size(), nf = m.indices.size() / 3;
+  const PassPart vertices_part(progress, 0.8, 0.85, nv), edges_part(progress, 0.85, 0.9, t.edges.size()),
+      faces_part(progress, 0.9, 1, nf);
   LoopMesh out;
   out.positions.resize(nv + t.edges.size());
   for (std::size_t v = 0; v < nv; ++v) {
+    vertices_part.at(v);
     const std::vector<uint32_t>& r = t.ring[v];
     const Vec3d p(m.positions[v]);
     Vec3d q;
@@ -149,6 +177,7 @@ LoopMesh loop_refine(const LoopMesh& m) {
     out.positions[v] = Vec3(q);
   }
   for (std::size_t e = 0; e < t.edges.size(); ++e) {
+    edges_part.at(e);
     const Topology::Edge& ed = t.edges[e];
     const Vec3d a(m.positions[ed.v[0]]), b(m.positions[ed.v[1]]);
     Vec3d q;
@@ -162,6 +191,7 @@ LoopMesh loop_refine(const LoopMesh& m) {
   }
   out.indices.reserve(12 * nf);
   for (std::size_t f = 0; f < nf; ++f) {
+    faces_part.at(f);
     const uint32_t* tri = &m.indices[3 * f];
     const uint32_t e01 = uint32_t(nv + t.face_edges[3 * f]), e12 = uint32_t(nv + t.face_edges[3 * f + 1]),
                    e20 = uint32_t(nv + t.face_edges[3 * f + 2]);
@@ -170,10 +200,12 @@ LoopMesh loop_refine(const LoopMesh& m) {
   return out;
 }
 
-std::vector<Vec3> loop_limit_positions(const LoopMesh& m) {
-  const Topology t = build_topology(m);
+std::vector<Vec3> loop_limit_positions(const LoopMesh& m, const LoopProgress& progress) {
+  const Topology t = build_topology(m, progress, 0, 0.8);
   std::vector<Vec3> out(m.positions.size());
+  const PassPart vertices_part(progress, 0.8, 1, m.positions.size());
   for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    vertices_part.at(v);
     const std::vector<uint32_t>& r = t.ring[v];
     const Vec3d p(m.positions[v]);
     if (r.empty()) {
@@ -193,12 +225,14 @@ std::vector<Vec3> loop_limit_positions(const LoopMesh& m) {
   return out;
 }
 
-std::vector<Vec3> loop_limit_normals(const LoopMesh& m) {
-  const Topology t = build_topology(m);
+std::vector<Vec3> loop_limit_normals(const LoopMesh& m, const LoopProgress& progress) {
+  const Topology t = build_topology(m, progress, 0, 0.7);
   const std::size_t nv = m.positions.size();
+  const PassPart faces_part(progress, 0.7, 0.8, m.indices.size() / 3), vertices_part(progress, 0.8, 1, nv);
   // The side the triangles face: the sum of their area vectors around each vertex.
   std::vector<Vec3d> facing(nv, Vec3d(0, 0, 0));
   for (std::size_t f = 0; f < m.indices.size() / 3; ++f) {
+    faces_part.at(f);
     const uint32_t* tri = &m.indices[3 * f];
     const Vec3d a(m.positions[tri[0]]), b(m.positions[tri[1]]), c(m.positions[tri[2]]);
     const Vec3d n = cross(b - a, c - a);
@@ -206,6 +240,7 @@ std::vector<Vec3> loop_limit_normals(const LoopMesh& m) {
   }
   std::vector<Vec3> out(nv, Vec3(0, 0, 1));
   for (std::size_t v = 0; v < nv; ++v) {
+    vertices_part.at(v);
     const std::vector<uint32_t>& r = t.ring[v];
     if (r.empty()) continue;
     const std::size_t n = r.size();
@@ -256,20 +291,27 @@ TriangleMeshDesc loop_subdivision_surface(const std::vector<Vec3>& positions, co
                                               indices.size() / 3, kMaxLoopTriangles));
   }
   // Progress in triangles made: each level makes 4x its input's; the limit positions
-  // and normals count as one more pass over the final triangles.
+  // and normals count as one more pass over the final triangles. Inside each pass the
+  // cancel flag is checked every kLoopCheckEvery triangles or vertices.
   LoadStage stage(monitor, "subdividing (loopsubdiv)");
   const double total = double(triangles) * (1 + 4.0 / 3.0);
-  double made = 0;
+  double made = 0, span = 0;  // the pass under way: triangles [made, made + span]
+  const LoopProgress in_pass = [&](double f) { stage.update((made + f * span) / total); };
+  const LoopProgress none;
+  const LoopProgress& progress = monitor ? in_pass : none;
   LoopMesh m{positions, indices};
   for (int l = 0; l < levels; ++l) {
-    m = loop_refine(m);
-    made += double(m.indices.size() / 3);
+    span = 4 * double(m.indices.size() / 3);
+    m = loop_refine(m, progress);
+    made += span;
     stage.update(made / total);
   }
   TriangleMeshDesc out;
-  out.positions = loop_limit_positions(m);
-  stage.update((made + 0.5 * double(triangles)) / total);
-  out.normals = loop_limit_normals(m);
+  span = 0.5 * double(triangles);
+  out.positions = loop_limit_positions(m, progress);
+  made += span;
+  stage.update(made / total);
+  out.normals = loop_limit_normals(m, progress);
   out.indices = std::move(m.indices);
   stage.finish();
   return out;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "dermis/core/load_monitor.h"
@@ -22,24 +23,30 @@ struct LoopMesh {
   std::vector<uint32_t> indices;
 };
 
+// Called with the fraction of one pass over a mesh done (0 to 1, non-decreasing) every
+// kLoopCheckEvery triangles or vertices; it may throw (Interrupted) to stop the pass.
+using LoopProgress = std::function<void(double fraction)>;
+inline constexpr std::size_t kLoopCheckEvery = 4096;
+
 // One level of Loop's rules. The old vertices keep their indices (moved by the even
 // rules); one new vertex per edge follows them; every triangle becomes four with its
 // orientation. Throws std::invalid_argument (the message says where) for a mesh that is
 // not a manifold as described above.
-LoopMesh loop_refine(const LoopMesh& mesh);
+LoopMesh loop_refine(const LoopMesh& mesh, const LoopProgress& progress = {});
 
 // The limit surface's point and unit normal for every vertex of `mesh` (normals on the
 // side the triangles' winding, cross(p1 - p0, p2 - p0), points to).
-std::vector<Vec3> loop_limit_positions(const LoopMesh& mesh);
-std::vector<Vec3> loop_limit_normals(const LoopMesh& mesh);
+std::vector<Vec3> loop_limit_positions(const LoopMesh& mesh, const LoopProgress& progress = {});
+std::vector<Vec3> loop_limit_normals(const LoopMesh& mesh, const LoopProgress& progress = {});
 
 // The most triangles loop_subdivision_surface makes (levels beyond are refused).
 inline constexpr std::size_t kMaxLoopTriangles = std::size_t(1) << 25;
 
 // `levels` refinements, then limit positions and normals: pbrt-v4's "loopsubdiv".
 // Throws std::invalid_argument for a non-manifold mesh or too many triangles. With a
-// monitor: stage "subdividing (loopsubdiv)", reported and checked for cancellation
-// (Interrupted) between levels, by the triangles made so far.
+// monitor: stage "subdividing (loopsubdiv)", reported by the triangles made so far and
+// checked for cancellation (Interrupted) every kLoopCheckEvery triangles or vertices,
+// inside a level too.
 TriangleMeshDesc loop_subdivision_surface(const std::vector<Vec3>& positions, const std::vector<uint32_t>& indices,
                                           int levels, const LoadMonitor* monitor = nullptr);
 
