@@ -75,9 +75,14 @@ struct Recorder {
     for (std::size_t i = 0; i < calls.size(); ++i) {
       const bool first = i == 0 || calls[i - 1].first != calls[i].first;
       const bool last = i + 1 == calls.size() || calls[i + 1].first != calls[i].first;
-      if (first) EXPECT_EQ(calls[i].second, 0.0) << calls[i].first;
-      if (!first) EXPECT_GT(calls[i].second, calls[i - 1].second) << calls[i].first << " call " << i;
-      if (last && complete) EXPECT_EQ(calls[i].second, 1.0) << calls[i].first;
+      if (first) {
+        EXPECT_EQ(calls[i].second, 0.0) << calls[i].first;
+      } else {
+        EXPECT_GT(calls[i].second, calls[i - 1].second) << calls[i].first << " call " << i;
+      }
+      if (last && complete) {
+        EXPECT_EQ(calls[i].second, 1.0) << calls[i].first;
+      }
     }
   }
   std::size_t count(const std::string& stage) const {

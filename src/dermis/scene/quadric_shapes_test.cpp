@@ -33,7 +33,9 @@ TEST(ShapeCylinder, PbrtDefaultsOutwardNormalsAndUv) {
     const Vec3 p = m.positions[i];
     EXPECT_NEAR(std::hypot(p.x, p.y), 1.0, 1e-6);                   // radius 1
     EXPECT_NEAR(m.uvs[i].y, (p.z + 1) / 2, 1e-6);                   // v = (z - zmin) / (zmax - zmin), z in [-1, 1]
-    if (m.uvs[i].x > 1e-4f && m.uvs[i].x < 1 - 1e-4f) EXPECT_NEAR(m.uvs[i].x, phi_of(p) / (2 * kPiD), 1e-5);
+    if (m.uvs[i].x > 1e-4f && m.uvs[i].x < 1 - 1e-4f) {
+      EXPECT_NEAR(m.uvs[i].x, phi_of(p) / (2 * kPiD), 1e-5);
+    }
     EXPECT_NEAR(m.normals[i].x, p.x, 1e-6);                          // away from the axis
     EXPECT_NEAR(m.normals[i].z, 0, 1e-7);
   }
@@ -81,7 +83,9 @@ TEST(ShapeSphere, PartialSphereIsTheZoneArchimedesGives) {
     // pbrt-v4: v = (theta - theta_zmin) / (theta_zmax - theta_zmin): 0 at zmin, 1 at zmax.
     const double theta = std::acos(std::clamp(double(p.z) / length(Vec3d(p)), -1.0, 1.0));
     EXPECT_NEAR(m.uvs[i].y, (theta - theta_zmin) / (theta_zmax - theta_zmin), 2e-4);
-    if (m.uvs[i].x > 1e-4f && m.uvs[i].x < 1 - 1e-4f) EXPECT_NEAR(m.uvs[i].x, phi_of(p) / (1.5 * kPiD), 1e-5);
+    if (m.uvs[i].x > 1e-4f && m.uvs[i].x < 1 - 1e-4f) {
+      EXPECT_NEAR(m.uvs[i].x, phi_of(p) / (1.5 * kPiD), 1e-5);
+    }
     EXPECT_NEAR(dot(m.normals[i], p / 2.0f), 1, 1e-5);  // outward
   }
   double area = 0;
