@@ -203,7 +203,8 @@ TEST(RoughExitLobe, ConvergesToTheSmoothLobeAsRoughnessVanishes) {
 // (the largest of the three nearest), plus that table's own quadrature error (k = 64
 // against k = 128); c the same with c''. Near alpha = 0 both the smooth node and the
 // quadrature floor of a nearly specular table (5e-5, the test above) take over: the
-// alphas checked are those of textures that are rough.
+// alphas checked are those of textures that are rough. Each blend also integrates to one
+// against cos (its sampler is the tables' cosine sampler, tested above with eval / pdf).
 TEST(RoughExitLobe, TexturedTablesAreTheTablesAtTheirNodesAndInterpolateBetween) {
   const float eta = 1.4f;
   const RoughExitTables tables(eta);
@@ -243,6 +244,12 @@ TEST(RoughExitLobe, TexturedTablesAreTheTablesAtTheirNodesAndInterpolateBetween)
     const auto c = [](const RoughExitTable& t) { return double(t.norm); };
     EXPECT_LE(std::abs(double(blended.norm) - direct.norm), interpolation_error(c) + c_quadrature + kFloatSlack)
         << "alpha " << alpha;
+    // The blend is a lobe of its own: it integrates to one against cos (its c blended with T).
+    const BSDF b = exit_lobe(blended, eta);
+    const Frame f(kNormal);
+    const auto I = integrate_with_error(
+        [&](Vec3 w) { return double(bsdf_eval(b, kNormal, f.to_world(w))[0]); }, kPiD / 2, 1024, 64);
+    EXPECT_NEAR(I.value, 1.0, I.error + kFloatSlack) << "alpha " << alpha;
     std::printf("alpha %.2f: max |T blended - T direct| %.2e, |c blended - c direct| %.2e\n", alpha, worst,
                 std::abs(double(blended.norm) - direct.norm));
   }
