@@ -58,7 +58,7 @@ def scene():
 
 
 def cloud(points, localdisk):
-    return f"pointcloud:profile=dipole:localdisk={'true' if localdisk else 'false'}:pointdensity=100:maxpoints={points}"
+    return f"pointcloud:profile=dipole:localdisk={'true' if localdisk else 'false'}:pointdensity=100:illuminationerror=0:maxpoints={points}"
 
 
 ROWS = [  # label (no commas: --methods is comma-separated), points, local disk

@@ -93,7 +93,7 @@ void add_render_options(CLI::App& cmd, RenderArgs& args) {
   cmd.add_option("--time-limit", args.time_limit, "stop after this many seconds, keeping the samples taken")
       ->check(kNonNegative);
   cmd.add_flag("-q,--quiet", args.quiet, "no progress bar or summary");
-  cmd.add_option("--points", args.points, "points per `pointcloud` subsurface object (default: from its pointdensity)")
+  cmd.add_option("--points", args.points, "points per `pointcloud` subsurface object (default: chosen from the illumination, or its pointdensity; up to its maxpoints)")
       ->check(kPositive);
   cmd.add_option("--save-pointcloud", args.save_pointcloud, "save the point cloud(s) of the pre-pass to this file");
   cmd.add_option("--load-pointcloud", args.load_pointcloud, "load the point cloud(s) instead of computing them")
@@ -208,6 +208,8 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
     preparation = prepare_scene(*scene, prep);
     if (root)
       for (const std::string& w : preparation.point_clouds.warnings) fmt::print(stderr, "{}\n", w);
+    if (root && progress_style != Progress::Style::kQuiet)
+      for (const std::string& n : preparation.point_clouds.notes) fmt::print(stderr, "{}\n", n);
   } catch (const Interrupted&) {
     if (root) fmt::print(stderr, "{}: interrupted while preparing the scene; nothing written\n", program);
     return 130;

@@ -11,6 +11,7 @@
 #include "dermis/core/rng.h"
 #include "dermis/geometry/sphere_tessellation.h"
 #include "dermis/render/integrator.h"
+#include "dermis/sss/pointcloud/illumination_detail.h"
 #include "dermis/sss/pointcloud/point_cloud_io.h"
 #include "dermis/sss/pointcloud/point_distribution.h"
 
@@ -88,65 +89,111 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
       std::vector<uint32_t> indices;
       object_triangles(sc, shapes, positions, indices);
       double area = pc::mesh_area(positions, indices);
-      std::size_t count = options.points;
+      // The count: --points as given; else, with the local disk, the smallest cloud that
+      // represents the illumination (seed 001: the local disk integral frees the cloud from
+      // the profile's falloff, so it only has to sample E): a pilot, refined until the
+      // leave-one-out miss of E is within "illuminationerror", up to the budget
+      // ("maxpoints") and the profile's density ("pointdensity" per mfp^2: detail finer
+      // than that is blurred by the profile). Without the local disk, or with
+      // "illuminationerror" 0: the density, up to the budget.
+      std::size_t count = options.points, cap = options.points;
+      const bool adaptive = count == 0 && params.local_disk && params.illumination_error > 0;
+      const double mfp = m.min_mean_free_path();
+      const double wanted = pc::point_count_for_density(area, mfp, params.point_density);
       if (count == 0) {
-        // Points per mfp^2 (pointdensity) up to the budget (maxpoints): the density alone
-        // grows without bound with area / mfp^2.
-        const double mfp = m.min_mean_free_path();
-        const double wanted = pc::point_count_for_density(area, mfp, params.point_density);
-        count = std::size_t(std::min(wanted, double(params.max_points)));
-        if (wanted > double(params.max_points))
+        cap = std::max<std::size_t>(16, std::size_t(std::min(wanted, double(params.max_points))));
+        count = adaptive ? pc::pilot_point_count(cap) : cap;
+        if (!adaptive && wanted > double(params.max_points))
           report.warnings.push_back(fmt::format(
               "{}: warning: point cloud of object {}: \"pointdensity\" {} asks for {:.3g} points (area {:.3g}, mfp {:.3g}); "
               "using the \"maxpoints\" budget of {} (spacing {:.3g} instead of {:.3g}). Raise \"maxpoints\" or "
               "--points for a finer cloud",
               params.loc.str(), k, params.point_density, wanted, area, mfp, params.max_points,
-              std::sqrt(area / double(count)), mfp / std::sqrt(params.point_density)));
+              std::sqrt(area / double(cap)), mfp / std::sqrt(params.point_density)));
       }
       count = std::max<std::size_t>(count, 16);
-      {
-        // The blue-noise distribution (seconds for 10^5 points, single-threaded) shows its
-        // progress and stops on Ctrl-C. Alone, the process stops at once; in a group every
-        // process finishes it and they stop together after the irradiance loop below.
-        pc::DistributionOptions dist;
-        Progress placing(fmt::format("Point cloud {}: placing {} points", k, count),
-                         int64_t(pc::distribution_steps(count, dist)), style);
-        std::size_t reported = 0;
-        dist.progress = [&](std::size_t done) {
-          if (cancel && cancel->load(std::memory_order_relaxed) && group.size() == 1) throw Interrupted();
-          placing.advance(int64_t(done - reported));
-          reported = done;
-        };
-        cloud.points = pc::distribute_points(positions, indices, count, mix64(options.seed ^ (0x9e37 + object)), dist);
-        placing.finish();
-      }
-      cloud.irradiance.resize(cloud.points.size());
       const int samples = params.irradiance_samples;
       const int outside_medium = sc.shapes[shapes[0]].outside_medium;
-      Progress progress(fmt::format("Point cloud {} ({} points)", k, cloud.points.size()),
-                        int64_t(cloud.points.size()), style);
-      const auto [begin, end] = group.share(cloud.points.size());
-      tbb::parallel_for(begin, end, [&](std::size_t j) {
-        if (cancel && cancel->load(std::memory_order_relaxed)) return;
-        PathCounters counters;
-        const pc::SurfacePoint& p = cloud.points[j];
-        RGB sum(0);
-        for (int s = 0; s < samples; ++s) {
-          // Each point is a "pixel" of the sampler: its irradiance samples are stratified.
-          Sampler sampler(options.sampler, options.seed, 0x70c10d00000000ull + (uint64_t(object) << 32) + j,
-                          uint32_t(s));
-          RGB e = transmitted_irradiance(sc, p.position, p.normal, params.eta, outside_medium, sampler, counters,
-                                         rough);
-          if (e.is_finite()) sum += e;
+      std::vector<float> variance;  // of each point's luminance estimate (the refinement's noise)
+      std::string rounds;  // each refinement round's count and miss, for the report
+      for (;;) {
+        {
+          // The blue-noise distribution (seconds for 10^5 points, single-threaded) shows its
+          // progress and stops on Ctrl-C. Alone, the process stops at once; in a group every
+          // process finishes it and they stop together after the irradiance loop below.
+          pc::DistributionOptions dist;
+          Progress placing(fmt::format("Point cloud {}: placing {} points", k, count),
+                           int64_t(pc::distribution_steps(count, dist)), style);
+          std::size_t reported = 0;
+          dist.progress = [&](std::size_t done) {
+            if (cancel && cancel->load(std::memory_order_relaxed) && group.size() == 1) throw Interrupted();
+            placing.advance(int64_t(done - reported));
+            reported = done;
+          };
+          cloud.points = pc::distribute_points(positions, indices, count, mix64(options.seed ^ (0x9e37 + object)), dist);
+          placing.finish();
         }
-        cloud.irradiance[j] = sum / float(samples);
-        progress.advance();
-      });
-      if (group.any(cancel && cancel->load())) throw Interrupted();
-      static_assert(sizeof(RGB) == 3 * sizeof(float));
-      group.allgather(std::span<float>(cloud.irradiance.data()->c, 3 * cloud.irradiance.size()), 3);
-      progress.advance(int64_t(cloud.points.size() - (end - begin)));
-      progress.finish();
+        cloud.irradiance.assign(cloud.points.size(), RGB(0));
+        variance.assign(cloud.points.size(), 0.0f);
+        Progress progress(fmt::format("Point cloud {} ({} points)", k, cloud.points.size()),
+                          int64_t(cloud.points.size()), style);
+        const auto [begin, end] = group.share(cloud.points.size());
+        tbb::parallel_for(begin, end, [&](std::size_t j) {
+          if (cancel && cancel->load(std::memory_order_relaxed)) return;
+          PathCounters counters;
+          const pc::SurfacePoint& p = cloud.points[j];
+          // Two halves, each its own scrambled low-discrepancy set (a different sampler
+          // "pixel"): their difference is an unbiased estimate of the noise of their mean,
+          // which the refinement needs (the spread of stratified samples is not: it
+          // overstates their mean's noise). One sample: one half, the noise unknown (taken
+          // as 0, so that it counts as detail and the cloud grows rather than stops short).
+          const int halves = samples > 1 ? 2 : 1, per_half = (samples + 1) / 2;
+          RGB half_sum[2] = {RGB(0), RGB(0)};
+          for (int h = 0; h < halves; ++h)
+            for (int s = 0; s < per_half; ++s) {
+              Sampler sampler(options.sampler, options.seed,
+                              0x70c10d00000000ull + (uint64_t(object) << 32) + (uint64_t(h) << 31) + j, uint32_t(s));
+              RGB e = transmitted_irradiance(sc, p.position, p.normal, params.eta, outside_medium, sampler, counters,
+                                             rough);
+              if (e.is_finite()) half_sum[h] += e;
+            }
+          const RGB a = half_sum[0] / float(per_half), b = half_sum[1] / float(per_half);
+          cloud.irradiance[j] = halves == 2 ? (a + b) * 0.5f : a;
+          const float d = a.luminance() - b.luminance();
+          if (halves == 2) variance[j] = d * d / 4;  // Var((a + b) / 2) = (Var a + Var b) / 4 = E[(a - b)^2] / 4
+          progress.advance();
+        });
+        if (group.any(cancel && cancel->load())) throw Interrupted();
+        static_assert(sizeof(RGB) == 3 * sizeof(float));
+        group.allgather(std::span<float>(cloud.irradiance.data()->c, 3 * cloud.irradiance.size()), 3);
+        group.allgather(std::span<float>(variance), 1);
+        progress.advance(int64_t(cloud.points.size() - (end - begin)));
+        progress.finish();
+        if (!adaptive) break;
+        // Every process holds every point's values here, so all make the same choice.
+        std::vector<float> luminance(cloud.points.size());
+        for (std::size_t j = 0; j < luminance.size(); ++j) luminance[j] = cloud.irradiance[j].luminance();
+        const pc::IlluminationDetail detail = pc::illumination_detail(cloud.points, luminance, variance);
+        const double error = detail.relative_error();
+        const std::size_t next = pc::next_point_count(count, error, params.illumination_error, cap);
+        rounds += fmt::format("{}{} points: {:.2g}%", rounds.empty() ? "" : ", ", count, 100 * error);
+        if (next != count) {
+          count = next;
+          continue;
+        }
+        const std::string what = fmt::format(
+            "point cloud of object {}: {} points represent the illumination to {:.2g}% (\"illuminationerror\" {:.2g}%; "
+            "the leave-one-out miss of E, noise removed, by round: {}; budget {}, the profile's density {:.3g})",
+            k, count, 100 * error, 100 * params.illumination_error, rounds, params.max_points, wanted);
+        if (error > params.illumination_error && cap == std::size_t(params.max_points))
+          report.warnings.push_back(fmt::format(
+              "{}: warning: {}: the cloud is coarser than the illumination needs (the \"maxpoints\" budget stops it); "
+              "raise \"maxpoints\" or --points for a finer cloud",
+              params.loc.str(), what));
+        else
+          report.notes.push_back(what);
+        break;
+      }
     }
     report.prepass_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     if (!options.save_path.empty() && group.is_root()) {

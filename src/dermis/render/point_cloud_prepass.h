@@ -29,6 +29,7 @@ struct PointCloudReport {
   double prepass_seconds = 0;  // point distribution and irradiance (or loading)
   double build_seconds = 0;    // octrees and local disk tables
   std::vector<std::string> warnings;  // e.g. a cloud capped at its "maxpoints" budget
+  std::vector<std::string> notes;     // how each cloud's point count was chosen
 };
 
 // Computes the clouds of the scene's point-cloud objects (the scene's other subsurface

@@ -35,12 +35,16 @@ Shape "trianglemesh" "point3 P" [-60 -60 -30  60 -60 -30  60 60 -30  -60 60 -30
 )";
 }
 
+// Also with the count chosen from the illumination (local disk, no --points): the slab
+// under the uniform sky takes the 1024-point pilot (TheCountFollowsTheIllumination), a
+// spacing of ~6 mfp, which the local disk keeps within the same tolerance.
 TEST(PointCloudRender, FlatSlabReturnsFresnelPlusAlbedo) {
-  for (bool local_disk : {true, false}) {
-    SCOPED_TRACE(local_disk ? "local disk" : "plain octree");
+  for (int variant : {0, 1, 2}) {
+    const bool local_disk = variant != 1;
+    SCOPED_TRACE(variant == 0 ? "local disk" : variant == 1 ? "plain octree" : "local disk, count from the illumination");
     Diagnostics diag;
     PointCloudOptions o;
-    o.points = 30000;  // ~0.8 mfp spacing on the top face
+    o.points = variant == 2 ? 0 : 30000;  // ~0.8 mfp spacing on the top face
     auto sc = assemble_scene(parse_scene_string(slab(local_disk)), diag);
     PreparationOptions prep;
     prep.point_clouds = o;
@@ -103,17 +107,21 @@ TEST(PointCloudRender, CloudFilesForASceneWithoutCloudsAreWarnedAbout) {
   EXPECT_FALSE(std::filesystem::exists("saved.bin"));
 }
 
-// The density asks for area * pointdensity / mfp^2 points: the slab (area ~4.3e4, mfp 1)
-// at density 1 asks for ~4.3e4; a "maxpoints" budget of 2000 caps it, with a warning
-// that gives both spacings; within the budget there is no warning.
+// Without the refinement ("illuminationerror" 0) the density asks for area * pointdensity
+// / mfp^2 points: the slab (area ~4.3e4, mfp 1) at density 1 asks for ~4.3e4; a
+// "maxpoints" budget of 2000 caps it, with a warning that gives both spacings; within the
+// budget there is no warning.
+PreparationReport prepared(std::string text, const std::string& extra) {
+  const std::string samples = "\"integer irradiancesamples\" 4";
+  text.replace(text.find(samples), samples.size(), extra);
+  Diagnostics diag;
+  auto sc = assemble_scene(parse_scene_string(text), diag);
+  return prepare_scene(*sc, {});
+}
 TEST(PointCloudRender, TheCloudIsCappedAtItsBudgetWithAWarning) {
   auto points_with = [](const std::string& extra, std::vector<std::string>* warnings) {
-    std::string text = slab(true);
-    const std::string samples = "\"integer irradiancesamples\" 4";
-    text.replace(text.find(samples), samples.size(), "\"integer irradiancesamples\" 1 " + extra);
-    Diagnostics diag;
-    auto sc = assemble_scene(parse_scene_string(text), diag);
-    const PreparationReport r = prepare_scene(*sc, {});
+    const PreparationReport r =
+        prepared(slab(true), "\"integer irradiancesamples\" 1 \"float illuminationerror\" 0 " + extra);
     *warnings = r.point_clouds.warnings;
     return r.point_clouds.points;
   };
@@ -127,12 +135,49 @@ TEST(PointCloudRender, TheCloudIsCappedAtItsBudgetWithAWarning) {
   EXPECT_TRUE(warnings.empty());
 }
 
+// With the local disk the count follows the illumination (seed 001): under a uniform sky
+// a convex slab receives the same E everywhere, and the pilot (1024 points, for a cap of
+// the density's 43200) already represents it; a spot light's sharp-edged disk on the top
+// face does not, and the cloud grows to the profile's density (the cap; a note, no
+// warning) or, with a smaller budget, stops at the budget with a warning.
+std::string spot_slab() {
+  std::string text = slab(true);
+  const std::string sky = "LightSource \"infinite\" \"rgb L\" [1 1 1]";
+  text.replace(text.find(sky), sky.size(),
+               "LightSource \"spot\" \"point3 from\" [0 0 40] \"point3 to\" [0 0 0] \"float coneangle\" 20 "
+               "\"float conedeltaangle\" 1 \"rgb I\" [2000 2000 2000]");
+  return text;
+}
+TEST(PointCloudRender, TheCountFollowsTheIllumination) {
+  const PreparationReport sky = prepared(slab(true), "\"integer irradiancesamples\" 8");
+  EXPECT_EQ(sky.point_clouds.points, 1024u);
+  EXPECT_TRUE(sky.point_clouds.warnings.empty());
+  ASSERT_EQ(sky.point_clouds.notes.size(), 1u);
+  EXPECT_NE(sky.point_clouds.notes[0].find("point cloud of object 1: 1024 points represent the illumination to"),
+            std::string::npos) << sky.point_clouds.notes[0];
+
+  const PreparationReport spot = prepared(spot_slab(), "\"integer irradiancesamples\" 2");
+  EXPECT_EQ(spot.point_clouds.points, 43200u);
+  EXPECT_TRUE(spot.point_clouds.warnings.empty());
+  ASSERT_EQ(spot.point_clouds.notes.size(), 1u);
+  EXPECT_NE(spot.point_clouds.notes[0].find("by round: 1024 points: "), std::string::npos) << spot.point_clouds.notes[0];
+
+  const PreparationReport budget = prepared(spot_slab(), "\"integer irradiancesamples\" 2 \"integer maxpoints\" 3000");
+  EXPECT_EQ(budget.point_clouds.points, 3000u);
+  ASSERT_EQ(budget.point_clouds.warnings.size(), 1u);
+  EXPECT_NE(budget.point_clouds.warnings[0].find("<string>:7:1: warning: point cloud of object 1: 3000 points"),
+            std::string::npos) << budget.point_clouds.warnings[0];
+  EXPECT_NE(budget.point_clouds.warnings[0].find("coarser than the illumination needs"), std::string::npos);
+  EXPECT_TRUE(budget.point_clouds.notes.empty());
+}
+
 // The blue-noise placement (the first, single-threaded part of the pre-pass) shows its own
 // progress, and a cancel (Ctrl-C) stops it there: no irradiance pass is started.
 TEST(PointCloudRender, PlacingThePointsShowsProgressAndStopsOnCancel) {
   std::string text = slab(true);
   const std::string samples = "\"integer irradiancesamples\" 4";
-  text.replace(text.find(samples), samples.size(), "\"integer irradiancesamples\" 1 \"integer maxpoints\" 20000");
+  text.replace(text.find(samples), samples.size(),
+               "\"integer irradiancesamples\" 1 \"integer maxpoints\" 20000 \"float illuminationerror\" 0");
   Diagnostics diag;
   auto sc = assemble_scene(parse_scene_string(text), diag);
   prepare_scene(*sc, {});

@@ -75,7 +75,8 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"walksampling", "string", "mis", "random walk: classical, dwivedi or mis"},
     {"backwardguiding", "bool", "false", "random walk: also guide toward the object's far side"},
     {"albedoinversion", "string", "exact", "(reflectance, mfp) to coefficients: exact or fit"},
-    {"pointdensity", "float", "1", "point cloud: points per mean free path squared"},
+    {"pointdensity", "float", "1", "point cloud: points per mean free path squared (with the local disk: the most)"},
+    {"illuminationerror", "float", "0.02", "point cloud with the local disk: the relative error to which the points must represent the irradiance (0: the density, up to maxpoints)"},
     {"irradiancesamples", "integer", "64", "point cloud: irradiance samples per point"},
     {"maxpoints", "integer", "250000", "point cloud: the most points per object (a budget: fewer when the density asks more, with a warning)"},
     {"epsilon", "float", "0.05", "point cloud: the octree's solid-angle criterion"},
@@ -177,6 +178,11 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
       s.albedo_inversion_fit = p.param.strings[0] == "fit";
     }
     else if (n == "pointdensity") s.point_density = read_float(p);
+    else if (n == "illuminationerror") {
+      const float e = read_float(p);
+      if (!(e >= 0 && e <= 1)) throw SceneError(p.value_loc, "\"illuminationerror\" must be in [0, 1] (0: off)");
+      s.illumination_error = e;
+    }
     else if (n == "backwardguiding") s.backward_guiding = read_bool(p);
     else if (n == "localdisk") s.local_disk = read_bool(p);
     else if (n == "irradiancesamples") {

@@ -66,6 +66,10 @@ struct SubsurfaceParams {
   // which grows without bound for a large object of short mfp; the local disk integral
   // keeps a sparser cloud usable (Langlands & Mertens), so the count is capped (warned).
   int max_points = 250000;
+  // With the local disk the cloud only has to represent the irradiance (Langlands &
+  // Mertens): its count is refined from a pilot until each point's E is predicted from its
+  // neighbours within this relative RMS error (0: the density above, up to max_points).
+  float illumination_error = 0.02f;
   // Materials with the same non-empty group form one subsurface object with every shape
   // that uses them; otherwise the object is the shapes sharing this material (pbrt-v4).
   std::string group;

@@ -119,6 +119,8 @@ TEST(SubsurfaceParams, BadInputIsAnErrorAtItsLocation) {
   expect_error("Material \"subsurface\" \"float eta\" 0.5", "eta");
   expect_error("Material \"subsurface\" \"string name\" \"Skin1\" \"rgb sigma_a\" [1 1 1]", "either");
   expect_error("Material \"subsurface\" \"bool backwardguiding\" [true false]", "\"backwardguiding\" must be one bool");
+  expect_error("Material \"subsurface\" \"float illuminationerror\" -0.1", "\"illuminationerror\" must be in [0, 1]");
+  expect_error("Material \"subsurface\" \"float illuminationerror\" 2", "\"illuminationerror\" must be in [0, 1]");
 }
 
 TEST(SubsurfaceVolumetric, IsExactlyAMediumInsideADielectric) {
