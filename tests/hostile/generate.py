@@ -337,6 +337,9 @@ images = [("valid_png", "tex.png", good_png, 0),
           ("exr_magic_only", "tex.exr", EXR_MAGIC, 2),
           ("exr_lying_header", "tex.exr", EXR_MAGIC + b"\x02\x00\x00\x00" + b"dataWindow\0box2i\0" +
            struct.pack("<I4i", 16, 0, 0, 2000000000, 2000000000) + b"\0", 2),
+          # A string attribute claiming 1.8 GB in a 60-byte file (OpenEXR allocated it: fuzz_image_texture).
+          ("exr_lying_attribute", "tex.exr", EXR_MAGIC + b"\x02\x00\x00\x00" + b"comments\0string\0" +
+           struct.pack("<i", 1800000000) + bytes(30), 2),
           ("exr_garbage", "tex.exr", EXR_MAGIC + bytes(random.Random(5).randrange(256) for _ in range(400)), 2),
           ("hdr_lying", "tex.hdr", b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1000000 +X 1000000\n" + bytes(16), 2),
           ("hdr_truncated", "tex.hdr", b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 4\n" + bytes(9), 2),

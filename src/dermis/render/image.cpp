@@ -1,5 +1,7 @@
 #include "dermis/render/image.h"
 
+#include "dermis/render/exr_header_check.h"
+
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 #include <unistd.h>
@@ -115,6 +117,8 @@ Image read_image(const std::string& path) {
   auto fail = [&](const std::string& why) {
     return std::runtime_error(fmt::format("{}: could not read image: {}", path, why));
   };
+  // OpenEXR allocates what a header's attributes claim before reading them.
+  if (const std::string problem = exr_header_problem(path); !problem.empty()) throw fail(problem);
   auto in = OIIO::ImageInput::open(path);
   if (!in) {
     std::string why = OIIO::geterror();

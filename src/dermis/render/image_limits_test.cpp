@@ -10,6 +10,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include "dermis/render/exr_header_check.h"
 #include "dermis/render/image.h"
 
 namespace dermis {
@@ -64,6 +65,50 @@ TEST(ReadImageLimits, PixelCountBeyondTheTextureLimitIsRefused) {
 TEST(ReadImageLimits, EmptyAndGarbageFilesAreErrors) {
   EXPECT_NE(read_error("empty.png", "").find("could not read image"), std::string::npos);
   EXPECT_NE(read_error("garbage.exr", std::string(100, '\x7f')).find("could not read image"), std::string::npos);
+}
+
+std::string le32(uint32_t v) { return {char(v), char(v >> 8), char(v >> 16), char(v >> 24)}; }
+
+// An OpenEXR header: magic, version 2 with `flags`, one string attribute whose size field
+// claims `claimed` bytes, followed by `held` bytes.
+std::string exr_with_attribute(uint32_t flags, uint32_t claimed, std::size_t held) {
+  return std::string("\x76\x2f\x31\x01", 4) + le32(2 | flags) + std::string("comments\0string\0", 16) + le32(claimed) +
+         std::string(held, 'x');
+}
+
+// OpenEXR 3.1 allocates an attribute's claimed size before reading it (fuzz_image_texture
+// found a 708-byte file taking 1.9 GB: fuzz/regressions/image_texture/). Refused first.
+TEST(ReadImageLimits, ExrAttributeClaimingMoreThanTheFileHoldsIsRefused) {
+  std::string err = read_error("lying.exr", exr_with_attribute(0, 1800000000u, 40));
+  EXPECT_NE(err.find("could not read image: attribute \"comments\" (string) claims 1800000000 bytes but the file "
+                     "holds only 40 more"),
+            std::string::npos) << err;
+  err = read_error("negative.exr", exr_with_attribute(0, 0x80000000u, 40));
+  EXPECT_NE(err.find("claims a negative size"), std::string::npos) << err;
+  // The same lie in a file named .png: the magic, not the name, decides.
+  err = read_error("lying-exr.png", exr_with_attribute(0, 1800000000u, 40));
+  EXPECT_NE(err.find("claims 1800000000 bytes"), std::string::npos) << err;
+}
+
+// What the guard lets through: every header Dermis writes, single-part; a size that fits;
+// files of other formats; and a multi-part file is read header by header.
+TEST(ReadImageLimits, ExrGuardPassesWhatFits) {
+  const std::string dir = std::filesystem::temp_directory_path().string() + "/dermis_exr_guard_" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir);
+  write_image(dir + "/a.exr", Image(5, 3, RGB(0.25f)));
+  EXPECT_EQ(exr_header_problem(dir + "/a.exr"), "");
+  EXPECT_EQ(read_image(dir + "/a.exr").width, 5);
+  std::ofstream(dir + "/fits.exr", std::ios::binary) << exr_with_attribute(0, 40, 40) + std::string(1, '\0');
+  EXPECT_EQ(exr_header_problem(dir + "/fits.exr"), "");
+  std::ofstream(dir + "/b.png", std::ios::binary) << png_header_only(4, 4);
+  EXPECT_EQ(exr_header_problem(dir + "/b.png"), "");
+  // Multi-part: the first header fits, the second lies.
+  std::ofstream(dir + "/multi.exr", std::ios::binary)
+      << exr_with_attribute(0x1000, 4, 4) + std::string(1, '\0') + std::string("comments\0string\0", 16) +
+             le32(1000) + std::string(8, 'y');
+  EXPECT_NE(exr_header_problem(dir + "/multi.exr").find("claims 1000 bytes but the file holds only 8 more"),
+            std::string::npos);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
