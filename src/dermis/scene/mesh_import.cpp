@@ -8,10 +8,11 @@
 #include <stdexcept>
 
 #include <assimp/Importer.hpp>
-#include <assimp/ProgressHandler.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fmt/format.h>
+
+#include "dermis/scene/assimp_progress.h"
 
 namespace dermis {
 
@@ -28,16 +29,6 @@ void collect(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent
   for (unsigned i = 0; i < node->mNumChildren; ++i) collect(scene, node->mChildren[i], m, out);
 }
 
-// Assimp's progress reports passed on to a load stage; asks Assimp to stop when cancelled.
-class StageProgress : public Assimp::ProgressHandler {
- public:
-  explicit StageProgress(LoadStage& stage) : stage_(stage) {}
-  bool Update(float fraction) override { return fraction < 0 ? !stage_.cancelled() : stage_.try_update(fraction); }
-
- private:
-  LoadStage& stage_;
-};
-
 }  // namespace
 
 ImportedMesh import_mesh_assimp(const std::string& path, const LoadMonitor* monitor) {
@@ -47,7 +38,7 @@ ImportedMesh import_mesh_assimp(const std::string& path, const LoadMonitor* moni
   }
   LoadStage stage(monitor, "reading " + std::filesystem::path(path).filename().string());
   Assimp::Importer importer;
-  importer.SetProgressHandler(new StageProgress(stage));  // the importer owns it
+  importer.SetProgressHandler(new AssimpStageProgress(stage));  // the importer owns it
   const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
   stage.throw_if_cancelled();
   if (!scene) throw std::runtime_error(fmt::format("Assimp: {}", importer.GetErrorString()));
