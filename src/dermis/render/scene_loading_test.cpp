@@ -201,10 +201,9 @@ TEST(SceneLoading, LoopSubdivisionStopsInsideALevel) {
   EXPECT_LT(r.last("subdividing (loopsubdiv)"), 3.0 / 7.0 - 0.05);
 }
 
-TEST(SceneLoading, ObjThroughAssimpReportsAndStops) {
-  TempDir dir;
+// An n x n grid of vertices as OBJ triangles: (n - 1)^2 squares, two triangles each.
+std::string grid_obj(int n) {
   std::string obj;
-  const int n = 200;
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) obj += fmt::format("v {} {} 0\n", i, j);
   for (int j = 0; j + 1 < n; ++j)
@@ -212,7 +211,25 @@ TEST(SceneLoading, ObjThroughAssimpReportsAndStops) {
       const int a = j * n + i + 1;
       obj += fmt::format("f {} {} {}\nf {} {} {}\n", a, a + 1, a + n + 1, a, a + n + 1, a + n);
     }
-  dir.write("m.obj", obj);
+  return obj;
+}
+
+// Loads the scene with a cancel set at the first report of "reading m.obj" past 0:
+// Interrupted. Returns the last fraction of that stage reported.
+double last_report_when_cancelled_while_reading(const std::string& path) {
+  Recorder r;
+  r.on_call = [&r](const std::string& stage, double f) {
+    if (stage == "reading m.obj" && f > 0) r.cancel = true;
+  };
+  const LoadMonitor m = r.monitor();
+  EXPECT_THROW(parse_scene_file(path, {}, &m), Interrupted);
+  return r.last("reading m.obj");
+}
+
+TEST(SceneLoading, ObjThroughAssimpReportsAndStops) {
+  TempDir dir;
+  const int n = 200;
+  dir.write("m.obj", grid_obj(n));
   const std::string path = dir.write("s.pbrt", scene_with("Shape \"objmesh\" \"string filename\" \"m.obj\""));
   {
     Recorder r;
@@ -222,12 +239,7 @@ TEST(SceneLoading, ObjThroughAssimpReportsAndStops) {
     r.expect_monotone_stages();
     EXPECT_GE(r.count("reading m.obj"), 3u);  // Assimp reports while it reads
   }
-  Recorder r;
-  r.on_call = [&r](const std::string& stage, double f) {
-    if (stage == "reading m.obj" && f > 0) r.cancel = true;
-  };
-  const LoadMonitor m = r.monitor();
-  EXPECT_THROW(parse_scene_file(path, {}, &m), Interrupted);
+  last_report_when_cancelled_while_reading(path);
 }
 
 // Assimp's OBJ reader streams its file in 16 MB blocks and reports each (the first half
@@ -239,26 +251,13 @@ TEST(SceneLoading, ObjThroughAssimpReportsAndStops) {
 // own test is what tells the two apart.)
 TEST(SceneLoading, ObjThroughAssimpStopsWhileReadingALargeFile) {
   TempDir dir;
-  std::string obj;
-  const int n = 600;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) obj += fmt::format("v {} {} 0\n", i, j);
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      const int a = j * n + i + 1;
-      obj += fmt::format("f {} {} {}\nf {} {} {}\n", a, a + 1, a + n + 1, a, a + n + 1, a + n);
-    }
+  const std::string obj = grid_obj(600);
   ASSERT_GT(obj.size(), std::size_t(17) << 20);  // more than one block
   dir.write("m.obj", obj);
   const std::string path = dir.write("s.pbrt", scene_with("Shape \"objmesh\" \"string filename\" \"m.obj\""));
-  Recorder r;
-  r.on_call = [&r](const std::string& stage, double f) {
-    if (stage == "reading m.obj" && f > 0) r.cancel = true;
-  };
-  const LoadMonitor m = r.monitor();
-  EXPECT_THROW(parse_scene_file(path, {}, &m), Interrupted);
-  EXPECT_GT(r.last("reading m.obj"), 0.0);
-  EXPECT_LT(r.last("reading m.obj"), 0.5) << "Assimp read the whole file after the cancel";
+  const double last = last_report_when_cancelled_while_reading(path);
+  EXPECT_GT(last, 0.0);
+  EXPECT_LT(last, 0.5);
 }
 
 TEST(SceneLoading, TheBvhBuildReportsAndStops) {
