@@ -112,6 +112,16 @@ def dermis_render(args, scene_file, out, spp=None, seconds=None, seed=1, res=Non
     return Run(out, secs, samples / npx, wall, cmd=" ".join(cmd), warnings=warnings, approx=approx, reported=reported)
 
 
+def repeated(runs):
+    """Repeats of one render (same seed, so the same image): the median time, and all the
+    times (the run-to-run spread of a shared machine, reported beside the figures)."""
+    times = sorted(r.seconds for r in runs)
+    r = runs[len(runs) // 2] if len(runs) % 2 else runs[0]
+    r.seconds = float(np.median(times))
+    r.info["times"] = times
+    return r
+
+
 _load_wall = {}
 
 
@@ -188,8 +198,9 @@ class Family:
         d = np.mean((img - self.ref)[m] ** 2 - self.ref_var[m], axis=-1)
         se = float(np.std(d) / math.sqrt(d.size))
         corr = max(mse - var_ref, 1e-30)
+        times = r.info.get("times", [r.seconds])
         return dict(run=r, spp=r.spp, seconds=r.seconds, mse=mse, var_ref=var_ref, mse_corr=corr, rse=se / corr,
-                    eff=1.0 / (corr * max(r.seconds, 1e-3)))
+                    eff=1.0 / (corr * max(r.seconds, 1e-3)), tmin=min(times), tmax=max(times), times=times)
 
     @property
     def ref_spp(self):
@@ -259,17 +270,19 @@ def run_scene(args, name):
         log(f"  dermis '{label}': {scene_file}")
         halves = [dermis_render(args, scene_file, os.path.join(work, f"dermis-{i}-ref{k}.exr"), spp=rspp, seconds=half,
                                 seed=1000 + k, res=sc["res"]) for k in (1, 2)]
-        sweep = [dermis_render(args, scene_file, os.path.join(work, f"dermis-{i}-{n}spp.exr"), spp=n, seed=1,
-                               res=sc["res"]) for n in args.spp]
+        sweep = [repeated([dermis_render(args, scene_file, os.path.join(work, f"dermis-{i}-{n}spp.exr"), spp=n, seed=1,
+                                         res=sc["res"]) for _ in range(args.repeats)]) for n in args.spp]
         dermis[label] = Family(label, halves, sweep, mask)
         dermis[label].scene_file = scene_file
 
     log("  cycles")
     renders = [dict(out=os.path.join(work, f"cycles-ref{k}.exr"), spp=rspp or HUGE_SPP, seed=1000 + k,
                     time_limit=half or 0.0) for k in (1, 2)]
-    renders += [dict(out=os.path.join(work, f"cycles-{n}spp.exr"), spp=n, seed=1) for n in args.spp]
+    renders += [dict(out=os.path.join(work, f"cycles-{n}spp-r{k}.exr"), spp=n, seed=1)
+                for n in args.spp for k in range(args.repeats)]
     runs, info, cmd = cycles_renders(args, sc, renders, work)
-    cycles = Family("Cycles", runs[:2], runs[2:], mask)
+    R = args.repeats
+    cycles = Family("Cycles", runs[:2], [repeated(runs[2 + j * R:2 + (j + 1) * R]) for j in range(len(args.spp))], mask)
     cycles.cmd = cmd
 
     first = next(iter(dermis.values()))
@@ -365,9 +378,13 @@ def write_report(args, results, info, total, path, image_dir, argv):
       "with 0.1 s resolution). Cycles — `cycles.ViewLayer.render_time` from the EXR's metadata (path tracing only; "
       "excludes `synchronization_time`: scene export, BVH, shader compilation; 10 ms resolution). The wall time of "
       "`bpy.ops.render.render()` (sync + render + EXR write) is listed too.")
+    w(f"- **Repeats**: each sweep render is run {args.repeats} times (same seed: the same image); its time is the "
+      "median, with the fastest and slowest repeat in brackets. A shared machine's run-to-run spread is as large as "
+      "some of the differences measured here, so it is shown rather than hidden.")
     w("- **Efficiency** = 1 / (MSE × time); the ratio Dermis ÷ Cycles is the speed-up of Dermis at equal error "
       "(> 1: Dermis reaches the same noise in less time). ± is one standard error from the spread of the per-pixel "
-      "squared errors (pixels taken as independent).\n")
+      "squared errors (pixels taken as independent); [lo–hi] is the ratio at the least and the most favourable "
+      "pairing of the two renderers' repeat times.\n")
 
     w("## Summary: efficiency Dermis ÷ Cycles\n")
     w("| scene | Dermis variant | " + " | ".join(f"{n} spp" for n in args.spp) + " | geometric mean |")
@@ -376,9 +393,16 @@ def write_report(args, results, info, total, path, image_dir, argv):
         for label, f in r["dermis"].items():
             ratios = [rd["eff"] / rc["eff"] for rd, rc in zip(f.rows, r["cycles"].rows)]
             errs = [q * math.hypot(rd["rse"], rc["rse"]) for q, rd, rc in zip(ratios, f.rows, r["cycles"].rows)]
-            gm = math.exp(sum(math.log(q) for q in ratios) / len(ratios))
-            w(f"| {r['name']} | {label} | " + " | ".join(f"{q:.3g} ± {e:.2g}" for q, e in zip(ratios, errs))
-              + f" | **{gm:.3g}** |")
+            # The ratio at the least and the most favourable pairing of the repeats' times.
+            t = lambda x: max(x, 1e-3)  # as in the efficiency
+            pairs = list(zip(ratios, f.rows, r["cycles"].rows))
+            lo = [q * t(rd["seconds"]) / t(rd["tmax"]) * t(rc["tmin"]) / t(rc["seconds"]) for q, rd, rc in pairs]
+            hi = [q * t(rd["seconds"]) / t(rd["tmin"]) * t(rc["tmax"]) / t(rc["seconds"]) for q, rd, rc in pairs]
+            gmean = lambda v: math.exp(sum(math.log(x) for x in v) / len(v))
+            gm = gmean(ratios)
+            w(f"| {r['name']} | {label} | " + " | ".join(f"{q:.3g} ± {e:.2g} [{a:.3g}–{b:.3g}]"
+                                                         for q, e, a, b in zip(ratios, errs, lo, hi))
+              + f" | **{gm:.3g}** [{gmean(lo):.3g}–{gmean(hi):.3g}] |")
     w("")
 
     w("## Per scene\n")
@@ -406,7 +430,8 @@ def write_report(args, results, info, total, path, image_dir, argv):
                 other = (f"printed {run.info['reported']:.1f}, process {run.wall:.1f}" if label != "Cycles"
                          else f"sync {run.info['sync']:.2f}, operator {run.wall:.1f}")
                 approx = "≈" if run.info.get("approx") else ""
-                w(f"| {'Dermis ' + label if label != 'Cycles' else 'Cycles'} | {row['spp']:.0f} | {approx}{row['seconds']:.2f} | "
+                spread = f" ({row['tmin']:.2f}–{row['tmax']:.2f})" if len(row["times"]) > 1 else ""
+                w(f"| {'Dermis ' + label if label != 'Cycles' else 'Cycles'} | {row['spp']:.0f} | {approx}{row['seconds']:.2f}{spread} | "
                   f"{other} | {row['mse_corr']:.4g} ± {row['mse_corr'] * row['rse']:.2g} | {row['var_ref']:.3g} | "
                   f"{row['eff']:.4g} |")
         refs = "; ".join(f"{'Dermis ' + label if label != 'Cycles' else 'Cycles'} {f.ref_spp:.0f} spp in {f.ref_seconds:.1f} s"
@@ -460,6 +485,9 @@ def main():
     ap.add_argument("--scenes", default=",".join(S.DEFAULT_SCENES),
                     help=f"comma-separated, from {', '.join(S.SCENES)} (default: all of them)")
     ap.add_argument("--spp", default="16,64,256", help="sweep sample counts (default 16,64,256)")
+    ap.add_argument("--repeats", type=int, default=3,
+                    help="times each sweep render is repeated (same seed, same image): its time is the median, "
+                         "and the spread is reported (default 3)")
     ap.add_argument("--reference-time", type=float, default=40.0,
                     help="seconds per reference per renderer (two halves; default 40)")
     ap.add_argument("--reference-spp", type=int, default=0, help="instead of --reference-time: spp per reference")
@@ -480,6 +508,8 @@ def main():
                     "(default: git rev-parse --short HEAD)")
     ap.add_argument("--note", default="", help="a sentence for the report (e.g. the state of the machine)")
     args = ap.parse_args()
+    if args.repeats < 1:
+        ap.error("--repeats must be at least 1")
     argv = sys.argv[1:]
     if args.quick:
         args.res = args.res or (64, 64)
