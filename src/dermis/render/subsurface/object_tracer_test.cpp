@@ -6,8 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
+#include "dermis/render/subsurface/probe_method.h"
+#include "dermis/render/subsurface/profile_from_params.h"
 #include "dermis/render/subsurface/subsurface_method.h"
+#include "dermis/sss/profiles/quadrature.h"
 
 namespace dermis {
 namespace {
@@ -166,6 +170,55 @@ TEST(ProbeMethodOnItsOwn, ExitsLieOnTheObject) {
     EXPECT_GE(std::min({ex.weight[0], ex.weight[1], ex.weight[2]}), 0.0f);
   }
   EXPECT_GT(exits, 1000);
+}
+
+// Probes that cross the object many times: six concentric spheres (radii 1 ... 0.5, one
+// object), the entry at the top of the outer one, mfp long enough that every probe spans
+// the whole object (R_max >= its diameter). A vertical probe meets up to 12 surfaces; one
+// is chosen in proportion to its contribution. The mean exit weight per channel is
+// sum over the spheres of int R dA (dA = 2 pi a r dr on a sphere of radius a seen from a
+// point at distance 1: 2 pi a int_{1-a}^{1+a} R(r) r dr), within 4 standard errors.
+TEST(ProbeMethodOnItsOwn, ManyCrossingsKeepTheMeanWeight) {
+  std::vector<Shape> shells;
+  for (int i = 0; i < 6; ++i) shells.push_back(sphere({0, 0, 0}, 1.0f - 0.1f * float(i)));
+  Spheres s(shells);
+  const std::vector<int> objects(6, 0);
+  for (auto method : {SubsurfaceParams::Method::Disk, SubsurfaceParams::Method::SphereLines}) {
+    SCOPED_TRACE(method == SubsurfaceParams::Method::Disk ? "disk" : "sphere lines");
+    SubsurfaceParams p;
+    p.method = method;
+    p.reflectance = RGB(0.8f, 0.5f, 0.3f);
+    p.mfp = RGB(0.6f, 0.4f, 0.3f);
+    const SubsurfaceMaterial m = make_subsurface_material(p);
+    ASSERT_GE(std::get<ProbeMethod>(m.method).max_radius(), 2.0);
+    const sss::ProfileRGB profile = make_profile(p);
+    PathCounters counters;
+    const SurfaceHit entry = hit_from(s.embree, {0, 0, 5}, {0, 0, -1});
+    const ObjectTracer tracer(s.embree, objects, entry, counters);
+    const SubsurfaceEntry e = bare_entry(entry, tracer);
+    const int n = 40000;
+    double sum[3] = {}, sum2[3] = {};
+    for (int i = 0; i < n; ++i) {
+      Sampler sampler(SamplerKind::Independent, 17, uint64_t(i), 0);
+      SubsurfaceExit ex;
+      if (!sample_subsurface_exit(m, e, sampler, ex)) continue;
+      for (int c = 0; c < 3; ++c) {
+        sum[c] += ex.weight[c];
+        sum2[c] += double(ex.weight[c]) * ex.weight[c];
+      }
+    }
+    for (int c = 0; c < 3; ++c) {
+      double expected = 0;
+      for (int i = 0; i < 6; ++i) {
+        const double a = 1.0 - 0.1 * i;
+        expected += 2 * kPiD * a *
+                    sss::integrate([&](double r) { return profile[c].eval(r) * r; }, 1 - a, 1 + a, 1e-10);
+      }
+      const double mean = sum[c] / n, se = std::sqrt(std::max(0.0, sum2[c] / n - mean * mean) / n);
+      std::printf("channel %d: mean weight %.5f vs %.5f (se %.5f)\n", c, mean, expected, se);
+      EXPECT_NEAR(mean, expected, 4 * se) << "channel " << c;
+    }
+  }
 }
 
 }  // namespace
