@@ -42,32 +42,33 @@ bool pick_probe_hit(const sss::ProfileRGB& profile, const SubsurfaceEntry& entry
   const std::vector<SurfaceHit>& hits = probe_hits(entry, seg);
   const float u = sampler.uniform();
   if (hits.empty()) return false;
+  // The selection's running sum by hand: Distribution1D would allocate on this hot path.
   std::array<RGB, kMaxProbeHits> w;
   std::array<double, kMaxProbeHits> s;
   double total = 0;
-  const int k = std::min(int(hits.size()), kMaxProbeHits);
-  for (int i = 0; i < k; ++i) {
-    const double pdf = pdf_area(hits[std::size_t(i)]);
-    const double r = length(to_d(hits[std::size_t(i)].p) - to_d(entry.hit.p));
-    w[std::size_t(i)] = pdf > 0 ? profile_values(profile, r) * float(1 / pdf) : RGB(0);
-    s[std::size_t(i)] = (double(w[std::size_t(i)][0]) + w[std::size_t(i)][1] + w[std::size_t(i)][2]) / 3;
-    if (!std::isfinite(s[std::size_t(i)])) return false;
-    total += s[std::size_t(i)];
+  const std::size_t k = std::min(hits.size(), std::size_t(kMaxProbeHits));
+  for (std::size_t i = 0; i < k; ++i) {
+    const double pdf = pdf_area(hits[i]);
+    const double r = length(to_d(hits[i].p) - to_d(entry.hit.p));
+    w[i] = pdf > 0 ? profile_values(profile, r) * float(1 / pdf) : RGB(0);
+    s[i] = (double(w[i][0]) + w[i][1] + w[i][2]) / 3;
+    if (!std::isfinite(s[i])) return false;
+    total += s[i];
   }
   if (!(total > 0)) return false;
-  int chosen = k - 1;
+  std::size_t chosen = k - 1;
   double below = 0;
-  for (int i = 0; i < k; ++i) {
-    below += s[std::size_t(i)];
+  for (std::size_t i = 0; i < k; ++i) {
+    below += s[i];
     if (double(u) * total < below) {
       chosen = i;
       break;
     }
   }
-  while (s[std::size_t(chosen)] <= 0) --chosen;  // u at the very top: the last hit with a share
+  while (s[chosen] <= 0) --chosen;  // u at the very top: the last hit with a share
   out.kind = SubsurfaceExit::Kind::ThroughLobe;
-  out.hit = hits[std::size_t(chosen)];
-  out.weight = w[std::size_t(chosen)] * float(total / s[std::size_t(chosen)]);
+  out.hit = hits[chosen];
+  out.weight = w[chosen] * float(total / s[chosen]);
   return true;
 }
 
