@@ -56,6 +56,16 @@ class Sampler {
     stratified_end_ = d + stratified;
   }
   uint64_t dimension() const { return dim_; }
+  // Where the sampler stands (its dimension and the end of its stratified run): a nested
+  // estimate draws from a region of its own and the caller comes back with `restore`.
+  struct Position {
+    uint64_t dimension, stratified_end;
+  };
+  Position position() const { return {dim_, stratified_end_}; }
+  void restore(Position p) {
+    dim_ = p.dimension;
+    stratified_end_ = p.stratified_end;
+  }
   // The first dimension of a region of 2^32 dimensions named by (parent dimension, tag):
   // a hash, so that nested regions (a walk inside a path inside another path) never
   // share a dimension, short of a 64-bit collision.

@@ -364,9 +364,17 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           return std::pair{bsdf_eval(b, wo_in, wi), bsdf_pdf(b, wo_in, wi)};
         });
       };
+      // Direct light leaving through the exit lobe at a point, from the outside's medium.
+      auto exit_light = [&](const SurfaceHit& at, Sampler& smp) {
+        RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
+        const BSDF sw = sm.exit_lobe(at, table_at);
+        return estimate_direct(sc, offset_ray_origin(at.p, at.ng, at.ng), at.ng, medium, smp, counters, [&](Vec3 wi) {
+          return std::pair{bsdf_eval(sw, at.ng, wi), bsdf_pdf(sw, at.ng, wi)};
+        });
+      };
       SubsurfaceExit ex;
       const bool exited = sample_subsurface_exit(
-          sm, {hit, wo, tracer, irradiance, interior_albedo, light_through, refracted}, sampler, ex);
+          sm, {hit, wo, tracer, irradiance, interior_albedo, light_through, exit_light, refracted}, sampler, ex);
       sampler.set_dimension(after_exit);
       L += beta * ex.gathered;
       if (!exited) {
@@ -391,13 +399,12 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         continue;
       }
       // Leave through the exit lobe Sw at the exit point (normalised Fresnel, or the
-      // rough boundary's transmittance).
+      // rough boundary's transmittance): its direct light, unless the method gathered it
+      // (SubsurfaceExit::exit_light_gathered), and the lobe sampled for the way on.
+      if (!ex.exit_light_gathered) L += beta * exit_light(ex.hit, sampler);
       RoughExitTable exit_table_here;  // a textured roughness: the table of the exit point's alpha
       const BSDF sw = sm.exit_lobe(ex.hit, exit_table_here);
       Vec3 p_out = offset_ray_origin(ex.hit.p, ex.hit.ng, ex.hit.ng);
-      L += beta * estimate_direct(sc, p_out, ex.hit.ng, medium, sampler, counters, [&](Vec3 wi) {
-             return std::pair{bsdf_eval(sw, ex.hit.ng, wi), bsdf_pdf(sw, ex.hit.ng, wi)};
-           });
       const float u_exit_lobe = sampler.get1d();
       auto bs = bsdf_sample(sw, ex.hit.ng, u_exit_lobe, sampler.get2d());
       if (!bs) break;

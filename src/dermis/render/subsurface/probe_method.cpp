@@ -13,6 +13,9 @@ namespace dermis {
 namespace {
 
 constexpr int kMaxProbeHits = 16;
+// Exit light at every candidate: candidates whose share of the probe's contribution is
+// below 1 / this are kept by Russian roulette (pick_probe_hit).
+constexpr double kExitLightShares = 4;
 
 inline Vec3d to_d(Vec3 v) { return Vec3d(v); }
 
@@ -69,6 +72,25 @@ bool pick_probe_hit(const sss::ProfileRGB& profile, const SubsurfaceEntry& entry
   out.kind = SubsurfaceExit::Kind::ThroughLobe;
   out.hit = hits[chosen];
   out.weight = w[chosen] * float(total / s[chosen]);
+  // The exit's direct light is taken at every candidate with its own w_i: the expected
+  // value over the choice (sum_i (s_i / S) (w_i S / s_i) L_i), so that which candidate the
+  // path leaves from adds no variance to it. A probe through a thin part (an ear, a nose)
+  // meets a lit and an unlit side: chosen by R/pdf, either was the whole direct light.
+  // Candidates with a small share are kept by Russian roulette with probability
+  // min(1, kExitLightShares s_i / S), weighted by its inverse (unbiased): a probe costs
+  // at most about kExitLightShares light samples however many times it crosses.
+  // Each candidate draws from a region of its own.
+  const uint64_t base = sampler.dimension();
+  const Sampler::Position resume = sampler.position();
+  for (std::size_t i = 0; i < k; ++i) {
+    if (!(s[i] > 0)) continue;
+    sampler.set_dimension(Sampler::region(base, 0xe117u + uint32_t(i)));
+    const double keep = std::min(1.0, kExitLightShares * s[i] / total);
+    if (keep < 1 && double(sampler.get1d()) >= keep) continue;
+    out.gathered += w[i] * entry.exit_light(hits[i], sampler) * float(1 / keep);
+  }
+  sampler.restore(resume);
+  out.exit_light_gathered = true;
   return true;
 }
 

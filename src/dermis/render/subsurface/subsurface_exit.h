@@ -34,6 +34,10 @@ struct SubsurfaceExit {
   // wherever the path met it), per unit transmitted throughput: counts whether or not
   // the method then found an exit.
   RGB gathered{0};
+  // ThroughLobe: the method has gathered the direct light leaving through the exit lobe
+  // (SubsurfaceEntry::exit_light, in `gathered`, scored where the path could have left):
+  // the integrator samples no light at `hit`, only the lobe for the way on.
+  bool exit_light_gathered = false;
   bool truncated = false;  // no exit: the random walk hit its step cap
 };
 
@@ -53,6 +57,11 @@ using InteriorAlbedo = FunctionRef<RGB(const SurfaceHit& hit)>;
 // no light sampling there (PathStart::rough_glass_nee off).
 using LightThrough = FunctionRef<RGB(Vec3 p, Vec3 n, const BSDF& boundary, Vec3 wo, Sampler& sampler)>;
 
+// Direct light leaving the object at `exit` (hit.ng outward) through the exit lobe Sw: one
+// light sample per group, MIS-weighted against sampling Sw (integrator.h estimate_direct),
+// per unit throughput: what the integrator adds at a ThroughLobe exit.
+using ExitLight = FunctionRef<RGB(const SurfaceHit& exit, Sampler& sampler)>;
+
 // Everything an exit sampler may use besides its own parameters.
 struct SubsurfaceEntry {
   const SurfaceHit& hit;  // where the path entered; hit.ng points out of the object
@@ -61,6 +70,7 @@ struct SubsurfaceEntry {
   TransmittedIrradiance irradiance;
   InteriorAlbedo interior_albedo;
   LightThrough light_through;
+  ExitLight exit_light;
   // The direction the path took into the medium when the integrator sampled a rough
   // entry; unset for a smooth one (the method refracts wo itself).
   std::optional<Vec3> refracted = {};
