@@ -96,6 +96,45 @@ void flat_curve_filter(const RTCFilterFunctionNArguments* args) {
   if (s.has_alpha()) alpha_filter(args);
 }
 
+// all_hits: the context Embree passes to the filter (our fields after its own).
+struct CollectingContext {
+  RTCIntersectContext embree;
+  EmbreeScene::RawHit* hits;
+  int capacity, count;
+  bool overflow;
+};
+
+void collect_filter(const RTCFilterFunctionNArguments* args) {
+  auto* c = reinterpret_cast<CollectingContext*>(args->context);
+  const unsigned N = args->N;
+  for (unsigned i = 0; i < N; ++i) {
+    if (args->valid[i] != -1) continue;
+    args->valid[i] = 0;  // rejected: the traversal goes on to the next candidate
+    EmbreeScene::RawHit h;
+    h.t = RTCRayN_tfar(args->ray, N, i);
+    h.u = RTCHitN_u(args->hit, N, i);
+    h.v = RTCHitN_v(args->hit, N, i);
+    h.ng_x = RTCHitN_Ng_x(args->hit, N, i);
+    h.ng_y = RTCHitN_Ng_y(args->hit, N, i);
+    h.ng_z = RTCHitN_Ng_z(args->hit, N, i);
+    h.geom = RTCHitN_geomID(args->hit, N, i);
+    h.prim = RTCHitN_primID(args->hit, N, i);
+    h.inst = RTCHitN_instID(args->hit, N, i, 0);
+    bool seen = false;
+    for (int k = 0; k < c->count && !seen; ++k) {
+      const EmbreeScene::RawHit& o = c->hits[k];
+      // The same primitive twice (referenced from two leaves); a sphere's two roots differ in t.
+      seen = o.geom == h.geom && o.prim == h.prim && o.inst == h.inst && o.t == h.t;
+    }
+    if (seen) continue;
+    if (c->count == c->capacity) {
+      c->overflow = true;
+      continue;
+    }
+    c->hits[c->count++] = h;
+  }
+}
+
 }  // namespace
 
 EmbreeScene::EmbreeScene() {
@@ -112,7 +151,7 @@ EmbreeScene::~EmbreeScene() {
 
 RTCScene EmbreeScene::make_scene(const std::vector<int>& shape_ids, std::vector<int>& geom_to_shape) {
   RTCScene scene = rtcNewScene(device_);
-  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);  // all_hits
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
   for (int id : shape_ids) {
     const Shape& s = (*shapes_)[id];
@@ -279,6 +318,39 @@ bool EmbreeScene::occluded(const Ray& ray) const {
   init_ray(r, ray);
   rtcOccluded1(scene_, &ctx, &r);
   return r.tfar < 0;
+}
+
+int EmbreeScene::all_hits(const Ray& ray, RawHit* hits, int capacity) const {
+  CollectingContext c;
+  rtcInitIntersectContext(&c.embree);
+  c.embree.filter = collect_filter;
+  c.hits = hits;
+  c.capacity = capacity;
+  c.count = 0;
+  c.overflow = false;
+  RTCRayHit rh;
+  init_ray(rh.ray, ray);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &c.embree, &rh);
+  if (c.overflow) return -1;
+  std::sort(hits, hits + c.count, [](const RawHit& a, const RawHit& b) { return a.t < b.t; });
+  return c.count;
+}
+
+void EmbreeScene::fill_hit(const RawHit& raw, const Ray& ray, SurfaceHit& hit) const {
+  RTCRayHit rh;
+  init_ray(rh.ray, ray);
+  rh.ray.tfar = raw.t;
+  rh.hit.u = raw.u;
+  rh.hit.v = raw.v;
+  rh.hit.Ng_x = raw.ng_x;
+  rh.hit.Ng_y = raw.ng_y;
+  rh.hit.Ng_z = raw.ng_z;
+  rh.hit.geomID = raw.geom;
+  rh.hit.primID = raw.prim;
+  rh.hit.instID[0] = raw.inst;
+  fill_hit(rh, ray, hit);
 }
 
 void EmbreeScene::fill_hit(const RTCRayHit& rh, const Ray& ray, SurfaceHit& hit) const {

@@ -49,6 +49,19 @@ class EmbreeScene {
   // Any hit with t in (0, ray.tmax).
   bool occluded(const Ray& ray) const;
 
+  // One hit as Embree reports it, before fill_hit turns it into a SurfaceHit.
+  struct RawHit {
+    float t, u, v, ng_x, ng_y, ng_z;
+    unsigned geom, prim, inst;
+  };
+  // Every hit with t in (0, ray.tmax) in one traversal (a context filter records each
+  // candidate and rejects it, so that the traversal goes on, as Cycles collects a probe's
+  // hits), sorted by t, each primitive once (a spatial-split BVH may report one twice).
+  // Returns the count, or -1 when there were more than `capacity`: the nearest ones are
+  // then not known (hits come in traversal order), and the caller queries hit by hit.
+  int all_hits(const Ray& ray, RawHit* hits, int capacity) const;
+  void fill_hit(const RawHit& raw, const Ray& ray, SurfaceHit& hit) const;
+
   RTCScene handle() const { return scene_; }
   // World-space bounding sphere of all geometry.
   Vec3 bounds_center() const { return center_; }

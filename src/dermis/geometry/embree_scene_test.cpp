@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "dermis/core/rng.h"
 #include "dermis/geometry/sphere_tessellation.h"
@@ -86,6 +88,58 @@ TEST(EmbreeScene, SphereUvOnlyWhenNeeded) {
   EXPECT_EQ(b.uv.y, 0.0f);
   EXPECT_EQ(a.p.x, b.p.x);
   EXPECT_EQ(a.ng.z, b.ng.z);
+}
+
+// all_hits against closest-hit queries stepped past each hit: five nested tessellated
+// spheres (shells, so a line meets up to ten surfaces), a sphere shape, and an instance
+// of a shell, hit by random lines. Every hit is found once, in order, with the same t,
+// shape and normal; a buffer too small for them is reported (-1), not filled in part.
+TEST(EmbreeScene, AllHitsInOneTraversalMatchHitByHitQueries) {
+  std::vector<Shape> shapes;
+  for (int k = 0; k < 5; ++k) {
+    Shape mesh;
+    tessellate_sphere(1.0f - 0.15f * float(k), 16, mesh.positions, mesh.indices);
+    shapes.push_back(mesh);
+  }
+  Shape ball;
+  ball.type = Shape::Type::Sphere;
+  ball.center = Vec3(2.5f, 0, 0);
+  ball.radius = 0.5f;
+  shapes.push_back(ball);
+  EmbreeScene scene;
+  scene.build(shapes, {0, 1, 2, 3, 4, 5}, {{0}}, {Instance{0, Transform::translate(Vec3d(-2.5, 0, 0))}});
+  Rng rng(5, 11);
+  int lines_with_many = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 o(rng.uniform() * 8 - 4, rng.uniform() * 2 - 1, rng.uniform() * 2 - 1);
+    const Vec3 d = normalize(Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f));
+    const float length = 1 + 6 * rng.uniform();
+    std::vector<SurfaceHit> stepped;
+    for (float t0 = 0; t0 < length;) {
+      SurfaceHit h;
+      if (!scene.intersect(Ray{o + d * t0, d, length - t0}, h)) break;
+      h.t += t0;
+      stepped.push_back(h);
+      t0 = h.t + 1e-4f * std::max(1.0f, max_component(abs(h.p)));
+    }
+    EmbreeScene::RawHit raw[32];
+    const Ray segment{o, d, length};
+    const int n = scene.all_hits(segment, raw, 32);
+    ASSERT_EQ(n, int(stepped.size())) << "line " << i;
+    for (int k = 0; k < n; ++k) {
+      SurfaceHit h;
+      scene.fill_hit(raw[k], segment, h);
+      EXPECT_NEAR(h.t, stepped[std::size_t(k)].t, 1e-4f) << "line " << i << ", hit " << k;
+      EXPECT_EQ(h.shape, stepped[std::size_t(k)].shape);
+      EXPECT_EQ(h.instance, stepped[std::size_t(k)].instance);
+      EXPECT_GT(dot(h.ng, stepped[std::size_t(k)].ng), 0.9999f);
+    }
+    if (n >= 4) {
+      ++lines_with_many;
+      EXPECT_EQ(scene.all_hits(segment, raw, n - 1), -1) << "line " << i;
+    }
+  }
+  EXPECT_GT(lines_with_many, 200);  // enough lines that cross many surfaces to have tested them (266)
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "dermis/geometry/embree_scene.h"
+
 namespace dermis {
 
 namespace {
@@ -13,6 +15,29 @@ inline float skip_distance(Vec3 p) { return 1e-4f * std::max(1.0f, max_component
 }  // namespace
 
 void ObjectTracer::collect_hits(Vec3 o, Vec3 d, float length, int max_hits, std::vector<SurfaceHit>& hits) const {
+  // One traversal for all of the segment's hits; a hit closer to the one before it than
+  // skip_distance is dropped, as the queries hit by hit below step past it.
+  {
+    constexpr int kCapacity = 64;
+    EmbreeScene::RawHit raw[kCapacity];
+    const Ray segment{o, d, length};
+    counters_.count(segment);
+    const int n = scene_.all_hits(segment, raw, kCapacity);
+    if (n >= 0) {
+      float next = 0;  // the nearest t the queries hit by hit would look from
+      for (int i = 0; i < n; ++i) {
+        if (raw[i].t < next) continue;
+        SurfaceHit h;
+        scene_.fill_hit(raw[i], segment, h);
+        next = raw[i].t + skip_distance(h.p);
+        if (!contains(h)) continue;
+        hits.push_back(h);
+        if (int(hits.size()) >= max_hits) return;
+      }
+      return;
+    }
+  }
+  // More hits than the buffer holds: the nearest, query by query.
   float t0 = 0;
   for (int guard = 0; guard < 4 * max_hits + 16 && t0 < length; ++guard) {
     Ray r{o + d * t0, d, length - t0};
