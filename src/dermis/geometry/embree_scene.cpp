@@ -97,11 +97,15 @@ void flat_curve_filter(const RTCFilterFunctionNArguments* args) {
 }
 
 // all_hits: the context Embree passes to the filter (our fields after its own).
+// pass_through_hits: only the hits on those shapes are recorded and rejected; any other
+// is accepted (an occlusion query then stops).
 struct CollectingContext {
   RTCIntersectContext embree;
   EmbreeScene::RawHit* hits;
   int capacity, count;
   bool overflow;
+  const EmbreeScene* scene = nullptr;
+  const std::vector<char>* pass_through = nullptr;
 };
 
 void collect_filter(const RTCFilterFunctionNArguments* args) {
@@ -109,6 +113,10 @@ void collect_filter(const RTCFilterFunctionNArguments* args) {
   const unsigned N = args->N;
   for (unsigned i = 0; i < N; ++i) {
     if (args->valid[i] != -1) continue;
+    if (c->pass_through &&
+        !(*c->pass_through)[std::size_t(c->scene->shape_of(RTCHitN_geomID(args->hit, N, i),
+                                                           RTCHitN_instID(args->hit, N, i, 0)))])
+      continue;  // accepted
     args->valid[i] = 0;  // rejected: the traversal goes on to the next candidate
     EmbreeScene::RawHit h;
     h.t = RTCRayN_tfar(args->ray, N, i);
@@ -333,6 +341,26 @@ int EmbreeScene::all_hits(const Ray& ray, RawHit* hits, int capacity) const {
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &c.embree, &rh);
+  if (c.overflow) return -1;
+  std::sort(hits, hits + c.count, [](const RawHit& a, const RawHit& b) { return a.t < b.t; });
+  return c.count;
+}
+
+int EmbreeScene::pass_through_hits(const Ray& ray, const std::vector<char>& pass_through, RawHit* hits,
+                                   int capacity) const {
+  CollectingContext c;
+  rtcInitIntersectContext(&c.embree);
+  c.embree.filter = collect_filter;
+  c.hits = hits;
+  c.capacity = capacity;
+  c.count = 0;
+  c.overflow = false;
+  c.scene = this;
+  c.pass_through = &pass_through;
+  RTCRay r;
+  init_ray(r, ray);
+  rtcOccluded1(scene_, &c.embree, &r);
+  if (r.tfar < 0) return kBlocked;
   if (c.overflow) return -1;
   std::sort(hits, hits + c.count, [](const RawHit& a, const RawHit& b) { return a.t < b.t; });
   return c.count;

@@ -61,6 +61,18 @@ class EmbreeScene {
   // then not known (hits come in traversal order), and the caller queries hit by hit.
   int all_hits(const Ray& ray, RawHit* hits, int capacity) const;
   void fill_hit(const RawHit& raw, const Ray& ray, SurfaceHit& hit) const;
+  // The hits on shapes that `pass_through` marks (per shape: index-matched interfaces)
+  // along the ray, sorted by t, in one occlusion query that stops at the first hit on any
+  // other shape (its filter records and rejects the first kind, accepts the second).
+  // Returns their count, kBlocked when another shape lies on the ray, or -1 when there
+  // were more than `capacity` (the caller then queries hit by hit).
+  static constexpr int kBlocked = -2;
+  int pass_through_hits(const Ray& ray, const std::vector<char>& pass_through, RawHit* hits, int capacity) const;
+  // The shape of an Embree hit (geometry, and instance or RTC_INVALID_GEOMETRY_ID).
+  int shape_of(unsigned geom, unsigned inst) const {
+    return inst != RTC_INVALID_GEOMETRY_ID ? object_geom_shape_[instances_[top_geom_instance_[inst]].object][geom]
+                                           : top_geom_shape_[geom];
+  }
 
   RTCScene handle() const { return scene_; }
   // World-space bounding sphere of all geometry.

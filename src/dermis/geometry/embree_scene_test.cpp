@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "dermis/core/rng.h"
@@ -140,6 +141,52 @@ TEST(EmbreeScene, AllHitsInOneTraversalMatchHitByHitQueries) {
     }
   }
   EXPECT_GT(lines_with_many, 200);  // enough lines that cross many surfaces to have tested them (266)
+}
+
+// pass_through_hits: on the same nested shells, shells 1 and 3 opaque, the others (and the
+// instance) passed through. A line that meets an opaque shell within its length is
+// blocked; any other gets exactly all_hits' hits (all of them on pass-through shapes).
+TEST(EmbreeScene, PassThroughHitsStopAtTheFirstOtherShape) {
+  std::vector<Shape> shapes;
+  for (int k = 0; k < 5; ++k) {
+    Shape mesh;
+    tessellate_sphere(1.0f - 0.15f * float(k), 16, mesh.positions, mesh.indices);
+    shapes.push_back(mesh);
+  }
+  EmbreeScene scene;
+  scene.build(shapes, {0, 1, 2, 3, 4}, {{0}}, {Instance{0, Transform::translate(Vec3d(-2.5, 0, 0))}});
+  const std::vector<char> pass_through{1, 0, 1, 0, 1};
+  Rng rng(7, 13);
+  int blocked = 0, passed_many = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 o(rng.uniform() * 6 - 4, rng.uniform() * 2 - 1, rng.uniform() * 2 - 1);
+    const Vec3 d = normalize(Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f));
+    const Ray segment{o, d, 1 + 6 * rng.uniform()};
+    EmbreeScene::RawHit all[32], through[32];
+    const int n_all = scene.all_hits(segment, all, 32);
+    ASSERT_GE(n_all, 0);
+    bool opaque = false;
+    for (int k = 0; k < n_all; ++k) opaque |= !pass_through[std::size_t(scene.shape_of(all[k].geom, all[k].inst))];
+    const int n = scene.pass_through_hits(segment, pass_through, through, 32);
+    if (opaque) {
+      EXPECT_EQ(n, EmbreeScene::kBlocked) << "line " << i;
+      ++blocked;
+      continue;
+    }
+    ASSERT_EQ(n, n_all) << "line " << i;
+    for (int k = 0; k < n; ++k) {
+      EXPECT_EQ(through[k].t, all[k].t);
+      EXPECT_EQ(through[k].prim, all[k].prim);
+      EXPECT_EQ(through[k].inst, all[k].inst);
+    }
+    if (n >= 2) {
+      ++passed_many;
+      EXPECT_EQ(scene.pass_through_hits(segment, pass_through, through, n - 1), -1);
+    }
+  }
+  EXPECT_GT(blocked, 300);
+  EXPECT_GT(passed_many, 100);
+  std::printf("blocked %d, passed through two or more %d\n", blocked, passed_many);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "dermis/render/integrator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -117,6 +118,32 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
     if (medium >= 0) tr = sc.media[medium].transmittance(distance);
     return tr;
   }
+  {
+    // One occlusion query: the interfaces crossed, or the first other shape, which blocks.
+    constexpr int kCapacity = 32;
+    EmbreeScene::RawHit raw[kCapacity];
+    const Ray shadow{origin, dir, distance};
+    counters.count(shadow);
+    const int n = sc.embree->pass_through_hits(shadow, sc.interface_shape, raw, kCapacity);
+    if (n == EmbreeScene::kBlocked) return RGB(0);
+    if (n >= 0) {
+      float t_medium = 0;  // where the medium the ray is in began
+      float next = 0;      // a hit closer than this to the one before is the same crossing
+      for (int i = 0; i < n; ++i) {
+        if (raw[i].t < next) continue;
+        SurfaceHit hit;
+        sc.embree->fill_hit(raw[i], shadow, hit);
+        next = raw[i].t + 1e-4f * std::max(1.0f, max_component(abs(hit.p)));
+        if (medium >= 0) tr *= sc.media[medium].transmittance(hit.t - t_medium);
+        if (tr.is_black()) return tr;
+        medium = medium_after_crossing(sc.shapes[hit.shape], dir, hit.ng, medium);
+        t_medium = hit.t;
+      }
+      if (medium >= 0) tr *= sc.media[medium].transmittance(distance - t_medium);
+      return tr;
+    }
+  }
+  // More interfaces than the buffer holds: query by query.
   Vec3 o = origin;
   float remaining = distance;
   for (int crossing = 0; crossing < kMaxInterfaceCrossings; ++crossing) {

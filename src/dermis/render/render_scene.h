@@ -55,6 +55,7 @@ struct RenderScene {
   LightSelection light_selection;     // which light next-event estimation samples
   std::vector<int> infinite_lights;
   bool has_interfaces = false;        // any shape with an `interface` material
+  std::vector<char> interface_shape;  // per shape: 1 when its material is `interface` (shadow rays pass)
   // Per medium: can a shadow ray from inside it reach a light? Not when the medium only
   // fills shapes with opaque or refractive boundaries and holds no light (e.g. skin
   // under a dielectric): next-event estimation there would only find the boundary.

@@ -366,6 +366,9 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
     objects.push_back(std::move(ids));
     object_bounds.emplace_back(lo, hi);
   }
+  sc->interface_shape.resize(sc->shapes.size());
+  for (std::size_t i = 0; i < sc->shapes.size(); ++i)
+    sc->interface_shape[i] = sc->materials[sc->shapes[i].material].is_interface();
   std::vector<Instance> instances;
   for (const InstanceDesc& i : desc.instances) {
     if (i.object >= 0 && std::size_t(i.object) < object_bounds.size() &&
