@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstddef>
+#include <type_traits>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -99,14 +101,29 @@ void flat_curve_filter(const RTCFilterFunctionNArguments* args) {
 // all_hits: the context Embree passes to the filter (our fields after its own).
 // pass_through_hits: only the hits on those shapes are recorded and rejected; any other
 // is accepted (an occlusion query then stops).
+void collect_filter(const RTCFilterFunctionNArguments* args);
+
 struct CollectingContext {
   RTCIntersectContext embree;
   EmbreeScene::RawHit* hits;
-  int capacity, count;
-  bool overflow;
+  int capacity, count = 0;
+  bool overflow = false;
   const EmbreeScene* scene = nullptr;
   const std::vector<char>* pass_through = nullptr;
+
+  CollectingContext(EmbreeScene::RawHit* h, int cap) : hits(h), capacity(cap) {
+    rtcInitIntersectContext(&embree);
+    embree.filter = collect_filter;
+  }
+  // After the query: the hits sorted by t, or -1 when they did not fit.
+  int sorted_count() {
+    if (overflow) return -1;
+    std::sort(hits, hits + count, [](const EmbreeScene::RawHit& a, const EmbreeScene::RawHit& b) { return a.t < b.t; });
+    return count;
+  }
 };
+// Embree hands the filter its own context: ours must begin with it.
+static_assert(std::is_standard_layout_v<CollectingContext> && offsetof(CollectingContext, embree) == 0);
 
 void collect_filter(const RTCFilterFunctionNArguments* args) {
   auto* c = reinterpret_cast<CollectingContext*>(args->context);
@@ -329,41 +346,25 @@ bool EmbreeScene::occluded(const Ray& ray) const {
 }
 
 int EmbreeScene::all_hits(const Ray& ray, RawHit* hits, int capacity) const {
-  CollectingContext c;
-  rtcInitIntersectContext(&c.embree);
-  c.embree.filter = collect_filter;
-  c.hits = hits;
-  c.capacity = capacity;
-  c.count = 0;
-  c.overflow = false;
+  CollectingContext c(hits, capacity);
   RTCRayHit rh;
   init_ray(rh.ray, ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &c.embree, &rh);
-  if (c.overflow) return -1;
-  std::sort(hits, hits + c.count, [](const RawHit& a, const RawHit& b) { return a.t < b.t; });
-  return c.count;
+  return c.sorted_count();
 }
 
 int EmbreeScene::pass_through_hits(const Ray& ray, const std::vector<char>& pass_through, RawHit* hits,
                                    int capacity) const {
-  CollectingContext c;
-  rtcInitIntersectContext(&c.embree);
-  c.embree.filter = collect_filter;
-  c.hits = hits;
-  c.capacity = capacity;
-  c.count = 0;
-  c.overflow = false;
+  CollectingContext c(hits, capacity);
   c.scene = this;
   c.pass_through = &pass_through;
   RTCRay r;
   init_ray(r, ray);
   rtcOccluded1(scene_, &c.embree, &r);
   if (r.tfar < 0) return kBlocked;
-  if (c.overflow) return -1;
-  std::sort(hits, hits + c.count, [](const RawHit& a, const RawHit& b) { return a.t < b.t; });
-  return c.count;
+  return c.sorted_count();
 }
 
 void EmbreeScene::fill_hit(const RawHit& raw, const Ray& ray, SurfaceHit& hit) const {

@@ -91,17 +91,23 @@ TEST(EmbreeScene, SphereUvOnlyWhenNeeded) {
   EXPECT_EQ(a.ng.z, b.ng.z);
 }
 
-// all_hits against closest-hit queries stepped past each hit: five nested tessellated
-// spheres (shells, so a line meets up to ten surfaces), a sphere shape, and an instance
-// of a shell, hit by random lines. Every hit is found once, in order, with the same t,
-// shape and normal; a buffer too small for them is reported (-1), not filled in part.
-TEST(EmbreeScene, AllHitsInOneTraversalMatchHitByHitQueries) {
+// Five concentric tessellated spheres (radii 1, 0.85, ... 0.4): a line meets up to ten surfaces.
+std::vector<Shape> nested_shells() {
   std::vector<Shape> shapes;
   for (int k = 0; k < 5; ++k) {
     Shape mesh;
     tessellate_sphere(1.0f - 0.15f * float(k), 16, mesh.positions, mesh.indices);
     shapes.push_back(mesh);
   }
+  return shapes;
+}
+
+// all_hits against closest-hit queries stepped past each hit: five nested tessellated
+// spheres (shells, so a line meets up to ten surfaces), a sphere shape, and an instance
+// of a shell, hit by random lines. Every hit is found once, in order, with the same t,
+// shape and normal; a buffer too small for them is reported (-1), not filled in part.
+TEST(EmbreeScene, AllHitsInOneTraversalMatchHitByHitQueries) {
+  std::vector<Shape> shapes = nested_shells();
   Shape ball;
   ball.type = Shape::Type::Sphere;
   ball.center = Vec3(2.5f, 0, 0);
@@ -147,12 +153,7 @@ TEST(EmbreeScene, AllHitsInOneTraversalMatchHitByHitQueries) {
 // instance) passed through. A line that meets an opaque shell within its length is
 // blocked; any other gets exactly all_hits' hits (all of them on pass-through shapes).
 TEST(EmbreeScene, PassThroughHitsStopAtTheFirstOtherShape) {
-  std::vector<Shape> shapes;
-  for (int k = 0; k < 5; ++k) {
-    Shape mesh;
-    tessellate_sphere(1.0f - 0.15f * float(k), 16, mesh.positions, mesh.indices);
-    shapes.push_back(mesh);
-  }
+  std::vector<Shape> shapes = nested_shells();
   EmbreeScene scene;
   scene.build(shapes, {0, 1, 2, 3, 4}, {{0}}, {Instance{0, Transform::translate(Vec3d(-2.5, 0, 0))}});
   const std::vector<char> pass_through{1, 0, 1, 0, 1};

@@ -173,6 +173,15 @@ TEST(ProbeMethodOnItsOwn, ExitsLieOnTheObject) {
   EXPECT_GT(exits, 1000);
 }
 
+// A skin-like profile whose red probes reach across a unit sphere (R_max >= 2).
+SubsurfaceParams long_reach_params(SubsurfaceParams::Method method) {
+  SubsurfaceParams p;
+  p.method = method;
+  p.reflectance = RGB(0.8f, 0.5f, 0.3f);
+  p.mfp = RGB(0.6f, 0.4f, 0.3f);
+  return p;
+}
+
 // Probes that cross the object many times: six concentric spheres (radii 1 ... 0.5, one
 // object), the entry at the top of the outer one, mfp long enough that every probe spans
 // the whole object (R_max >= its diameter). A vertical probe meets up to 12 surfaces; one
@@ -186,10 +195,7 @@ TEST(ProbeMethodOnItsOwn, ManyCrossingsKeepTheMeanWeight) {
   const std::vector<int> objects(6, 0);
   for (auto method : {SubsurfaceParams::Method::Disk, SubsurfaceParams::Method::SphereLines}) {
     SCOPED_TRACE(method == SubsurfaceParams::Method::Disk ? "disk" : "sphere lines");
-    SubsurfaceParams p;
-    p.method = method;
-    p.reflectance = RGB(0.8f, 0.5f, 0.3f);
-    p.mfp = RGB(0.6f, 0.4f, 0.3f);
+    const SubsurfaceParams p = long_reach_params(method);
     const SubsurfaceMaterial m = make_subsurface_material(p);
     ASSERT_GE(std::get<ProbeMethod>(m.method).max_radius(), 2.0);
     const sss::ProfileRGB profile = make_profile(p);
@@ -235,10 +241,7 @@ TEST(ProbeMethodOnItsOwn, ExitLightAtEveryCandidateKeepsTheMeanWithLessVariance)
   const auto outside_lit = [](const SurfaceHit& h, Sampler&) { return RGB(length(h.p) > 0.975f ? 1.0f : 0.0f); };
   for (auto method : {SubsurfaceParams::Method::Disk, SubsurfaceParams::Method::SphereLines}) {
     SCOPED_TRACE(method == SubsurfaceParams::Method::Disk ? "disk" : "sphere lines");
-    SubsurfaceParams p;
-    p.method = method;
-    p.reflectance = RGB(0.8f, 0.5f, 0.3f);
-    p.mfp = RGB(0.6f, 0.4f, 0.3f);
+    const SubsurfaceParams p = long_reach_params(method);
     const SubsurfaceMaterial m = make_subsurface_material(p);
     const sss::ProfileRGB profile = make_profile(p);
     PathCounters counters;
