@@ -26,8 +26,11 @@ struct SurfaceHit {
 
 // Offsets a ray origin off a surface, to the side of direction w, so that the
 // new ray does not find the surface it starts on again.
+// The distance a ray leaving a surface point p keeps from it (relative to |p|, at least 1e-4).
+inline float surface_offset(Vec3 p) { return 1e-4f * std::max(1.0f, max_component(abs(p))); }
+
 inline Vec3 offset_ray_origin(Vec3 p, Vec3 ng, Vec3 w) {
-  float scale = 1e-4f * std::max(1.0f, max_component(abs(p)));
+  float scale = surface_offset(p);
   return p + (dot(w, ng) > 0 ? ng : -ng) * scale;
 }
 

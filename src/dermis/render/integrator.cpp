@@ -133,7 +133,7 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
         if (raw[i].t < next) continue;
         SurfaceHit hit;
         sc.embree->fill_hit(raw[i], shadow, hit);
-        next = raw[i].t + 1e-4f * std::max(1.0f, max_component(abs(hit.p)));
+        next = raw[i].t + surface_offset(hit.p);
         if (medium >= 0) tr *= sc.media[medium].transmittance(hit.t - t_medium);
         if (tr.is_black()) return tr;
         medium = medium_after_crossing(sc.shapes[hit.shape], dir, hit.ng, medium);
@@ -391,13 +391,15 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           return std::pair{bsdf_eval(b, wo_in, wi), bsdf_pdf(b, wo_in, wi)};
         });
       };
-      // Direct light leaving through the exit lobe at a point, from the outside's medium.
-      auto exit_light = [&](const SurfaceHit& at, Sampler& smp) {
-        RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
-        const BSDF sw = sm.exit_lobe(at, table_at);
+      // Direct light leaving through the exit lobe sw at a point, from the outside's medium.
+      auto light_through_lobe = [&](const SurfaceHit& at, const BSDF& sw, Sampler& smp) {
         return estimate_direct(sc, offset_ray_origin(at.p, at.ng, at.ng), at.ng, medium, smp, counters, [&](Vec3 wi) {
           return std::pair{bsdf_eval(sw, at.ng, wi), bsdf_pdf(sw, at.ng, wi)};
         });
+      };
+      auto exit_light = [&](const SurfaceHit& at, Sampler& smp) {
+        RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
+        return light_through_lobe(at, sm.exit_lobe(at, table_at), smp);
       };
       SubsurfaceExit ex;
       const bool exited = sample_subsurface_exit(
@@ -428,9 +430,9 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       // Leave through the exit lobe Sw at the exit point (normalised Fresnel, or the
       // rough boundary's transmittance): its direct light, unless the method gathered it
       // (SubsurfaceExit::exit_light_gathered), and the lobe sampled for the way on.
-      if (!ex.exit_light_gathered) L += beta * exit_light(ex.hit, sampler);
       RoughExitTable exit_table_here;  // a textured roughness: the table of the exit point's alpha
       const BSDF sw = sm.exit_lobe(ex.hit, exit_table_here);
+      if (!ex.exit_light_gathered) L += beta * light_through_lobe(ex.hit, sw, sampler);
       Vec3 p_out = offset_ray_origin(ex.hit.p, ex.hit.ng, ex.hit.ng);
       const float u_exit_lobe = sampler.get1d();
       auto bs = bsdf_sample(sw, ex.hit.ng, u_exit_lobe, sampler.get2d());

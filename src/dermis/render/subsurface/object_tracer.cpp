@@ -9,8 +9,8 @@ namespace dermis {
 namespace {
 
 // Moves past a hit along the ray's direction (not along the normal: the next query
-// must continue on the same line).
-inline float skip_distance(Vec3 p) { return 1e-4f * std::max(1.0f, max_component(abs(p))); }
+// must continue on the same line), as far as a ray leaving the surface keeps from it.
+inline float skip_distance(Vec3 p) { return surface_offset(p); }
 
 }  // namespace
 
