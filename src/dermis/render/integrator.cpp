@@ -68,6 +68,32 @@ RGB estimate_direct_group(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sam
   return f * tr * ls.L * (w / light_pdf);
 }
 
+// The emission `ray` meets at its first surface, or from the lights at infinity where it
+// meets none, in full (as after a specular bounce). In vacuum: no transmittance.
+RGB emission_seen(const RenderScene& sc, const Ray& ray, PathCounters& counters) {
+  SurfaceHit hit;
+  counters.count(ray);
+  if (!sc.embree->intersect(ray, hit)) {
+    RGB Le(0);
+    for (int li : sc.infinite_lights) Le += infinite_light_radiance(sc.lights[li], ray.d);
+    return Le;
+  }
+  const Shape& s = sc.shapes[hit.shape];
+  if (s.first_light < 0) return RGB(0);
+  const int li = s.first_light + (s.type == Shape::Type::Mesh ? hit.prim : 0);
+  return area_light_radiance(sc.lights[li], hit.ng, -ray.d);
+}
+
+// The mean luminance of the lights at infinity over the sphere of directions.
+float mean_sky_luminance(const RenderScene& sc) {
+  float sum = 0;
+  for (int li : sc.infinite_lights) {
+    const Light& l = sc.lights[li];
+    sum += l.environment ? l.environment->average_luminance() : l.emission.luminance();
+  }
+  return sum;
+}
+
 // One light sample from each group of the light selection (finite lights, lights at
 // infinity: lights/light_selection.h), two dimensions each.
 template <class Scatter>
@@ -178,6 +204,9 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
   Vec3 prev_p = start.from_camera ? ray.o : start.prev_p;
   Vec3 prev_n = start.from_camera ? Vec3(0, 0, 0) : start.prev_n;
   int depth = start.depth, crossings = 0;
+  // The emission at the next surface (or at infinity) was counted already (a subsurface
+  // entry's reflection, below): the path goes on from there without it.
+  bool emission_counted = false;
   uint64_t vertex_dimension = start.first_dimension;  // this vertex's block (integrator.h)
   const int max_depth = sc.settings.max_depth;
   // Russian roulette after the second bounce on max(throughput) x eta scale (pbrt-v4
@@ -260,6 +289,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     }
 
     if (!found) {
+      if (emission_counted) break;
       for (int li : sc.infinite_lights) {
         const Light& light = sc.lights[li];
         RGB Le = infinite_light_radiance(light, ray.d);
@@ -273,7 +303,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     }
 
     const Shape& s = sc.shapes[hit.shape];
-    if (s.first_light >= 0) {
+    if (s.first_light >= 0 && !emission_counted) {
       int li = s.first_light + (s.type == Shape::Type::Mesh ? hit.prim : 0);
       const Light& light = sc.lights[li];
       RGB Le = area_light_radiance(light, hit.ng, -ray.d);
@@ -285,6 +315,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       }
     }
 
+    emission_counted = false;
     // A mix material resolves to one of its materials here, once per hit (material.h).
     const Material& mat = sc.materials[resolve_material(sc.materials, sc.textures, s.material, hit, -ray.d,
                                                         sampler.sample_hash(vertex_dimension))];
@@ -356,6 +387,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           PathStart reflected;  // after a specular bounce: emission counts in full
           reflected.depth = depth;
           reflected.rough_glass_nee = start.rough_glass_nee;
+          reflected.entry_reflection_emission = start.entry_reflection_emission;
           reflected.first_dimension = Sampler::region(resume, 0x5e1fu);
           Vec3 wi = reflect(wo, hit.ng);
           L += beta * F * trace_path(sc, Ray{offset_ray_origin(hit.p, hit.ng, wi), wi}, medium, sampler, counters,
@@ -363,13 +395,33 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           sampler.set_dimension(resume);
         }
         beta *= 1 - F;
-      } else if (sampler.get1d() < F) {
-        Vec3 wi = reflect(wo, hit.ng);
-        specular = true;
-        prev_pdf = F;
-        prev_p = hit.p;
-        ray = Ray{offset_ray_origin(hit.p, hit.ng, wi), wi};
-        continue;
+      } else {
+        // Reflection with probability F, else transmission (weights F/F, (1 - F)/(1 - F)).
+        // In vacuum, where the reflection meets an emitter brighter than twice the mean sky,
+        // its emission is added at every entry, weighted F, and a reflected path goes on
+        // without it: one sample of F Le + F L_beyond + (1 - F) L_t, unbiased for any rule
+        // that looks at Le alone. After a diffuse bounce, a small light's mirror image met
+        // with probability F was a firefly 1/F times its term's mean. The rule: against
+        // choosing by Fresnel, the variance falls by F (1 - F) Le (Le + 2 L_beyond - 2 L_t),
+        // a gain where Le exceeds about twice what enters, a loss for a sky that the
+        // transmitted light matches.
+        const bool reflect_path = sampler.get1d() < F;
+        const Vec3 wi = reflect(wo, hit.ng);
+        const Ray reflected{offset_ray_origin(hit.p, hit.ng, wi), wi};
+        bool counted = false;
+        if (start.entry_reflection_emission && medium < 0 && F > 0) {
+          const RGB Le = emission_seen(sc, reflected, counters);
+          counted = Le.luminance() > 2 * mean_sky_luminance(sc);
+          if (counted) L += beta * F * Le;
+        }
+        if (reflect_path) {
+          specular = true;
+          prev_pdf = F;
+          prev_p = hit.p;
+          emission_counted = counted;
+          ray = reflected;
+          continue;
+        }
       }
       // The exit sampler draws from its own region; the exit's light and lobe from this block.
       const uint64_t after_exit = sampler.dimension();
@@ -495,6 +547,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           PathStart rs;
           rs.depth = depth;
           rs.rough_glass_nee = start.rough_glass_nee;
+          rs.entry_reflection_emission = start.entry_reflection_emission;
           rs.first_dimension = Sampler::region(resume, 0x5e1fu);
           L += beta * reflected->weight * F *
                trace_path(sc, Ray{offset_ray_origin(hit.p, hit.ng, reflected->wi), reflected->wi}, medium, sampler,

@@ -97,6 +97,70 @@ TEST(SubsurfaceRandomWalk, SplittingTheEntryKeepsTheMean) {
                                     testing::pixel_statistics(*sc, 192, 71, no_split), 4, 4);
 }
 
+// On a floor: paths that leave the floor's diffuse bounce meet the sphere a second time,
+// where the entry is not split and its reflection shows a light's mirror image (a caustic
+// on the floor). The walk, whose entries add the emission a reflection meets at every
+// entry (weight F), against the medium inside a dielectric, whose reflection is chosen by
+// Fresnel: the same picture within 4 sigma. Then that emission added at every entry and
+// found only on the reflected paths: the same picture, the variance lower.
+TEST(SubsurfaceRandomWalk, ReflectionAtALaterEntryKeepsTheMeanWithLessVariance) {
+  // A small bright light beside the sphere, low: its mirror image in the sphere lights the floor.
+  const std::string small_light = R"(AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [200 200 200]
+  Translate 2.5 0.5 -0.6
+  Shape "sphere" "float radius" 0.15
+AttributeEnd
+)";
+  const std::string floor = R"(AttributeBegin
+  Material "diffuse" "rgb reflectance" [0.8 0.8 0.8]
+  Shape "trianglemesh" "point3 P" [-6 -6 -1  6 -6 -1  6 6 -1  -6 6 -1] "integer indices" [0 1 2  0 2 3]
+AttributeEnd
+)";
+  const std::string walk = kHeader + small_light + floor + "Material \"subsurface\" " + kCoefficients +
+                           " \"float eta\" 1.4 \"string method\" \"randomwalk\" \"string boundary\" \"dielectric\"\n"
+                           "Shape \"sphere\"\n";
+  const std::string volume = kHeader + small_light + floor + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " +
+                             kCoefficients +
+                             "\nMediumInterface \"m\" \"\"\nMaterial \"dielectric\" \"float eta\" 1.4\nShape \"sphere\"\n";
+  expect_same_picture(walk, volume, 128);
+
+  // The variance: a sphere that absorbs all it lets in (no scattering, sigma_a 50 per unit)
+  // on the floor, lit by a spherical light alone (no sky), its mirror image on the floor
+  // frequent; the camera's entries not split either, so that every entry takes the branch.
+  Diagnostics diag;
+  auto sc = build_render_scene(parse_scene_string(R"(LookAt 0 -4 1.5  0 0 0  0 0 1
+Camera "perspective" "float fov" 34
+Film "rgb" "integer xresolution" 16 "integer yresolution" 16
+Integrator "volpath" "integer maxdepth" 100000
+WorldBegin
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [4 4 4]
+  Translate 1 -3 3
+  Shape "sphere" "float radius" 1
+AttributeEnd
+)" + floor + R"(Material "subsurface" "rgb sigma_a" [50 50 50] "rgb sigma_s" [0 0 0] "float eta" 1.4
+  "string method" "randomwalk"
+Shape "sphere"
+)"),
+                               diag);
+  PathStart every_entry, chosen;
+  every_entry.split_first_hit = chosen.split_first_hit = false;
+  chosen.entry_reflection_emission = false;
+  const auto every = testing::pixel_statistics(*sc, 256, 80, every_entry);
+  const auto only_reflected = testing::pixel_statistics(*sc, 256, 81, chosen);
+  testing::expect_same_region_means(every, only_reflected, 4, 4);
+  double v_every = 0, v_chosen = 0;
+  for (std::size_t p = 0; p < every.mean.size(); ++p)
+    for (int c = 0; c < 3; ++c) {
+      v_every += double(every.stderr_[p][c]) * every.stderr_[p][c];
+      v_chosen += double(only_reflected.stderr_[p][c]) * only_reflected.stderr_[p][c];
+    }
+  std::printf("variance, emission at every entry / on reflected paths only: %.3f\n", v_every / v_chosen);
+  // Nothing enters the sphere, so every pixel's variance from the reflection's choice,
+  // F (1 - F) Le^2, becomes the beyond term's alone: 0.2 of it here; at most half.
+  EXPECT_LT(v_every, 0.5 * v_chosen);
+}
+
 // A thin slab (0.8 to 1.7 mean free paths thick) lit from behind: most of what the camera
 // sees has crossed it, the case backward guiding is for. The walk with backward guiding
 // (Dwivedi-only and MIS) against the medium inside a dielectric.
