@@ -94,6 +94,17 @@ float mean_sky_luminance(const RenderScene& sc) {
   return sum;
 }
 
+// Adds weight x the emission `ray` meets (emission_seen) to L where it is brighter than
+// twice the mean sky, and says whether it did: a smooth reflection's emission counted at
+// every hit, a reflected path then going on without it (trace_path, at subsurface entries
+// and smooth glass). Any rule that looks at the emission alone keeps the estimate unbiased.
+bool add_bright_emission_seen(const RenderScene& sc, const Ray& ray, RGB weight, PathCounters& counters, RGB& L) {
+  const RGB Le = emission_seen(sc, ray, counters);
+  if (!(Le.luminance() > 2 * mean_sky_luminance(sc))) return false;
+  L += weight * Le;
+  return true;
+}
+
 // One light sample from each group of the light selection (finite lights, lights at
 // infinity: lights/light_selection.h), two dimensions each.
 template <class Scatter>
@@ -387,7 +398,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           PathStart reflected;  // after a specular bounce: emission counts in full
           reflected.depth = depth;
           reflected.rough_glass_nee = start.rough_glass_nee;
-          reflected.entry_reflection_emission = start.entry_reflection_emission;
+          reflected.reflection_emission = start.reflection_emission;
           reflected.first_dimension = Sampler::region(resume, 0x5e1fu);
           Vec3 wi = reflect(wo, hit.ng);
           L += beta * F * trace_path(sc, Ray{offset_ray_origin(hit.p, hit.ng, wi), wi}, medium, sampler, counters,
@@ -408,12 +419,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         const bool reflect_path = sampler.get1d() < F;
         const Vec3 wi = reflect(wo, hit.ng);
         const Ray reflected{offset_ray_origin(hit.p, hit.ng, wi), wi};
-        bool counted = false;
-        if (start.entry_reflection_emission && medium < 0 && F > 0) {
-          const RGB Le = emission_seen(sc, reflected, counters);
-          counted = Le.luminance() > 2 * mean_sky_luminance(sc);
-          if (counted) L += beta * F * Le;
-        }
+        const bool counted = start.reflection_emission && medium < 0 && F > 0 &&
+                             add_bright_emission_seen(sc, reflected, beta * F, counters, L);
         if (reflect_path) {
           specular = true;
           prev_pdf = F;
@@ -534,6 +541,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     }
     float u_lobe = sampler.get1d();
     Vec2 u_dir = sampler.get2d();
+    bool split = false;  // the camera's first hit on smooth glass: both sides followed
     if (bsdf.type == BSDF::Type::Dielectric && bsdf.is_specular() && start.split_first_hit && start.from_camera &&
         start.depth == 0 && depth == 1) {
       // The camera's first hit on glass is split like a subsurface entry: the reflection
@@ -547,7 +555,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           PathStart rs;
           rs.depth = depth;
           rs.rough_glass_nee = start.rough_glass_nee;
-          rs.entry_reflection_emission = start.entry_reflection_emission;
+          rs.reflection_emission = start.reflection_emission;
           rs.first_dimension = Sampler::region(resume, 0x5e1fu);
           L += beta * reflected->weight * F *
                trace_path(sc, Ray{offset_ray_origin(hit.p, hit.ng, reflected->wi), reflected->wi}, medium, sampler,
@@ -555,11 +563,25 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           sampler.set_dimension(resume);
           beta *= 1 - F;
           u_lobe = 1.0f;  // the transmission below (u_lobe >= F)
+          split = true;
         }
       }
     }
+    // Smooth glass elsewhere, in vacuum: the reflection's emission counted at every hit, as
+    // at a subsurface entry (above), the reflection then chosen with probability F as before.
+    bool reflection_counted = false;
+    if (bsdf.type == BSDF::Type::Dielectric && bsdf.is_specular() && !split && start.reflection_emission &&
+        medium < 0) {
+      const float F = fresnel_dielectric(dot(wo, bsdf.n), bsdf.eta);
+      const auto reflected = F > 0 ? bsdf_sample(bsdf, wo, 0.0f, u_dir) : std::nullopt;
+      if (reflected && !reflected->transmission)
+        reflection_counted =
+            add_bright_emission_seen(sc, Ray{offset_ray_origin(hit.p, hit.ng, reflected->wi), reflected->wi},
+                                     beta * reflected->weight * F, counters, L);
+    }
     auto bs = bsdf_sample(bsdf, wo, u_lobe, u_dir);
     if (!bs) break;
+    emission_counted = reflection_counted && !bs->transmission;
     beta *= bs->weight;
     eta_scale *= bs->eta_scale;
     specular = bs->specular || !nee;  // no light sampling here: emission counts in full

@@ -51,11 +51,12 @@ struct PathStart {
   // subsurface entry, for its reflection (tests turn it off to compare with the
   // estimator that finds emission there by BSDF sampling alone).
   bool rough_glass_nee = true;
-  // At a smooth subsurface entry not split (every one but the camera's first), in vacuum:
-  // the emission the reflection meets is added, weighted F, at every entry, and the
-  // reflected path, taken with probability F, goes on without it (tests turn it off to
-  // compare with finding that emission only on the paths that reflect).
-  bool entry_reflection_emission = true;
+  // At a smooth subsurface entry or smooth glass not split (all but the camera's first
+  // hit), in vacuum: the emission the reflection meets, where brighter than twice the mean
+  // sky, is added weighted F at every hit, and the reflected path, taken with probability
+  // F, goes on without it (tests turn it off to compare with finding that emission only on
+  // the paths that reflect).
+  bool reflection_emission = true;
 };
 
 // Radiance arriving along `ray` (from the camera), starting in `medium`.
