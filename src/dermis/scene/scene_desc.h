@@ -63,6 +63,9 @@ struct FilmDesc {
 struct RenderSettingsDesc {
   int spp = 16;
   int max_depth = 5;
+  // Exits sampled at the camera's first subsurface entry, their direct light averaged
+  // (Dermis' "integer subsurfacesamples" of the Integrator; render/integrator.cpp).
+  int subsurface_samples = 2;
   std::string integrator = "volpath";
   int seed = 0;  // pbrt-v4 Sampler "integer seed"
   SamplerKind sampler = SamplerKind::Sobol;  // pbrt-v4 Sampler's name, mapped (docs/scene-format.md)

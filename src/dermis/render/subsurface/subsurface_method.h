@@ -43,6 +43,15 @@ struct SubsurfaceMaterial {
   // A textured roughness: the tables at alpha nodes, blended at each exit point.
   std::shared_ptr<const RoughExitTables> exit_tables;
 
+  // Its exits leave through the exit lobe Sw (SubsurfaceExit::Kind::ThroughLobe): the probe
+  // methods, and the walk with the diffuse boundary.
+  bool exits_through_lobe() const {
+    using M = SubsurfaceParams::Method;
+    return params.method == M::Disk || params.method == M::DiskSingleAxis || params.method == M::SphereLines ||
+           params.method == M::SphereLinesRetry ||
+           (params.method == M::RandomWalk && params.boundary == SubsurfaceParams::Boundary::Diffuse);
+  }
+
   // The exit lobe Sw at an exit point (its outward normal hit.ng; bsdf.h). A textured
   // roughness blends the table of the point's alpha into `scratch`, which the lobe
   // points to (it must outlive the lobe's use).
