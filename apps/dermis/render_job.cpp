@@ -327,7 +327,7 @@ int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& gr
   }
 
   double mrays = r.seconds > 0 ? double(r.rays) / r.seconds * 1e-6 : 0;
-  fmt::print(stderr, "dermis: wrote {}{} in {:.1f} s ({:.2f} Mrays/s, {} samples)\n", out,
+  fmt::print(stderr, "dermis: wrote {}{} in {:.3f} s ({:.2f} Mrays/s, {} samples)\n", out,
              ext == ".exr" && !a.no_png ? " and its .png" : "", r.seconds, mrays, r.samples);
   if (group.size() > 1 && !a.quiet) {
     // The load balance: each process's time rendering its tiles, waits excluded.

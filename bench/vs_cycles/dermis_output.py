@@ -3,7 +3,7 @@ import re
 
 import numpy as np
 
-# `dermis render` prints "... in 1.3 s (2.1 Mrays/s, 64 samples)" when the render stage ends,
+# `dermis render` prints "... in 1.302 s (2.1 Mrays/s, 64 samples)" when the render stage ends,
 RENDER_RE = re.compile(r"in ([0-9.]+) s \(([0-9.]+) Mrays/s, ([0-9]+) samples\)")
 # and "time limit reached: 12..14 samples per pixel" when --time-limit stopped it.
 LIMIT_RE = re.compile(r"time limit reached: ([0-9]+)\.\.([0-9]+) samples per pixel")

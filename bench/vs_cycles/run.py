@@ -101,12 +101,14 @@ def dermis_render(args, scene_file, out, spp=None, seconds=None, seed=1, res=Non
     lm = LIMIT_RE.search(p.stderr)
     npx = res[0] * res[1]
     warnings = [l for l in p.stderr.splitlines() if "warning" in l]
-    # `dermis render` prints the render-stage time with 0.1 s resolution: below 2 s use the
-    # process's wall time minus that of loading the same scene (a 1 x 1 pixel, 1 spp render).
+    # `dermis render` prints the render-stage time in milliseconds. Builds before 2026-12-03
+    # printed it with 0.1 s resolution: for those, below 2 s, use the process's wall time
+    # minus that of loading the same scene (a 1 x 1 pixel, 1 spp render), an overestimate
+    # (by 0.2-0.4 s on the bust: measured against the millisecond figure).
     secs, approx = reported, False
-    if reported < 2.0:
+    if len(m.group(1).partition(".")[2]) < 3 and reported < 2.0:
         secs, approx = max(wall - dermis_load_wall(args, scene_file), 1e-3), True
-    log(f"    dermis {os.path.basename(out)}: render {reported:.1f} s{f' (~{secs:.2f} s)' if approx else ''} "
+    log(f"    dermis {os.path.basename(out)}: render {reported:.3f} s{f' (~{secs:.2f} s)' if approx else ''} "
         f"(process {wall:.1f} s), {samples / npx:.1f} spp"
         + (f" [{lm.group(1)}..{lm.group(2)}]" if lm else "") + (f"  {'; '.join(warnings)}" if warnings else ""))
     return Run(out, secs, samples / npx, wall, cmd=" ".join(cmd), warnings=warnings, approx=approx, reported=reported)
@@ -375,7 +377,7 @@ def write_report(args, results, info, total, path, image_dir, argv):
       "against the renderer's OWN reference: it measures noise, not the differences between the renderers' models.")
     w("- **Time**: Dermis — the time `dermis render` reports for the render stage (`render_image`: tiles, "
       "all samples; excludes parsing, scene/BVH build and the albedo-inversion table, image writing; printed "
-      "with 0.1 s resolution). Cycles — `cycles.ViewLayer.render_time` from the EXR's metadata (path tracing only; "
+      "in milliseconds; ≈ marks an older build's 0.1 s figure replaced by wall time minus load time). Cycles — `cycles.ViewLayer.render_time` from the EXR's metadata (path tracing only; "
       "excludes `synchronization_time`: scene export, BVH, shader compilation; 10 ms resolution). The wall time of "
       "`bpy.ops.render.render()` (sync + render + EXR write) is listed too.")
     w(f"- **Repeats**: each sweep render is run {args.repeats} times (same seed: the same image); its time is the "
@@ -427,7 +429,7 @@ def write_report(args, results, info, total, path, image_dir, argv):
         for label, f in fams:
             for row in f.rows:
                 run = row["run"]
-                other = (f"printed {run.info['reported']:.1f}, process {run.wall:.1f}" if label != "Cycles"
+                other = (f"process {run.wall:.1f}" if label != "Cycles"
                          else f"sync {run.info['sync']:.2f}, operator {run.wall:.1f}")
                 approx = "≈" if run.info.get("approx") else ""
                 spread = f" ({row['tmin']:.2f}–{row['tmax']:.2f})" if len(row["times"]) > 1 else ""
