@@ -103,8 +103,8 @@ def dermis_render(args, scene_file, out, spp=None, seconds=None, seed=1, res=Non
     warnings = [l for l in p.stderr.splitlines() if "warning" in l]
     # `dermis render` prints the render-stage time in milliseconds. Builds before 2026-12-03
     # printed it with 0.1 s resolution: for those, below 2 s, use the process's wall time
-    # minus that of loading the same scene (a 1 x 1 pixel, 1 spp render), an overestimate
-    # (by 0.2-0.4 s on the bust: measured against the millisecond figure).
+    # minus that of loading the same scene (a 1 x 1 pixel, 1 spp render), rough
+    # and noisy: the difference of two wall times (bust-walk, 16 spp: 0.73 s in one run, 0.44 s rendering).
     secs, approx = reported, False
     if len(m.group(1).partition(".")[2]) < 3 and reported < 2.0:
         secs, approx = max(wall - dermis_load_wall(args, scene_file), 1e-3), True
