@@ -4,19 +4,23 @@ run interleaved in one session (the machine is shared and noisy: only ratios mea
 run mean anything).
 
   /usr/bin/python3 bench/compare_efficiency.py OLD_DERMIS NEW_DERMIS SCENE.pbrt [SCENE ...]
-      [--spp 16] [--res 96x96] [--seeds 6] [--threads 1]
+      [--spp 16] [--res 96x96] [--seeds 6] [--threads 1] [--time cpu|render]
 
 For each build and scene: --seeds renders (seeds 1..N, the two builds alternating); the
 variance of each pixel over the seeds, averaged over the pixels with a non-zero mean (the
 object; the background's variance is zero), and the CPU time of the process (user + system,
 from the kernel: less sensitive to other load than wall time; it includes parsing and scene
-preparation, so render enough samples that those are small). Efficiency = 1 / (variance x CPU).
+preparation, so render enough samples that those are small), or with --time render the
+render-stage time `dermis render` prints in milliseconds (wall time of the tiles alone: what a
+change of the per-sample cost moves; builds before 2026-12-03 print 0.1 s steps).
+Efficiency = 1 / (variance x time).
 The mean images of the two builds are compared too: |mean difference| in standard errors,
 averaged over those pixels (≈ 0.8 for two unbiased builds of the same estimand; a build that
 changed the image shows much more).
 """
 import argparse
 import os
+import re
 import resource
 import statistics
 import subprocess
@@ -26,13 +30,18 @@ import numpy as np
 import OpenImageIO as oiio
 
 
+RENDER_TIME = re.compile(r"in ([0-9.]+) s \(")
+
+
 def render(binary, scene, seed, args, out):
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    subprocess.run([binary, "render", scene, "--spp", str(args.spp), "--res", args.res, "--seed", str(seed),
-                    "--threads", str(args.threads), "-q", "--no-png", "-o", out], check=True,
-                   stderr=subprocess.DEVNULL)
+    p = subprocess.run([binary, "render", scene, "--spp", str(args.spp), "--res", args.res, "--seed", str(seed),
+                        "--threads", str(args.threads), "-q", "--no-png", "-o", out], check=True,
+                       capture_output=True, text=True)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    if args.time == "render":
+        cpu = max(float(RENDER_TIME.search(p.stderr).group(1)), 1e-3)  # printed in ms
     inp = oiio.ImageInput.open(out)  # not ImageBuf: its cache would return the file's first contents again
     img = inp.read_image(format="float")[:, :, :3].astype(np.float64)
     inp.close()
@@ -49,9 +58,11 @@ def main():
     ap.add_argument("--res", default="96x96")
     ap.add_argument("--seeds", type=int, default=6)
     ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--time", choices=["cpu", "render"], default="cpu",
+                    help="process CPU time (default) or the printed render-stage time")
     args = ap.parse_args()
     work = tempfile.mkdtemp(prefix="dermis-efficiency-")
-    print("| scene | variance new/old | CPU new/old | **efficiency new/old** | mean diff (std. errors) |")
+    print(f"| scene | variance new/old | {'CPU' if args.time == 'cpu' else 'render time'} new/old | **efficiency new/old** | mean diff (std. errors) |")
     print("|---|---|---|---|---|")
     for scene in args.scenes:
         images = {"old": [], "new": []}
