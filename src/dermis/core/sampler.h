@@ -40,7 +40,8 @@ class Sampler {
       : kind_(kind),
         rng_(seed, pixel, sample_index),
         pixel_seed_(uint32_t(mix64(seed ^ mix64(pixel + 0x5ab1e5eedull)))),
-        index_(sample_index) {}
+        index_(sample_index),
+        reversed_index_(reverse_bits(sample_index)) {}
 
   SamplerKind kind() const { return kind_; }
   // The next number is taken from dimension d (and d + 1 for get2d), and so on.
@@ -82,7 +83,7 @@ class Sampler {
   uint32_t next_fraction() {
     if (kind_ == SamplerKind::Independent || dim_ >= stratified_end_) return rng_.next_u32();
     const uint32_t seed = dimension_seed(dim_++);
-    const uint32_t i = nested_uniform_scramble(index_, seed);
+    const uint32_t i = shuffled_index(seed);
     // Dimension 0 of Sobol' is the bit reversal of the index; reverse(scramble(reverse(x)))
     // composed with it is one Laine–Karras pass (Burley 2020, listing 5).
     return reverse_bits(laine_karras_permutation(i, hash_combine(seed, 0x0b1c0u)));
@@ -93,9 +94,10 @@ class Sampler {
     if (kind_ == SamplerKind::Independent || dim_ + 1 >= stratified_end_) return {get1d(), get1d()};
     const uint32_t seed = dimension_seed(dim_);
     dim_ += 2;
-    const uint32_t i = nested_uniform_scramble(index_, seed);
+    const uint32_t i = shuffled_index(seed);
     const uint32_t x = reverse_bits(laine_karras_permutation(i, hash_combine(seed, 0x0b1c0u)));
-    const uint32_t y = nested_uniform_scramble(sobol_sample(i, 1), hash_combine(seed, 0x0b1c1u));
+    // nested_uniform_scramble(sobol_sample(i, 1), ...), the point's reversal from a table.
+    const uint32_t y = reverse_bits(laine_karras_permutation(sobol_sample_reversed(i, 1), hash_combine(seed, 0x0b1c1u)));
     return {fraction_to_float(x), fraction_to_float(y)};
   }
 
@@ -108,6 +110,8 @@ class Sampler {
   }
 
  private:
+  // nested_uniform_scramble(index_, seed), the index's reversal kept from the constructor.
+  uint32_t shuffled_index(uint32_t seed) const { return reverse_bits(laine_karras_permutation(reversed_index_, seed)); }
   uint32_t dimension_seed(uint64_t d) const {
     return hash_combine(hash_combine(pixel_seed_, uint32_t(d)), uint32_t(d >> 32));
   }
@@ -116,6 +120,7 @@ class Sampler {
   Rng rng_;
   uint32_t pixel_seed_;
   uint32_t index_;
+  uint32_t reversed_index_;
   uint64_t dim_ = 0;
   uint64_t stratified_end_ = ~uint64_t(0);
 };

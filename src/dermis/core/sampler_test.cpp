@@ -62,7 +62,10 @@ TEST(Sobol, TableLookUpEqualsTheDefinition) {
   Rng rng(1, 2);
   for (int k = 0; k < 20000; ++k) {
     const uint32_t i = rng.next_u32();
-    for (int d = 0; d < kSobolDimensions; ++d) ASSERT_EQ(sobol_sample(i, d), sobol_sample_reference(i, d)) << i << " " << d;
+    for (int d = 0; d < kSobolDimensions; ++d) {
+      ASSERT_EQ(sobol_sample(i, d), sobol_sample_reference(i, d)) << i << " " << d;
+      ASSERT_EQ(sobol_sample_reversed(i, d), reverse_bits(sobol_sample_reference(i, d))) << i << " " << d;
+    }
   }
 }
 

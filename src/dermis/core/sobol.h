@@ -93,6 +93,25 @@ constexpr uint32_t reverse_bits(uint32_t x) {
   return (x >> 16) | (x << 16);
 }
 
+namespace sobol_detail {
+constexpr std::array<std::array<std::array<uint32_t, 256>, 4>, kSobolDimensions> make_reversed_byte_tables() {
+  std::array<std::array<std::array<uint32_t, 256>, 4>, kSobolDimensions> t{};
+  for (int d = 0; d < kSobolDimensions; ++d)
+    for (int byte = 0; byte < 4; ++byte)
+      for (uint32_t v = 0; v < 256; ++v) t[d][byte][v] = reverse_bits(kByteTables[d][byte][v]);
+  return t;
+}
+inline constexpr auto kReversedByteTables = make_reversed_byte_tables();
+}  // namespace sobol_detail
+
+// reverse_bits(sobol_sample(index, dim)) from byte tables of reversed direction numbers
+// (bit reversal is linear over XOR): the input of a nested uniform scramble, without
+// reversing the point first.
+constexpr uint32_t sobol_sample_reversed(uint32_t index, int dim) {
+  const auto& t = sobol_detail::kReversedByteTables[dim];
+  return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^ t[3][index >> 24];
+}
+
 // Burley 2020, listing 3: a hash in which each bit depends only on the bits below it
 // (Laine & Karras 2011), so on reversed bits it is a nested uniform (Owen) scramble.
 constexpr uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
