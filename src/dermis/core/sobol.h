@@ -53,8 +53,16 @@ inline constexpr auto kMatrices = make_matrices();
 
 // The XOR of the direction numbers selected by each byte of the index, per byte position:
 // a point is four table look-ups instead of a loop over 32 bits.
-constexpr std::array<std::array<std::array<uint32_t, 256>, 4>, kSobolDimensions> make_byte_tables() {
-  std::array<std::array<std::array<uint32_t, 256>, 4>, kSobolDimensions> t{};
+using DimensionByteTables = std::array<std::array<uint32_t, 256>, 4>;  // [byte position][byte value]
+using ByteTables = std::array<DimensionByteTables, kSobolDimensions>;
+
+// The XOR of one dimension's table entries for the four bytes of the index.
+constexpr uint32_t xor_of_bytes(const DimensionByteTables& t, uint32_t index) {
+  return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^ t[3][index >> 24];
+}
+
+constexpr ByteTables make_byte_tables() {
+  ByteTables t{};
   for (int d = 0; d < kSobolDimensions; ++d)
     for (int byte = 0; byte < 4; ++byte)
       for (uint32_t v = 0; v < 256; ++v) {
@@ -73,8 +81,7 @@ inline constexpr auto kByteTables = make_byte_tables();
 // Point `index` of the unscrambled Sobol' sequence in dimension `dim` (< kSobolDimensions),
 // as a 32-bit fraction of one.
 constexpr uint32_t sobol_sample(uint32_t index, int dim) {
-  const auto& t = sobol_detail::kByteTables[dim];
-  return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^ t[3][index >> 24];
+  return sobol_detail::xor_of_bytes(sobol_detail::kByteTables[dim], index);
 }
 
 // The same point by the definition (a loop over the index's bits), for tests.
@@ -94,11 +101,11 @@ constexpr uint32_t reverse_bits(uint32_t x) {
 }
 
 namespace sobol_detail {
-constexpr std::array<std::array<std::array<uint32_t, 256>, 4>, kSobolDimensions> make_reversed_byte_tables() {
-  std::array<std::array<std::array<uint32_t, 256>, 4>, kSobolDimensions> t{};
-  for (int d = 0; d < kSobolDimensions; ++d)
-    for (int byte = 0; byte < 4; ++byte)
-      for (uint32_t v = 0; v < 256; ++v) t[d][byte][v] = reverse_bits(kByteTables[d][byte][v]);
+constexpr ByteTables make_reversed_byte_tables() {
+  ByteTables t = kByteTables;
+  for (auto& dimension : t)
+    for (auto& byte : dimension)
+      for (uint32_t& x : byte) x = reverse_bits(x);
   return t;
 }
 inline constexpr auto kReversedByteTables = make_reversed_byte_tables();
@@ -108,8 +115,7 @@ inline constexpr auto kReversedByteTables = make_reversed_byte_tables();
 // (bit reversal is linear over XOR): the input of a nested uniform scramble, without
 // reversing the point first.
 constexpr uint32_t sobol_sample_reversed(uint32_t index, int dim) {
-  const auto& t = sobol_detail::kReversedByteTables[dim];
-  return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^ t[3][index >> 24];
+  return sobol_detail::xor_of_bytes(sobol_detail::kReversedByteTables[dim], index);
 }
 
 // Burley 2020, listing 3: a hash in which each bit depends only on the bits below it
