@@ -10,6 +10,7 @@
 #include "dermis/materials/bsdf.h"
 #include "dermis/materials/free_flight.h"
 #include "dermis/materials/fresnel.h"
+#include "dermis/render/path_splitting.h"
 #include "dermis/render/volumetric_texture.h"
 
 namespace dermis {
@@ -118,7 +119,7 @@ RGB estimate_direct(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& 
 }  // namespace
 
 RGB transmitted_irradiance(const RenderScene& sc, Vec3 p, Vec3 n, float eta, int medium, Sampler& sampler,
-                           PathCounters& counters, const RoughExitTable* rough) {
+                           PathCounters& counters, const RoughExitTable* rough, int* split_budget) {
   auto transmitted_cos = [&](Vec3 wi) {
     float c = dot(wi, n);
     if (!(c > 0)) return 0.0f;
@@ -140,6 +141,7 @@ RGB transmitted_irradiance(const RenderScene& sc, Vec3 p, Vec3 n, float eta, int
   start.prev_n = n;
   start.depth = 1;
   start.first_dimension = Sampler::region(sampler.dimension(), 0x1aadu);
+  start.split_budget = split_budget;
   RGB Li = trace_path(sc, Ray{p_out, wi}, medium, sampler, counters, start);
   return E + Li * (transmitted_cos(wi) / start.prev_pdf);
 }
@@ -220,6 +222,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
   bool emission_counted = false;
   uint64_t vertex_dimension = start.first_dimension;  // this vertex's block (integrator.h)
   const int max_depth = sc.settings.max_depth;
+  int own_split_budget = kSplitBudgetPerSample;
+  int& split_budget = start.split_budget ? *start.split_budget : own_split_budget;
   // Russian roulette after the second bounce on max(throughput) x eta scale (pbrt-v4
   // sec. 14.1.3); reweights beta when the path survives.
   auto survives_roulette = [&] {
@@ -400,6 +404,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           reflected.rough_glass_nee = start.rough_glass_nee;
           reflected.reflection_emission = start.reflection_emission;
           reflected.first_dimension = Sampler::region(resume, 0x5e1fu);
+          reflected.split_budget = &split_budget;
           Vec3 wi = reflect(wo, hit.ng);
           L += beta * F * trace_path(sc, Ray{offset_ray_origin(hit.p, hit.ng, wi), wi}, medium, sampler, counters,
                                      reflected);
@@ -435,7 +440,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       sampler.set_dimension(Sampler::region(after_exit, 0x55e1u), kStratifiedExitDimensions);
       const ObjectTracer tracer(*sc.embree, sc.object_of_shape, hit, counters);
       auto irradiance = [&](Vec3 p, Vec3 n, float eta, Sampler& smp) {
-        return transmitted_irradiance(sc, p, n, eta, medium, smp, counters, sm.exit_table ? &*sm.exit_table : nullptr);
+        return transmitted_irradiance(sc, p, n, eta, medium, smp, counters, sm.exit_table ? &*sm.exit_table : nullptr,
+                                      &split_budget);
       };
       auto interior_albedo = [&](const SurfaceHit& h) {
         const Material& m = sc.materials[sc.shapes[h.shape].material];
@@ -463,13 +469,18 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       const SubsurfaceEntry entry{hit, wo, tracer, irradiance, interior_albedo, light_through, exit_light, refracted};
       SubsurfaceExit ex;
       const bool exited = sample_subsurface_exit(sm, entry, sampler, ex);
-      const int exits = sc.settings.subsurface_samples;
-      if (exits > 1 && start.from_camera && start.depth == 0 && depth == 1 && sm.exits_through_lobe()) {
-        // The camera's first entry samples `exits` exits, each from a sampler region of its
-        // own, and averages their direct light (each exit's estimate is unbiased, so is
-        // their mean); the path goes on from the first. The entry's cost (the camera ray,
-        // the reflection split off, the path after the exit) is paid once: on the skin-like
-        // sphere two exits halve the variance for 1.2-1.4x the render time.
+      // Several exits, each from a sampler region of its own, their direct light averaged
+      // (each exit's estimate is unbiased, so is their mean); the path goes on from the
+      // first. At the camera's first entry `subsurfacesamples` of them: the entry's cost
+      // (the camera ray, the reflection split off, the path after the exit) is paid once;
+      // on the skin-like sphere two exits halve the variance for 1.2-1.4x the render time.
+      // At a later entry, as many as path splitting gives the path's throughput
+      // (path_splitting.h): a heavy path's exit light split, not its way on.
+      const bool first_entry = start.from_camera && start.depth == 0 && depth == 1;
+      const int exits = !sm.exits_through_lobe() ? 1
+                        : first_entry            ? sc.settings.subsurface_samples
+                                                 : split_count(beta, sc.settings.split_threshold, split_budget);
+      if (exits > 1) {
         RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
         auto exit_estimate = [&](const SubsurfaceExit& e, bool found) {
           RGB est = e.gathered;
@@ -517,6 +528,33 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       const BSDF sw = sm.exit_lobe(ex.hit, exit_table_here);
       if (!ex.exit_light_gathered) L += beta * light_through_lobe(ex.hit, sw, sampler);
       Vec3 p_out = offset_ray_origin(ex.hit.p, ex.hit.ng, ex.hit.ng);
+      // A heavy path goes on as several copies from the exit (path_splitting.h): this one
+      // and n - 1 nested paths, each with its own direction through the lobe, from a
+      // sampler region of its own.
+      if (const int copies = split_count(beta, sc.settings.split_threshold, split_budget); copies > 1) {
+        beta /= float(copies);
+        const uint64_t here = sampler.dimension();
+        for (int k = 1; k < copies; ++k) {
+          sampler.set_dimension(Sampler::region(here, 0x5b117u + uint32_t(k)), kStratifiedExitDimensions);
+          const float u_lobe_k = sampler.get1d();
+          const auto bk = bsdf_sample(sw, ex.hit.ng, u_lobe_k, sampler.get2d());
+          if (!bk) continue;
+          const RGB beta_k = beta * bk->weight;
+          if (!beta_k.is_finite() || beta_k.is_black()) continue;
+          PathStart copy;
+          copy.from_camera = false;
+          copy.prev_pdf = bk->pdf;
+          copy.prev_p = p_out;
+          copy.prev_n = ex.hit.ng;
+          copy.depth = depth;
+          copy.first_dimension = Sampler::region(here, 0x5b127u + uint32_t(k));
+          copy.rough_glass_nee = start.rough_glass_nee;
+          copy.reflection_emission = start.reflection_emission;
+          copy.split_budget = &split_budget;
+          L += beta_k * trace_path(sc, Ray{p_out, bk->wi}, medium, sampler, counters, copy);
+        }
+        sampler.set_dimension(here);
+      }
       const float u_exit_lobe = sampler.get1d();
       auto bs = bsdf_sample(sw, ex.hit.ng, u_exit_lobe, sampler.get2d());
       if (!bs) break;

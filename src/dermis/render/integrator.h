@@ -57,6 +57,9 @@ struct PathStart {
   // F, goes on without it (tests turn it off to compare with finding that emission only on
   // the paths that reflect).
   bool reflection_emission = true;
+  // The copies that path splitting may still add for this camera sample
+  // (render/path_splitting.h), shared by the paths nested in it; null: a budget of its own.
+  int* split_budget = nullptr;
 };
 
 // Radiance arriving along `ray` (from the camera), starting in `medium`.
@@ -68,8 +71,9 @@ RGB trace_path(const RenderScene& scene, Ray ray, int medium, Sampler& sampler, 
 // the outside hemisphere, by next-event estimation and cosine sampling combined with
 // the power heuristic. The point cloud's pre-pass and its local term use it. Through a
 // rough boundary (rough: its table, materials/rough_exit_lobe.h) T(cos) replaces 1 - Fr.
+// split_budget: that of the path it is nested in (PathStart::split_budget), if any.
 RGB transmitted_irradiance(const RenderScene& scene, Vec3 p, Vec3 n, float eta, int medium, Sampler& sampler,
-                           PathCounters& counters, const RoughExitTable* rough = nullptr);
+                           PathCounters& counters, const RoughExitTable* rough = nullptr, int* split_budget = nullptr);
 
 // Transmittance from `origin` along unit `dir` over `distance` (infinity allowed),
 // starting in `medium`: zero if an opaque or refractive surface is in the way,

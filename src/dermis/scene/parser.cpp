@@ -621,6 +621,11 @@ void SceneParser::integrator(const Token& d, TokenStream& ts) {
   if (s_.settings.subsurface_samples < 1 || s_.settings.subsurface_samples > 64)
     throw SceneError(pl.find("subsurfacesamples")->value_loc,
                      fmt::format("subsurfacesamples must lie in [1, 64], got {}", s_.settings.subsurface_samples));
+  s_.settings.split_threshold = pl.get_float("splitthreshold", s_.settings.split_threshold);
+  if (!(s_.settings.split_threshold == 0 || (s_.settings.split_threshold >= 1 && std::isfinite(s_.settings.split_threshold))))
+    throw SceneError(pl.find("splitthreshold")->value_loc,
+                     fmt::format("splitthreshold must be 0 (no splitting) or a finite number of at least 1, got {}",
+                                 s_.settings.split_threshold));
   pl.warn_unused(s_.diagnostics, fmt::format("Integrator \"{}\"", type));
 }
 

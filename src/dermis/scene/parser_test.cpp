@@ -222,6 +222,24 @@ TEST(ParserOptions, FilmFilterSamplerIntegrator) {
           << e.what();
     }
   }
+  EXPECT_FLOAT_EQ(s.settings.split_threshold, 2);  // the default
+  EXPECT_FLOAT_EQ(test::parse_text("Integrator \"volpath\" \"float splitthreshold\" 0\nWorldBegin\n")
+                      .settings.split_threshold,
+                  0);
+  EXPECT_FLOAT_EQ(test::parse_text("Integrator \"volpath\" \"float splitthreshold\" 1.5\nWorldBegin\n")
+                      .settings.split_threshold,
+                  1.5f);
+  for (const char* bad : {"0.5", "-1", "0.999"}) {
+    try {
+      test::parse_text(std::string("Integrator \"volpath\" \"float splitthreshold\" ") + bad + "\nWorldBegin\n");
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("test.pbrt:1:45: error: splitthreshold must be 0 (no splitting) or a "
+                                           "finite number of at least 1, got "),
+                std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 TEST(ParserOptions, SamplerNamesMapToTheNearestSampler) {

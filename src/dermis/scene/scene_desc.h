@@ -66,6 +66,10 @@ struct RenderSettingsDesc {
   // Exits sampled at the camera's first subsurface entry, their direct light averaged
   // (Dermis' "integer subsurfacesamples" of the Integrator; render/integrator.cpp).
   int subsurface_samples = 2;
+  // Throughput above which a path is split at a subsurface exit (copies of its way on) and
+  // at a later subsurface entry (exits averaged); 0: never (Dermis' "float splitthreshold"
+  // of the Integrator; render/path_splitting.h).
+  float split_threshold = 2;
   std::string integrator = "volpath";
   int seed = 0;  // pbrt-v4 Sampler "integer seed"
   SamplerKind sampler = SamplerKind::Sobol;  // pbrt-v4 Sampler's name, mapped (docs/scene-format.md)
