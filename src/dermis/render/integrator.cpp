@@ -533,7 +533,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       // sampler region of its own.
       if (const int copies = split_count(beta, sc.settings.split_threshold, split_budget); copies > 1) {
         beta /= float(copies);
-        const uint64_t here = sampler.dimension();
+        const Sampler::Position resume = sampler.position();
+        const uint64_t here = resume.dimension;
         for (int k = 1; k < copies; ++k) {
           sampler.set_dimension(Sampler::region(here, 0x5b117u + uint32_t(k)), kStratifiedExitDimensions);
           const float u_lobe_k = sampler.get1d();
@@ -553,7 +554,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           copy.split_budget = &split_budget;
           L += beta_k * trace_path(sc, Ray{p_out, bk->wi}, medium, sampler, counters, copy);
         }
-        sampler.set_dimension(here);
+        sampler.restore(resume);
       }
       const float u_exit_lobe = sampler.get1d();
       auto bs = bsdf_sample(sw, ex.hit.ng, u_exit_lobe, sampler.get2d());
