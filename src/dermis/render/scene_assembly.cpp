@@ -284,7 +284,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
     sc->materials[i].roughness_texture[0] = sc->materials[i].roughness_texture[1] = sp.roughness_texture;
     sc->materials[i].remap_roughness = sp.remap_roughness;
     subsurface_medium[i] = int(sc->media.size());
-    sc->volumetric_media.push_back({sp, subsurface_medium[i]});
+    sc->volumetric_media.push_back({sp, subsurface_medium[i], {}, {}});
     sc->media.push_back(HomogeneousMedium{});
   }
   auto fill_subsurface = [&](Shape& s, const ShapeDesc& d) {

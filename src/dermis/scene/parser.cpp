@@ -171,7 +171,7 @@ void SceneParser::run(TokenStream& ts, const std::string& dir) {
     const Token d = ts.next();
     if (d.kind != Token::Kind::Identifier)
       throw SceneError(ts.loc(d), fmt::format("expected a directive, found {} '{}'", token_kind_name(d.kind), excerpt(d.text)));
-    directive(d, ts, dir);
+    directive(d, ts);
   }
 }
 
@@ -297,7 +297,7 @@ void SceneParser::require_options(const Token& d, TokenStream& ts) const {
 
 // ---------------------------------------------------------------- dispatch
 
-void SceneParser::directive(const Token& d, TokenStream& ts, const std::string& dir) {
+void SceneParser::directive(const Token& d, TokenStream& ts) {
   const std::string& n = d.text;
   const SourceLoc loc = ts.loc(d);
   if (n == "Identity") {
@@ -390,7 +390,7 @@ void SceneParser::directive(const Token& d, TokenStream& ts, const std::string& 
   } else if (n == "Include" || n == "Import") {
     include(d, ts);
   } else if (n == "Shape") {
-    shape(d, ts, dir);
+    shape(d, ts);
   } else if (n == "ObjectBegin") {
     object_begin(d, ts);
   } else if (n == "ObjectEnd") {
@@ -404,9 +404,9 @@ void SceneParser::directive(const Token& d, TokenStream& ts, const std::string& 
   } else if (n == "NamedMaterial") {
     named_material(d, ts);
   } else if (n == "Texture") {
-    texture(d, ts, dir);
+    texture(d, ts);
   } else if (n == "LightSource") {
-    light_source(d, ts, dir);
+    light_source(d, ts);
   } else if (n == "AreaLightSource") {
     area_light_source(d, ts);
   } else if (n == "MakeNamedMedium") {

@@ -336,7 +336,7 @@ void SceneParser::named_material(const Token& d, TokenStream& ts) {
 
 // ---------------------------------------------------------------- textures
 
-void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& dir) {
+void SceneParser::texture(const Token& d, TokenStream& ts) {
   require_world(d, ts);
   const SourceLoc loc = ts.loc(d);
   SourceLoc type_loc;
@@ -515,7 +515,7 @@ void SceneParser::texture(const Token& d, TokenStream& ts, const std::string& di
 
 // ---------------------------------------------------------------- lights
 
-void SceneParser::light_source(const Token& d, TokenStream& ts, const std::string& dir) {
+void SceneParser::light_source(const Token& d, TokenStream& ts) {
   require_world(d, ts);
   const SourceLoc loc = ts.loc(d);
   SourceLoc type_loc;

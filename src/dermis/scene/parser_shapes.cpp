@@ -108,7 +108,7 @@ void read_curve(const ParamList& pl, const SourceLoc& loc, ShapeDesc& sh, Diagno
 
 }  // namespace
 
-void SceneParser::shape(const Token& d, TokenStream& ts, const std::string& dir) {
+void SceneParser::shape(const Token& d, TokenStream& ts) {
   require_world(d, ts);
   const SourceLoc loc = ts.loc(d);
   SourceLoc type_loc;

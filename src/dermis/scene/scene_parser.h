@@ -64,7 +64,7 @@ class SceneParser {
   };
 
   void run(TokenStream& ts, const std::string& dir);
-  void directive(const Token& d, TokenStream& ts, const std::string& dir);
+  void directive(const Token& d, TokenStream& ts);
 
   // Fixed arguments.
   double number_arg(TokenStream& ts, const Token& d);
@@ -93,7 +93,7 @@ class SceneParser {
   void block_end(const Token& d, TokenStream& ts, BlockKind kind);
 
   // parser_shapes.cpp
-  void shape(const Token& d, TokenStream& ts, const std::string& dir);
+  void shape(const Token& d, TokenStream& ts);
   void object_begin(const Token& d, TokenStream& ts);
   void object_end(const Token& d, TokenStream& ts);
   void object_instance(const Token& d, TokenStream& ts);
@@ -106,8 +106,8 @@ class SceneParser {
   RGBTexture spectrum_or_texture(const ParamList& pl, const std::string& name, RGB def);
   // A float parameter (or `def`), or a float texture: then its index in `texture` and `def` returned.
   float float_or_texture(const ParamList& pl, const std::string& name, float def, int& texture);
-  void texture(const Token& d, TokenStream& ts, const std::string& dir);
-  void light_source(const Token& d, TokenStream& ts, const std::string& dir);
+  void texture(const Token& d, TokenStream& ts);
+  void light_source(const Token& d, TokenStream& ts);
   void area_light_source(const Token& d, TokenStream& ts);
   void make_named_medium(const Token& d, TokenStream& ts);
   void medium_interface(const Token& d, TokenStream& ts);
