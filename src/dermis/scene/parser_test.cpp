@@ -211,17 +211,18 @@ TEST(ParserOptions, FilmFilterSamplerIntegrator) {
   EXPECT_EQ(test::parse_text("Integrator \"volpath\" \"integer subsurfacesamples\" 4\nWorldBegin\n")
                 .settings.subsurface_samples,
             4);
-  for (const char* bad : {"0", "65", "-1"}) {
+  // An Integrator parameter's bad value: an error whose text contains `message`.
+  auto expect_integrator_error = [](const std::string& parameter, const char* bad, const std::string& message) {
     try {
-      test::parse_text(std::string("Integrator \"volpath\" \"integer subsurfacesamples\" ") + bad + "\nWorldBegin\n");
+      test::parse_text("Integrator \"volpath\" " + parameter + " " + bad + "\nWorldBegin\n");
       ADD_FAILURE() << "no error for " << bad;
     } catch (const SceneError& e) {
-      EXPECT_NE(std::string(e.what()).find("test.pbrt:1:50: error: subsurfacesamples must lie in [1, 64], got " +
-                                           std::string(bad)),
-                std::string::npos)
-          << e.what();
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
     }
-  }
+  };
+  for (const char* bad : {"0", "65", "-1"})
+    expect_integrator_error("\"integer subsurfacesamples\"", bad,
+                            "test.pbrt:1:50: error: subsurfacesamples must lie in [1, 64], got " + std::string(bad));
   EXPECT_FLOAT_EQ(s.settings.split_threshold, 2);  // the default
   EXPECT_FLOAT_EQ(test::parse_text("Integrator \"volpath\" \"float splitthreshold\" 0\nWorldBegin\n")
                       .settings.split_threshold,
@@ -229,17 +230,10 @@ TEST(ParserOptions, FilmFilterSamplerIntegrator) {
   EXPECT_FLOAT_EQ(test::parse_text("Integrator \"volpath\" \"float splitthreshold\" 1.5\nWorldBegin\n")
                       .settings.split_threshold,
                   1.5f);
-  for (const char* bad : {"0.5", "-1", "0.999"}) {
-    try {
-      test::parse_text(std::string("Integrator \"volpath\" \"float splitthreshold\" ") + bad + "\nWorldBegin\n");
-      ADD_FAILURE() << "no error for " << bad;
-    } catch (const SceneError& e) {
-      EXPECT_NE(std::string(e.what()).find("test.pbrt:1:45: error: splitthreshold must be 0 (no splitting) or a "
-                                           "finite number of at least 1, got "),
-                std::string::npos)
-          << e.what();
-    }
-  }
+  for (const char* bad : {"0.5", "-1", "0.999"})
+    expect_integrator_error("\"float splitthreshold\"", bad,
+                            "test.pbrt:1:45: error: splitthreshold must be 0 (no splitting) or a finite number of "
+                            "at least 1, got ");
 }
 
 TEST(ParserOptions, SamplerNamesMapToTheNearestSampler) {
