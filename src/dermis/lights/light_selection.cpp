@@ -24,7 +24,8 @@ bool at_infinity(const Light& l) { return l.type == Light::Type::Infinite || l.t
 
 }  // namespace
 
-LightSelection::LightSelection(const std::vector<Light>& lights, float scene_radius) : count_(lights.size()) {
+LightSelection::LightSelection(const std::vector<Light>& lights, float scene_radius, bool skip_uniform_sky_in_media)
+    : count_(lights.size()), skip_uniform_sky_in_media_(skip_uniform_sky_in_media) {
   if (lights.empty()) return;
   // The power distribution (lights at infinity and finite lights as two groups, each
   // with probability 1/2 when both exist: the power of a light at infinity grows with
@@ -90,6 +91,7 @@ LightSelection::LightSelection(const std::vector<Light>& lights, float scene_rad
         break;
       case Light::Type::Infinite:
         b.emission = l.environment ? l.environment->average_luminance() : b.emission;
+        b.uniform_sky = !l.environment;
         break;
     }
   }
@@ -154,8 +156,7 @@ int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remappe
     return *pmf > 0 ? int(i) : -1;
   }
   std::array<float, kPointwiseLightLimit> w;
-  float sum = 0;
-  for (std::size_t i = 0; i < count_; ++i) sum += w[i] = group_of(i, n) == group ? importance(i, p, n) : 0.0f;
+  const float sum = weights(p, n, group, w.data());
   if (!(sum > 0)) return -1;
   float target = u * sum;
   std::size_t chosen = count_;
@@ -173,14 +174,25 @@ int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remappe
 float LightSelection::pmf(int light, Vec3 p, Vec3 n) const {
   if (light < 0 || std::size_t(light) >= count_) return 0;
   if (!pointwise_) return power_.pmf_discrete(std::size_t(light));
-  float sum = 0, mine = 0;
+  std::array<float, kPointwiseLightLimit> w;
+  const float sum = weights(p, n, group_of(std::size_t(light), n), w.data());
+  return sum > 0 ? w[std::size_t(light)] / sum : 0.0f;
+}
+
+float LightSelection::weights(Vec3 p, Vec3 n, int group, float* w) const {
+  float sum = 0, others = 0, skies = 0;
   for (std::size_t i = 0; i < count_; ++i) {
-    if (group_of(i, n) != group_of(std::size_t(light), n)) continue;
-    const float w = importance(i, p, n);
-    sum += w;
-    if (int(i) == light) mine = w;
+    sum += w[i] = group_of(i, n) == group ? importance(i, p, n) : 0.0f;
+    (bounds_[i].uniform_sky ? skies : others) += w[i];
   }
-  return sum > 0 ? mine / sum : 0.0f;
+  // In a medium, uniform skies give way to the other lights where those outweigh them
+  // (the header's rule).
+  if (skip_uniform_sky_in_media_ && skies > 0 && !surface(n) && others > skies) {
+    for (std::size_t i = 0; i < count_; ++i)
+      if (bounds_[i].uniform_sky) w[i] = 0;
+    sum = others;
+  }
+  return sum;
 }
 
 }  // namespace dermis

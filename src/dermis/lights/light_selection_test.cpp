@@ -1,7 +1,8 @@
 // Tests of the light selection: a light is never given probability zero where some of
 // it reaches the point's hemisphere (brute force over points on the light), sample()
 // chooses with the probabilities pmf() reports (chi-square), the probabilities sum to
-// one, and a small bright light facing the point gets most of the samples.
+// one, a small bright light facing the point gets most of the samples, and in a medium a
+// uniform sky gives way to the lights that outweigh it.
 #include "dermis/lights/light_selection.h"
 
 #include <gtest/gtest.h>
@@ -176,6 +177,48 @@ TEST(LightSelection, ABrightKeyLightGetsTheSamplesWhereItShines) {
   const Vec3 p{0, 0, 0};
   EXPECT_GT(sel.pmf(0, p, {0, 1, 0}) + sel.pmf(1, p, {0, 1, 0}), 0.8f);
   EXPECT_FLOAT_EQ(sel.pmf(2, p, {0, -1, 0}), 1.0f);
+}
+
+// At a point in a medium (normal zero) a uniform sky gives way to the lights that outweigh
+// it there: its light samples would repeat the phase function's. Where no other light
+// reaches the point, where the sky outweighs them, at surfaces, with the rule off, and for
+// a sky alone, it keeps its share.
+TEST(LightSelection, AUniformSkyGivesWayInAMediumToLightsThatOutweighIt) {
+  const std::vector<Light> lights = {triangle({-0.5f, 3, -0.5f}, {0.5f, 3, -0.5f}, {0.5f, 3, 0.5f}, 40),
+                                     triangle({-0.5f, 3, -0.5f}, {0.5f, 3, 0.5f}, {-0.5f, 3, 0.5f}, 40), sky(0.1f)};
+  const LightSelection sel(lights, 10);
+  const Vec3 p{0, 0, 0}, in_medium{0, 0, 0};
+  EXPECT_EQ(sel.pmf(2, p, in_medium), 0.0f);
+  EXPECT_FLOAT_EQ(sel.pmf(0, p, in_medium) + sel.pmf(1, p, in_medium), 1.0f);
+  for (int k = 0; k < 64; ++k) {
+    float pmf = 0;
+    const int chosen = sel.sample((float(k) + 0.5f) / 64, p, in_medium, &pmf);
+    EXPECT_NE(chosen, 2);
+    EXPECT_FLOAT_EQ(pmf, sel.pmf(chosen, p, in_medium));
+  }
+  EXPECT_FLOAT_EQ(sel.pmf(2, p, {0, -1, 0}), 1.0f);  // a surface: the sky's own group
+  EXPECT_GT(LightSelection(lights, 10, false).pmf(2, p, in_medium), 0.0f);  // the rule off
+  EXPECT_FLOAT_EQ(LightSelection({sky(0.1f)}, 10).pmf(0, p, in_medium), 1.0f);  // the sky alone
+  // A sky bright enough to outweigh the quad keeps its share (its importance there, 4 pi L,
+  // against the quad's L A cos / d^2).
+  const std::vector<Light> bright = {lights[0], lights[1], sky(40)};
+  const LightSelection bright_sky(bright, 10);
+  EXPECT_GT(bright_sky.importance(2, p, in_medium),
+            bright_sky.importance(0, p, in_medium) + bright_sky.importance(1, p, in_medium));
+  EXPECT_GT(bright_sky.pmf(2, p, in_medium), 0.5f);
+
+  // A spot light aimed away from the point cannot reach it: the sky keeps everything there.
+  Light spot;
+  spot.type = Light::Type::Spot;
+  spot.position = {0, 0, 4};
+  spot.direction = {0, 0, 1};
+  spot.cos_falloff_start = 0.95f;
+  spot.cos_falloff_end = 0.9f;
+  spot.emission = RGB(20);
+  const LightSelection away({spot, sky(0.1f)}, 10);
+  EXPECT_FLOAT_EQ(away.pmf(1, p, in_medium), 1.0f);
+  float pmf = 0;
+  EXPECT_EQ(away.sample(0.5f, p, in_medium, &pmf), 1);
 }
 
 TEST(LightSelection, ManyLightsUseThePowerDistribution) {
