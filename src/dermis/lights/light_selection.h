@@ -26,7 +26,7 @@
 // through, which deep in a dense medium under a bright sky is most of the light: where
 // the sky outweighs the others it keeps its share. Measured with bench/compare_efficiency.py
 // on bench/vs_cycles' index-matched medium (a small key light and a dim sky) and variants
-// (4x denser, sky 1.5-2.2x brighter): variance 0.75-0.85x at the same time; under a sky
+// (4x denser, sky 1.4-2.2x brighter): variance 0.75-0.85x at the same time; under a sky
 // that outweighs the key light (10x brighter sky, key 1/10) the images are unchanged.
 // With more lights, a point-independent distribution in proportion to power (lights at
 // infinity and finite lights as two groups, each chosen with probability 1/2).
