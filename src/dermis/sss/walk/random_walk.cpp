@@ -21,7 +21,8 @@ MixtureWalkStep<3> make_walk_step(const WalkMedium& medium, const WalkSettings& 
   if (settings.max_steps < 0) fail("max_steps must be >= 0, got " + std::to_string(settings.max_steps));
   if (!(settings.roulette_threshold > 0 && settings.roulette_threshold <= 1))
     fail("roulette_threshold must be in (0, 1], got " + std::to_string(settings.roulette_threshold));
-  return MixtureWalkStep<3>(sigma_t, albedo, medium.g, guided_choice_probability(settings.sampling, settings.p_guided));
+  return MixtureWalkStep<3>(sigma_t, albedo, medium.g, guided_choice_probability(settings.sampling, settings.p_guided),
+                            settings.channel_preference);
 }
 
 }  // namespace dermis::sss

@@ -41,6 +41,9 @@ struct WalkSettings {
   int max_steps = 1024;  // scattering events before the walk is stopped (truncated)
   // Russian roulette when the largest channel of the throughput drops below this.
   float roulette_threshold = 0.1f;
+  // The exponent k of the channel choice, throughput_c (1 - albedo_c)^-k
+  // (MixtureWalkStep::channel_probabilities); 0: in proportion to the throughput.
+  float channel_preference = 0.5f;
 };
 
 // The boundary seen from inside: the first hit of a ray, n the OUTWARD normal there.
@@ -92,12 +95,6 @@ WalkGuide make_walk_guide(const WalkSettings& settings, Vec3 entry_p, Vec3 entry
   return guide;
 }
 
-// Channel choice probabilities proportional to the throughput (METHODS.md section 5).
-inline std::array<double, 3> channel_probabilities(const std::array<double, 3>& throughput) {
-  const double sum = throughput[0] + throughput[1] + throughput[2];
-  return {throughput[0] / sum, throughput[1] / sum, throughput[2] / sum};
-}
-
 // The walk (settings validated by make_walk_step). guide.entry_n is the outward normal at
 // the entry point (the principal axis of the guiding, as in the seed), dir_in the first
 // propagation direction (into the medium).
@@ -133,7 +130,7 @@ bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, c
   std::array<double, 3> throughput{initial[0], initial[1], initial[2]};
   if (!(throughput[0] + throughput[1] + throughput[2] > 0)) return false;
   Vec3d position(start_p);
-  std::array<double, 3> q = channel_probabilities(throughput);
+  std::array<double, 3> q = step.channel_probabilities(throughput);
   update_back_shares(position);
   FlightProposal flight = step.propose_flight(normalize(Vec3d(dir_in)), axes, q, rng);
   for (int steps = 0;;) {
@@ -162,7 +159,7 @@ bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, c
       if (rng.uniform_double() * roulette >= m) break;
       for (double& t : throughput) t *= roulette / m;
     }
-    q = channel_probabilities(throughput);
+    q = step.channel_probabilities(throughput);
     update_back_shares(position);
     flight = step.propose_scatter(flight.direction, axes, q, rng);
   }

@@ -44,22 +44,28 @@ WalkSettings settings_for(WalkSampling sampling) {
 
 // Index-matched isotropic half-space, normal incidence: each channel's mean weight is
 // Chandrasekhar's 1 - H(1) sqrt(1 - alpha_c), with a different sigma_t and alpha per
-// channel (one-sample spectral MIS), for classical, Dwivedi and MIS sampling.
+// channel (one-sample spectral MIS), for classical, Dwivedi and MIS sampling, with the
+// channel chosen by throughput alone (k = 0) and with the default preference for the
+// channels of least absorption (MixtureWalkStep::channel_probabilities).
 TEST(RandomWalk, HalfspaceAlbedoMatchesChandrasekharPerChannel) {
   const RGB alpha(0.5f, 0.9f, 0.99f), sigma_t(1.0f, 2.0f, 0.5f);
   const WalkMedium medium{alpha * sigma_t, sigma_t, 0.0f};
   double reference[3];
   for (int c = 0; c < 3; ++c) reference[c] = halfspace_albedo_collimated(HFunction(alpha[c]), 1.0);
-  for (WalkSampling sampling : {WalkSampling::Classical, WalkSampling::Dwivedi, WalkSampling::Mis}) {
-    const ChannelStats s = run_walks(medium, settings_for(sampling), {0, 0, 0}, {0, 0, 1}, {0, 0, -1}, 60000, 21,
-                                     HalfspaceTracer{});
-    EXPECT_EQ(s.truncated, 0);
-    for (int c = 0; c < 3; ++c) {
-      EXPECT_LT(s.stderr_(c), 6e-3);  // the test resolves a 2.4% error at 4 sigma
-      EXPECT_NEAR(s.mean(c), reference[c], 4 * s.stderr_(c))
-          << walk_sampling_name(sampling) << " channel " << c << " stderr " << s.stderr_(c);
+  for (float preference : {0.0f, WalkSettings{}.channel_preference})
+    for (WalkSampling sampling : {WalkSampling::Classical, WalkSampling::Dwivedi, WalkSampling::Mis}) {
+      WalkSettings settings = settings_for(sampling);
+      settings.channel_preference = preference;
+      const ChannelStats s =
+          run_walks(medium, settings, {0, 0, 0}, {0, 0, 1}, {0, 0, -1}, 60000, 21, HalfspaceTracer{});
+      EXPECT_EQ(s.truncated, 0);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_LT(s.stderr_(c), 6e-3);  // the test resolves a 2.4% error at 4 sigma
+        EXPECT_NEAR(s.mean(c), reference[c], 4 * s.stderr_(c))
+            << walk_sampling_name(sampling) << " preference " << preference << " channel " << c << " stderr "
+            << s.stderr_(c);
+      }
     }
-  }
 }
 
 // A grey medium is the monochromatic case: all channels carry the same weight.

@@ -125,8 +125,10 @@ class MixtureWalkStep {
   using Channels = std::array<double, N>;
 
   // sigma_t > 0 and albedo in [0, 1] per channel, g in (-1, 1), p_guided in [0, 1]
-  // (the probability of the guided strategy); throws std::invalid_argument otherwise.
-  MixtureWalkStep(const Channels& sigma_t, const Channels& albedo, double g, double p_guided)
+  // (the probability of the guided strategy), channel_preference >= 0 (the exponent k of
+  // channel_probabilities); throws std::invalid_argument otherwise.
+  MixtureWalkStep(const Channels& sigma_t, const Channels& albedo, double g, double p_guided,
+                  double channel_preference = 0)
       : sigma_t_(sigma_t), albedo_(albedo), g_(g), p_guided_(p_guided), p_classical_(1 - p_guided) {
     auto fail = [](const std::string& m) { throw std::invalid_argument("random walk: " + m); };
     if (!(g > -1 && g < 1)) fail("HG anisotropy g must be in (-1, 1), got " + std::to_string(g));
@@ -139,6 +141,10 @@ class MixtureWalkStep {
         fail("single-scattering albedo sigma_s/sigma_t must be in [0, 1], got " + std::to_string(albedo[c]));
       if (p_guided > 0) guide_[c] = DwivediGuide(albedo[c], g);
     }
+    if (!(channel_preference >= 0 && std::isfinite(channel_preference)))
+      fail("channel preference exponent must be finite and >= 0, got " + std::to_string(channel_preference));
+    for (int c = 0; c < N; ++c)
+      channel_preference_[c] = std::pow(std::max(1 - albedo[c], kMinChannelAbsorption), -channel_preference);
     dwivedi_direction_fraction_ = dwivedi_direction_fraction(g);
   }
 
@@ -150,6 +156,25 @@ class MixtureWalkStep {
   // g = 0 (the seed's scheme), falling linearly to 0 at |g| = kDwivediDirectionMaxG.
   static double dwivedi_direction_fraction(double g) {
     return std::max(0.0, 1 - std::abs(g) / kDwivediDirectionMaxG);
+  }
+
+  // The probabilities q of drawing each channel's flight (one-sample spectral MIS: any
+  // q > 0 wherever a channel carries throughput keeps every channel unbiased, as proposal
+  // and weights use the same q): q_c proportional to throughput_c (1 - albedo_c)^-k.
+  // With k = 0, the throughput alone (the hero channel; METHODS.md sec. 5). A one-sample
+  // mixture's channel c is estimated mostly by the walks drawn in it, so its variance goes
+  // about as V_c / q_c, and the sum over channels is least for q_c proportional to
+  // sqrt(V_c) (the optimal allocation of stratified sampling, Neyman 1934). A walk's
+  // variance grows with its length, and the mean number of collisions before absorption
+  // is 1 / (1 - albedo): k = 1/2 (WalkSettings) takes V_c proportional to that. On
+  // skin-like spheres and the bust (red albedo near 1) the summed per-pixel variance
+  // falls to 0.71-0.75x (docs/random-walk.md).
+  Channels channel_probabilities(const Channels& throughput) const {
+    Channels q;
+    double sum = 0;
+    for (int c = 0; c < N; ++c) sum += q[c] = throughput[c] * channel_preference_[c];
+    for (double& v : q) v /= sum;
+    return q;
   }
 
   double p_guided() const { return p_guided_; }
@@ -348,7 +373,10 @@ class MixtureWalkStep {
   static constexpr double kDwivediDirectionMaxG = 0.25;
   static constexpr double kNegligibleBackExponent = 6.907755278982137;  // ln 1000
 
-  Channels sigma_t_, albedo_;
+  // The smallest 1 - albedo channel_probabilities uses: a channel without absorption
+  // is preferred as one of albedo 1 - 1e-6 (1000x at k = 1/2), not infinitely.
+  static constexpr double kMinChannelAbsorption = 1e-6;
+  Channels sigma_t_, albedo_, channel_preference_;
   std::array<DwivediGuide, N> guide_{};
   double g_, p_guided_, p_classical_;
   double dwivedi_direction_fraction_ = 1;

@@ -191,7 +191,36 @@ TEST(WalkStep, BackSharesFollowTheImportanceOfBothPlanes) {
   EXPECT_EQ(step.back_shares(0.0, 5.0)[2], 0.5);  // albedo 1: kappa = 0, no preference
 }
 
+// q_c is proportional to throughput_c (1 - albedo_c)^-k, sums to one, and leaves a
+// channel without throughput out; k = 0 is the throughput alone.
+TEST(WalkStep, ChannelProbabilitiesPreferLowAbsorption) {
+  const std::array<double, 3> sigma_t{1.0, 2.0, 0.5}, albedo{0.99, 0.9, 0.0};
+  const MixtureWalkStep<3> throughput_only(sigma_t, albedo, 0.0, 0.5, 0.0);
+  const auto q0 = throughput_only.channel_probabilities({2.0, 1.0, 1.0});
+  EXPECT_DOUBLE_EQ(q0[0], 0.5);
+  EXPECT_DOUBLE_EQ(q0[1], 0.25);
+  EXPECT_DOUBLE_EQ(q0[2], 0.25);
+  const MixtureWalkStep<3> preferring(sigma_t, albedo, 0.0, 0.5, 0.5);
+  const auto q = preferring.channel_probabilities({1.0, 1.0, 1.0});
+  // (1 - albedo)^-1/2 = 10, sqrt(10), 1.
+  const double sum = 10 + std::sqrt(10.0) + 1;
+  EXPECT_NEAR(q[0], 10 / sum, 1e-6);
+  EXPECT_NEAR(q[1], std::sqrt(10.0) / sum, 1e-6);
+  EXPECT_NEAR(q[2], 1 / sum, 1e-6);
+  const auto q_lost = preferring.channel_probabilities({0.0, 3.0, 1.0});
+  EXPECT_EQ(q_lost[0], 0.0);
+  EXPECT_NEAR(q_lost[1] + q_lost[2], 1.0, 1e-12);
+  EXPECT_NEAR(q_lost[1] / q_lost[2], 3 * std::sqrt(10.0), 1e-6);
+  // A channel without absorption is preferred finitely.
+  const MixtureWalkStep<3> conservative({1.0, 1.0, 1.0}, {1.0, 0.5, 0.5}, 0.0, 0.5, 0.5);
+  const auto qc = conservative.channel_probabilities({1.0, 1.0, 1.0});
+  EXPECT_TRUE(std::isfinite(qc[0]) && qc[0] < 1);
+  EXPECT_GT(qc[2], 0.0);
+}
+
 TEST(WalkStep, RejectsBadMedia) {
+  EXPECT_THROW(MixtureWalkStep<1>({1.0}, {0.5}, 0.0, 0.5, -0.5), std::invalid_argument);
+  EXPECT_THROW(MixtureWalkStep<1>({1.0}, {0.5}, 0.0, 0.5, std::nan("")), std::invalid_argument);
   EXPECT_THROW(MixtureWalkStep<1>({0.0}, {0.5}, 0.0, 0.5), std::invalid_argument);
   EXPECT_THROW(MixtureWalkStep<1>({1.0}, {1.5}, 0.0, 0.5), std::invalid_argument);
   EXPECT_THROW(MixtureWalkStep<1>({1.0}, {0.5}, 1.0, 0.5), std::invalid_argument);
