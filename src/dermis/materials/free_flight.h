@@ -1,7 +1,10 @@
 // Free-flight sampling in a homogeneous chromatic medium (METHODS.md sec. 5): the
-// channel that drives the distance is chosen in proportion to the path throughput and
-// the distance from that channel's exponential; the weight is the one-sample balance
-// heuristic over the channels (spectral MIS), so every channel stays unbiased.
+// channel that drives the distance is chosen in proportion to the path throughput times
+// the medium's channel preference (HomogeneousMedium::channel_preference: channels of
+// little absorption, whose long paths hold most of the variance, more often) and the
+// distance from that channel's exponential; the weight is the one-sample balance
+// heuristic over the channels (spectral MIS), so every channel stays unbiased for any
+// choice probabilities.
 #pragma once
 
 #include <cmath>
@@ -19,13 +22,13 @@ struct FreeFlight {
   RGB weight;              // multiplies the throughput: sigma_s T(t) / pdf, or T(t_max) / P(pass)
 };
 
-// beta: the path throughput (chooses the channel); t_max: distance to the next surface
+// beta: the path throughput (chooses the channel, with m.channel_preference); t_max: distance to the next surface
 // (infinity allowed); u_channel, u_distance uniform in [0, 1).
 inline FreeFlight sample_free_flight(const HomogeneousMedium& m, const RGB& beta, float t_max, float u_channel,
                                      float u_distance) {
   FreeFlight f;
   float q[3], qsum = 0;
-  for (int c = 0; c < 3; ++c) qsum += q[c] = std::abs(beta[c]);
+  for (int c = 0; c < 3; ++c) qsum += q[c] = std::abs(beta[c]) * m.channel_preference[c];
   if (!(qsum > 0)) return f;
   for (float& v : q) v /= qsum;
   const int c = u_channel < q[0] ? 0 : (u_channel < q[0] + q[1] ? 1 : 2);

@@ -71,6 +71,18 @@ TEST(SegmentPoint, EveryChannelUnbiasedOnFiniteAndInfiniteSegments) {
   }
 }
 
+// The free flight's channel preference is (sigma_a / sigma_t)^-1/2: channels of little
+// absorption are chosen more often (a channel without absorption as one of 1e-6).
+TEST(FreeFlight, ChannelPreferenceFollowsAbsorption) {
+  const HomogeneousMedium m =
+      HomogeneousMedium::from_coefficients(RGB(0.01f, 0.5f, 0.0f), RGB(0.99f, 0.5f, 2.0f), 2, 0);
+  EXPECT_NEAR(m.channel_preference[0], 10.0f, 1e-4f);
+  EXPECT_NEAR(m.channel_preference[1], std::sqrt(2.0f), 1e-5f);
+  EXPECT_NEAR(m.channel_preference[2], 1000.0f, 1e-2f);
+  const HomogeneousMedium empty = HomogeneousMedium::from_coefficients(RGB(0.0f), RGB(0.0f), 1, 0);
+  EXPECT_EQ(empty.channel_preference, RGB(1));
+}
+
 TEST(SegmentPoint, ChannelsThatDoNotScatterAreNeverChosen) {
   // Only the green channel scatters: red and blue have sigma_s = 0 (red absorbs, blue is empty).
   const HomogeneousMedium m = HomogeneousMedium::from_coefficients(RGB(1.0f, 0.2f, 0.0f), RGB(0.0f, 1.0f, 0.0f), 1, 0);
