@@ -19,6 +19,11 @@
 
 namespace dermis {
 
+// The probability weights of the probe's channels (disk and sphere-line samplers):
+// albedo x sqrt(reach / the largest channel's reach), reach the radius the channel's
+// sampling is truncated at, at least 1e-3 (the Neyman allocation; probe_method.cpp).
+RGB probe_channel_weights(const sss::ProfileRGB& profile);
+
 // Textured parameters: the profile and its probe sampler are made at each entry point
 // from the parameters there, on the stack (no allocation), and the exit is weighted
 // with that profile. The disk sampler is closed-form; the sphere lines stretch the
