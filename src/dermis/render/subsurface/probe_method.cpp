@@ -94,7 +94,6 @@ bool pick_probe_hit(const sss::ProfileRGB& profile, const SubsurfaceEntry& entry
   return true;
 }
 
-
 // int_0^rho R(r) 2 pi r dr: what a plane through the entry returns (the retry's
 // fallback for a textured entry; rare, so by quadrature).
 double energy_within(const sss::RadialProfile& profile, double rho) {
@@ -108,14 +107,14 @@ sss::ProbeAxisProbabilities axes(SubsurfaceParams::Method m) {
 }  // namespace
 
 // Channels are chosen in proportion to their albedo times the square root of their
-// reach, the radius their sampling is truncated at (never zero, so that every channel's
-// hits can be found). A channel's estimate is its albedo times the exit light averaged over its
+// reach, the radius their sampling is truncated at, relative to the largest channel's
+// (so that the floor, which lets every channel's hits be found, means the same at any
+// scene unit). A channel's estimate is its albedo times the exit light averaged over its
 // footprint, whose variance grows with the footprint; choosing channels as the square
 // roots of their variances minimises the sum (Neyman allocation, as the walk's channel
 // choice: sss/walk/walk_step.h channel_probabilities), and A_c sqrt(r_c) is that square
 // root for a variance of A_c^2 r_c. Against the albedo alone: per-pixel variance 0.97x
-// on the skin-like sphere and 0.92x on the bust (docs/results-vs-cycles.md).
-// Reaches relative to the largest, so that the floor means the same at any scene scale.
+// on the skin-like sphere and 0.92x on the bust (docs/probe-sampling.md).
 RGB probe_channel_weights(const sss::ProfileRGB& profile) {
   double reach[3], largest = 0;
   for (int c = 0; c < 3; ++c) {
