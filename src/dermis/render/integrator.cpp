@@ -11,6 +11,7 @@
 #include "dermis/materials/free_flight.h"
 #include "dermis/materials/fresnel.h"
 #include "dermis/render/path_splitting.h"
+#include "dermis/render/russian_roulette.h"
 #include "dermis/render/volumetric_texture.h"
 
 namespace dermis {
@@ -225,14 +226,13 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
   int own_split_budget = kSplitBudgetPerSample;
   int& split_budget = start.split_budget ? *start.split_budget : own_split_budget;
   // Russian roulette after the second bounce on max(throughput) x eta scale (pbrt-v4
-  // sec. 14.1.3); reweights beta when the path survives.
-  auto survives_roulette = [&] {
+  // sec. 14.1.3), below `threshold` (russian_roulette.h); reweights beta when the path survives.
+  auto survives_roulette = [&](float threshold) {
     if (depth <= 1) return true;
-    float rr = beta.max() * eta_scale;
-    if (rr >= 1) return true;
-    float q = std::max(0.0f, 1 - rr);
-    if (sampler.get1d() < q) return false;
-    beta /= 1 - q;
+    const float p = roulette_survival(beta.max() * eta_scale, threshold);
+    if (p >= 1) return true;
+    if (!(sampler.get1d() < p)) return false;
+    beta /= p;
     return true;
   };
 
@@ -297,7 +297,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         prev_p = p;
         prev_n = Vec3(0, 0, 0);
         ray = Ray{p, wi};
-        if (!survives_roulette()) break;
+        if (!survives_roulette(sc.medium_sees_lights[medium] ? kMediumRouletteThreshold : kSurfaceRouletteThreshold))
+          break;
         continue;
       }
       // Passed through to the surface (or to infinity).
@@ -566,7 +567,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       prev_n = ex.hit.ng;
       ray = Ray{p_out, bs->wi};
       if (!beta.is_finite() || beta.is_black()) break;
-      if (!survives_roulette()) break;
+      if (!survives_roulette(kSurfaceRouletteThreshold)) break;
       continue;
     }
 
@@ -662,7 +663,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     }
     ray = Ray{offset_ray_origin(hit.p, hit.ng, bs->wi), bs->wi};
     if (!beta.is_finite() || beta.is_black()) break;
-    if (!survives_roulette()) break;
+    if (!survives_roulette(kSurfaceRouletteThreshold)) break;
   }
   return L;
 }
