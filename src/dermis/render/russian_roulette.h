@@ -18,9 +18,6 @@
 // the rule stays 1 there (docs/rendering.md, "Russian roulette").
 #pragma once
 
-#include <algorithm>
-#include <cmath>
-
 namespace dermis {
 
 inline constexpr float kSurfaceRouletteThreshold = 1.0f;
