@@ -15,6 +15,32 @@
 
 namespace dermis {
 
+// -ln(1 - u) for u in [0, 1): the exponential's inverse CDF at unit rate, in double, where
+// 1 - u is exact for any float u >= 2^-29 (within 2^-54 below). glibc's double log takes
+// 40 % of log1pf's time, and a medium's segment draws two of these (free flight, next-event
+// point).
+inline float exponential_quantile(float u) { return float(-std::log(1.0 - double(u))); }
+
+// The attenuation over a whole segment [0, t_max), computed once for the segment's free
+// flight and its next-event point (below): T_c(t_max) and 1 - T_c(t_max) per channel.
+struct MediumSegment {
+  float t_max = 0;
+  RGB transmittance;  // T(t_max): 0 in every attenuating channel for t_max = infinity
+  RGB captured;       // 1 - T(t_max): the probability that a channel's free flight ends on it
+};
+
+inline MediumSegment medium_segment(const HomogeneousMedium& m, float t_max) {
+  MediumSegment s;
+  s.t_max = t_max;
+  s.transmittance = m.transmittance(t_max);
+  for (int c = 0; c < 3; ++c) {
+    const float optical = m.sigma_t[c] * t_max;
+    // 1 - e^-x loses digits below x = 1/16 (relative error up to 2^-24 e^-x / x): expm1 there.
+    s.captured[c] = std::isinf(t_max) ? 1.0f : optical < 0.0625f ? -std::expm1(-optical) : 1 - s.transmittance[c];
+  }
+  return s;
+}
+
 struct FreeFlight {
   bool valid = false;      // false: nothing carries on (zero throughput or zero pdf)
   bool scattered = false;  // a scattering event at distance t before t_max
@@ -24,8 +50,9 @@ struct FreeFlight {
 
 // beta: the path throughput (chooses the channel, with m.channel_preference); t_max: distance to the next surface
 // (infinity allowed); u_channel, u_distance uniform in [0, 1).
-inline FreeFlight sample_free_flight(const HomogeneousMedium& m, const RGB& beta, float t_max, float u_channel,
-                                     float u_distance) {
+inline FreeFlight sample_free_flight(const HomogeneousMedium& m, const MediumSegment& segment, const RGB& beta,
+                                     float u_channel, float u_distance) {
+  const float t_max = segment.t_max;
   FreeFlight f;
   float q[3], qsum = 0;
   for (int c = 0; c < 3; ++c) qsum += q[c] = std::abs(beta[c]) * m.channel_preference[c];
@@ -33,7 +60,7 @@ inline FreeFlight sample_free_flight(const HomogeneousMedium& m, const RGB& beta
   for (float& v : q) v /= qsum;
   const int c = u_channel < q[0] ? 0 : (u_channel < q[0] + q[1] ? 1 : 2);
   const float st = m.sigma_t[c];
-  const float t = st > 0 ? -std::log1p(-u_distance) / st : std::numeric_limits<float>::infinity();
+  const float t = st > 0 ? exponential_quantile(u_distance) / st : std::numeric_limits<float>::infinity();
   if (t < t_max) {
     // p(t) = sum_k q_k sigma_t,k T_k(t) (balance heuristic over channels, Veach 1997 eq. 9.10).
     const RGB tr = m.transmittance(t);
@@ -46,13 +73,18 @@ inline FreeFlight sample_free_flight(const HomogeneousMedium& m, const RGB& beta
     return f;
   }
   // Passed through: P = sum_k q_k T_k(t_max).
-  const RGB tr = m.transmittance(t_max);
+  const RGB& tr = segment.transmittance;
   float pdf = 0;
   for (int k = 0; k < 3; ++k) pdf += q[k] * tr[k];
   f.valid = pdf > 0;
   f.t = t_max;
   f.weight = tr / pdf;
   return f;
+}
+
+inline FreeFlight sample_free_flight(const HomogeneousMedium& m, const RGB& beta, float t_max, float u_channel,
+                                     float u_distance) {
+  return sample_free_flight(m, medium_segment(m, t_max), beta, u_channel, u_distance);
 }
 
 // A point of the segment [0, t_max) for next-event estimation, drawn whatever the free
@@ -68,16 +100,16 @@ struct SegmentPoint {
 // in proportion to |beta| among the channels that scatter; the weight is the one-sample balance
 // heuristic over the channels (Veach 1997 eq. 9.10), so the estimate of
 // int_0^t_max sigma_s T(t) L(t) dt stays unbiased in every channel.
-inline SegmentPoint sample_segment_point(const HomogeneousMedium& m, const RGB& beta, float t_max, float u_channel,
-                                         float u_distance) {
+inline SegmentPoint sample_segment_point(const HomogeneousMedium& m, const MediumSegment& segment, const RGB& beta,
+                                         float u_channel, float u_distance) {
+  const float t_max = segment.t_max;
+  const RGB& captured = segment.captured;
   SegmentPoint sp;
   if (!(t_max > 0)) return sp;
-  float q[3], captured[3], qsum = 0;
+  float q[3], qsum = 0;
   for (int c = 0; c < 3; ++c) {
     const bool scatters = m.sigma_s[c] > 0 && m.sigma_t[c] > 0;
     qsum += q[c] = scatters ? std::abs(beta[c]) : 0.0f;
-    // 1 - T_c(t_max): the probability that the channel's free flight ends on the segment.
-    captured[c] = std::isinf(t_max) ? 1.0f : -std::expm1(-m.sigma_t[c] * t_max);
   }
   if (!(qsum > 0)) return sp;
   for (float& v : q) v /= qsum;
@@ -88,7 +120,7 @@ inline SegmentPoint sample_segment_point(const HomogeneousMedium& m, const RGB& 
     if (u_channel < (cdf += q[k])) break;
   }
   // Inversion of the truncated exponential: t = -ln(1 - u (1 - T_c(t_max))) / sigma_t,c.
-  const float t = std::min(-std::log1p(-u_distance * captured[c]) / m.sigma_t[c], std::nextafter(t_max, 0.0f));
+  const float t = std::min(exponential_quantile(u_distance * captured[c]) / m.sigma_t[c], std::nextafter(t_max, 0.0f));
   // p(t) = sum_k q_k sigma_t,k T_k(t) / (1 - T_k(t_max)).
   const RGB tr = m.transmittance(t);
   float pdf = 0;
@@ -99,6 +131,11 @@ inline SegmentPoint sample_segment_point(const HomogeneousMedium& m, const RGB& 
   sp.t = t;
   sp.weight = m.sigma_s * tr / pdf;
   return sp;
+}
+
+inline SegmentPoint sample_segment_point(const HomogeneousMedium& m, const RGB& beta, float t_max, float u_channel,
+                                         float u_distance) {
+  return sample_segment_point(m, medium_segment(m, t_max), beta, u_channel, u_distance);
 }
 
 }  // namespace dermis

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "dermis/core/rng.h"
 
@@ -100,6 +101,38 @@ TEST(SegmentPoint, ChannelsThatDoNotScatterAreNeverChosen) {
 TEST(FreeFlight, ZeroThroughputCarriesNothing) {
   const HomogeneousMedium m = HomogeneousMedium::from_coefficients(RGB(1), RGB(1), 1, 0);
   EXPECT_FALSE(sample_free_flight(m, RGB(0), 1.0f, 0.5f, 0.5f).valid);
+}
+
+// The exponential's quantile -ln(1 - u) against log1p in double: within 2 float ulps
+// over [0, 1), down to the smallest fractions a 32-bit sample gives (2^-32) and for the
+// largest float below 1.
+TEST(FreeFlight, ExponentialQuantileIsAccurateOverTheUnitInterval) {
+  std::vector<float> us = {0.0f, 0x1p-32f, 0x1p-24f, 1e-6f, 0x1p-12f, 0.01f, 0.3f, 0.5f, 0.9f, 0.999f, 0x1.fffffep-1f};
+  for (float u = 1e-7f; u < 1; u = u * 1.37f + 1e-7f) us.push_back(u);
+  for (float u : us) {
+    const double expected = -std::log1p(-double(u));
+    const float got = exponential_quantile(u);
+    const double ulp = std::nextafter(float(expected), 2.0f * float(expected) + 1) - float(expected);
+    EXPECT_NEAR(got, expected, 2 * ulp + 1e-45) << "u " << u;
+  }
+}
+
+// The segment's 1 - T per channel against expm1 in double: within 1e-6 relative for
+// optical depths from 1e-6 to 50 (1 - e^-x alone loses digits as x -> 0), 1 on an
+// infinite segment, 0 in a channel that does not attenuate; T(t_max) as transmittance().
+TEST(FreeFlight, SegmentCapturedFractionIsAccurateAtEveryOpticalDepth) {
+  const HomogeneousMedium m = HomogeneousMedium::from_coefficients(RGB(0.5f, 0.0f, 2.0f), RGB(0.5f, 0.0f, 8.0f), 1, 0);
+  for (float t : {1e-6f, 1e-4f, 0.01f, 0.0624f, 0.0626f, 0.3f, 1.0f, 5.0f, 50.0f}) {
+    const MediumSegment s = medium_segment(m, t);
+    for (int c = 0; c < 3; ++c) {
+      const double expected = -std::expm1(-double(m.sigma_t[c]) * double(t));
+      EXPECT_NEAR(s.captured[c], expected, 1e-6 * expected) << "t " << t << " channel " << c;
+      EXPECT_EQ(s.transmittance[c], m.transmittance(t)[c]);
+    }
+  }
+  const MediumSegment infinite = medium_segment(m, std::numeric_limits<float>::infinity());
+  EXPECT_EQ(infinite.captured, RGB(1.0f, 1.0f, 1.0f));
+  EXPECT_EQ(infinite.transmittance, RGB(0.0f, 1.0f, 0.0f));
 }
 
 }  // namespace

@@ -255,6 +255,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
 
     if (medium >= 0) {
       const HomogeneousMedium& m = medium_of(medium);
+      const MediumSegment segment = medium_segment(m, t_hit);
       const float u_channel = sampler.get1d(), u_distance = sampler.get1d();
       // Direct light in-scattered anywhere on the segment, at a point drawn for it alone
       // (decoupled from the free flight below, as Cycles' volume integrator does): the path
@@ -264,7 +265,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       // point, so any distance distribution of either strategy keeps the sum unbiased.
       const Vec2 u_segment = sampler.get2d();
       if (sc.medium_sees_lights[medium] && depth < max_depth) {
-        const SegmentPoint sp = sample_segment_point(m, beta, t_hit, u_segment.x, u_segment.y);
+        const SegmentPoint sp = sample_segment_point(m, segment, beta, u_segment.x, u_segment.y);
         if (sp.valid) {
           const Vec3 wo = -ray.d;
           const float g = m.g;
@@ -279,7 +280,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       } else if (sc.medium_sees_lights[medium]) {
         sampler.get2d();
       }
-      const FreeFlight flight = sample_free_flight(m, beta, t_hit, u_channel, u_distance);
+      const FreeFlight flight = sample_free_flight(m, segment, beta, u_channel, u_distance);
       if (!flight.valid) break;
       beta *= flight.weight;
       if (!beta.is_finite() || beta.is_black()) break;
