@@ -43,7 +43,7 @@ bool light_sample(const Light& l, const std::vector<Shape>& shapes, Vec3 ref, Ve
       Vec2 b = sample_uniform_triangle(u);
       float b0 = b.x, b1 = b.y, b2 = 1 - b0 - b1;
       Vec3 p = l.p0 * b0 + l.p1 * b1 + l.p2 * b2;
-      Vec3 n = shapes[l.shape].triangle_normal(l.prim, b1, b2);
+      Vec3 n = l.flat ? l.normal : shapes[l.shape].triangle_normal(l.prim, b1, b2);
       Vec3 d = p - ref;
       float dist2 = length_squared(d);
       if (dist2 == 0) return false;

@@ -22,6 +22,10 @@ struct Light {
   Vec3 p0, p1, p2;
   float area = 0;
   int shape = -1, prim = -1;
+  // Triangle of a shape without shading normals: its unit normal, the same at every point
+  // (Shape::triangle_normal's, computed once); otherwise looked up per sample.
+  bool flat = false;
+  Vec3 normal;
   // Sphere (world space).
   Vec3 center;
   float radius = 0;

@@ -12,9 +12,9 @@ constexpr float kPiF = 3.14159265358979f;
 
 // Upper bound of cos(angle between unit axis a and any direction from the origin into
 // a sphere at unit direction w, distance d, radius r): cos(max(0, theta - alpha)) with
-// sin(alpha) = r / d (Conty Estevez & Kulla 2018, eq. 3, the cone of the bounds).
-float cos_bound(float cos_theta, float sin_alpha) {
-  const float cos_alpha = std::sqrt(std::max(0.0f, 1 - sin_alpha * sin_alpha));
+// sin(alpha) = r / d (Conty Estevez & Kulla 2018, eq. 3, the cone of the bounds); cos(alpha)
+// given too, shared by the receiver's and the emitter's bound.
+inline float cos_bound(float cos_theta, float sin_alpha, float cos_alpha) {
   if (cos_theta >= cos_alpha) return 1;
   const float sin_theta = std::sqrt(std::max(0.0f, 1 - cos_theta * cos_theta));
   return cos_theta * cos_alpha + sin_theta * sin_alpha;  // cos(theta - alpha)
@@ -133,15 +133,16 @@ float LightSelection::importance(std::size_t i, Vec3 p, Vec3 n) const {
       const float d2 = length_squared(d);
       const float r2 = b.radius * b.radius;
       if (d2 <= r2 * 1.0001f) return b.emission * b.area / std::max(r2, 1e-12f);  // inside the bounds
-      const float dist = std::sqrt(d2), sin_alpha = b.radius / dist;
+      const float inv_dist = 1 / std::sqrt(d2), sin_alpha = b.radius * inv_dist;
+      const float cos_alpha = std::sqrt(std::max(0.0f, 1 - sin_alpha * sin_alpha));
       float c_s = 1, c_l = 1;
       if (surface) {
-        c_s = cos_bound(dot(n, d) / dist, sin_alpha);
+        c_s = cos_bound(dot(n, d) * inv_dist, sin_alpha, cos_alpha);
         if (c_s <= 0) return 0;  // the whole bounding sphere is below the tangent plane
       }
       // Emitter cosine over the bounds, either side of the triangle (conservative for
       // one-sided lights).
-      if (b.type == Light::Type::Triangle) c_l = cos_bound(std::abs(dot(b.normal, d)) / dist, sin_alpha);
+      if (b.type == Light::Type::Triangle) c_l = cos_bound(std::abs(dot(b.normal, d)) * inv_dist, sin_alpha, cos_alpha);
       return b.emission * b.area * std::max(c_l, 1e-4f) * c_s / d2;
     }
   }

@@ -328,6 +328,10 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
             l.area = 0.5f * length(cross(l.p1 - l.p0, l.p2 - l.p0));
             l.shape = id;
             l.prim = int(t);
+            if (s.normals.empty()) {
+              l.flat = true;
+              l.normal = s.triangle_normal(int(t), 0, 0);
+            }
             // Degenerate triangles get a zero selection probability through their power.
             sc->lights.push_back(l);
           }
