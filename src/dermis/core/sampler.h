@@ -39,7 +39,8 @@ class Sampler {
   Sampler(SamplerKind kind, uint64_t seed, uint64_t pixel, uint32_t sample_index)
       : kind_(kind),
         rng_(seed, pixel, sample_index),
-        pixel_seed_(uint32_t(mix64(seed ^ mix64(pixel + 0x5ab1e5eedull)))),
+        pixel_key_(mix64(seed ^ mix64(pixel + 0x5ab1e5eedull))),
+        pixel_seed_(uint32_t(pixel_key_)),
         index_(sample_index),
         reversed_index_(reverse_bits(sample_index)) {}
 
@@ -112,12 +113,20 @@ class Sampler {
  private:
   // nested_uniform_scramble(index_, seed), the index's reversal kept from the constructor.
   uint32_t shuffled_index(uint32_t seed) const { return reverse_bits(laine_karras_permutation(reversed_index_, seed)); }
+  // The seed of dimension d in this pixel: one multiply-xorshift-multiply round of
+  // (pixel key ^ d), its high half. Distinct dimensions of a pixel give distinct 64-bit
+  // values (each step is a bijection); two dependent multiplications instead of the four
+  // of two chained hash_combines, since every number drawn waits for this seed.
   uint32_t dimension_seed(uint64_t d) const {
-    return hash_combine(hash_combine(pixel_seed_, uint32_t(d)), uint32_t(d >> 32));
+    uint64_t z = (pixel_key_ ^ d) * 0x9e3779b97f4a7c15ull;
+    z ^= z >> 32;
+    z *= 0xd6e8feb86659fd93ull;
+    return uint32_t(z >> 32);
   }
 
   SamplerKind kind_;
   Rng rng_;
+  uint64_t pixel_key_;
   uint32_t pixel_seed_;
   uint32_t index_;
   uint32_t reversed_index_;
