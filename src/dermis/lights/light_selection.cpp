@@ -102,6 +102,12 @@ LightSelection::LightSelection(const std::vector<Light>& lights, float scene_rad
   for (const Bounds& b : bounds_) brightest = std::max(brightest, b.emission);
   if (brightest > 0)
     for (Bounds& b : bounds_) b.emission /= brightest;
+  infinite_all_uniform_ = split_;
+  for (std::size_t i = 0; i < lights.size(); ++i)
+    if (group_[i]) {
+      if (!bounds_[i].uniform_sky) infinite_all_uniform_ = false;
+      uniform_sky_importance_ += importance(i, Vec3(0, 0, 0), Vec3(0, 0, 1));  // the same at every surface point
+    }
 }
 
 float LightSelection::importance(std::size_t i, Vec3 p, Vec3 n) const {
@@ -149,8 +155,10 @@ float LightSelection::importance(std::size_t i, Vec3 p, Vec3 n) const {
   return 0;
 }
 
-int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped, int group) const {
+int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped, int group,
+                           float* group_importance) const {
   *pmf = 0;
+  if (group_importance) *group_importance = 0;
   if (count_ == 0) return -1;
   if (!pointwise_) {
     const std::size_t i = power_.sample_discrete(u, pmf, u_remapped);
@@ -158,6 +166,7 @@ int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remappe
   }
   std::array<float, kPointwiseLightLimit> w;
   const float sum = weights(p, n, group, w.data());
+  if (group_importance) *group_importance = sum;
   if (!(sum > 0)) return -1;
   float target = u * sum;
   std::size_t chosen = count_;

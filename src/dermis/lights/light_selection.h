@@ -66,9 +66,21 @@ class LightSelection {
   // chosen light's interval: uniform and independent of the choice, so that it can serve
   // as one coordinate of the light's 2D sample, which then stays stratified within each
   // light (as Cycles' light_distribution_sample reuses its number).
-  int sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped = nullptr, int group = 0) const;
+  // `group_importance`, when given, receives the sum of the group's importances at (p, n)
+  // (0 when the selection is not pointwise).
+  int sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped = nullptr, int group = 0,
+             float* group_importance = nullptr) const;
   // The probability that sample() for the light's group chooses `light` at (p, n).
   float pmf(int light, Vec3 p, Vec3 n) const;
+
+  // At a surface point where the lights at infinity are sampled as a group of their own
+  // (groups(n) == 2): true when all of them are uniform skies and the finite lights'
+  // importances there, `finite_importance` (sample()'s group_importance for group 0), sum
+  // to more than theirs. The integrator then takes the sky's light sample at one of
+  // several exits averaged at a subsurface entry, weighted by their number (integrator.cpp).
+  bool uniform_sky_outweighed(float finite_importance) const {
+    return infinite_all_uniform_ && finite_importance > uniform_sky_importance_;
+  }
 
   // The unnormalised importance of light i at (p, n) (emissions relative to the brightest
   // light's); zero only where it cannot contribute. Exposed for tests. (The uniform-sky
@@ -101,6 +113,8 @@ class LightSelection {
   bool pointwise_ = false;
   bool split_ = false;
   bool skip_uniform_sky_in_media_ = true;
+  bool infinite_all_uniform_ = false;  // split_, and every light at infinity is a uniform sky
+  float uniform_sky_importance_ = 0;   // their importances at a surface point, summed
 };
 
 }  // namespace dermis

@@ -8,9 +8,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 #include "dermis/core/rng.h"
 #include "dermis/core/warp.h"
+#include "dermis/lights/environment_map.h"
 #include "support/chi_square.h"
 
 namespace dermis {
@@ -219,6 +221,40 @@ TEST(LightSelection, AUniformSkyGivesWayInAMediumToLightsThatOutweighIt) {
   EXPECT_FLOAT_EQ(away.pmf(1, p, in_medium), 1.0f);
   float pmf = 0;
   EXPECT_EQ(away.sample(0.5f, p, in_medium, &pmf), 1);
+}
+
+// At a surface, a uniform sky is outweighed where the finite lights' importances (the sum
+// sample() reports for group 0) exceed its own, pi L: facing a bright quad, not facing away
+// from it (importance zero), not when the sky is bright, not for a sky with an image, and
+// never with lights at infinity alone.
+TEST(LightSelection, AUniformSkyIsOutweighedAtASurfaceWhereTheFiniteLightsBringMore) {
+  const std::vector<Light> lights = {triangle({-0.5f, 3, -0.5f}, {0.5f, 3, -0.5f}, {0.5f, 3, 0.5f}, 40),
+                                     triangle({-0.5f, 3, -0.5f}, {0.5f, 3, 0.5f}, {-0.5f, 3, 0.5f}, 40), sky(0.1f)};
+  const LightSelection sel(lights, 10);
+  const Vec3 p{0, 0, 0};
+  auto finite_importance = [&](const LightSelection& s, Vec3 n) {
+    float pmf = 0, sum = -1;
+    s.sample(0.5f, p, n, &pmf, nullptr, 0, &sum);
+    return sum;
+  };
+  const float facing = finite_importance(sel, {0, 1, 0});
+  EXPECT_FLOAT_EQ(facing, sel.importance(0, p, {0, 1, 0}) + sel.importance(1, p, {0, 1, 0}));
+  EXPECT_GT(facing, sel.importance(2, p, {0, 1, 0}));
+  EXPECT_TRUE(sel.uniform_sky_outweighed(facing));
+  EXPECT_FALSE(sel.uniform_sky_outweighed(finite_importance(sel, {0, -1, 0})));  // the quad behind
+  EXPECT_EQ(finite_importance(sel, {0, -1, 0}), 0.0f);
+
+  const LightSelection bright_sky({lights[0], lights[1], sky(400)}, 10);
+  EXPECT_FALSE(bright_sky.uniform_sky_outweighed(finite_importance(bright_sky, {0, 1, 0})));
+
+  Light map = sky(0.1f);
+  map.environment = std::make_shared<const EnvironmentMap>(2, 1, std::vector<float>(6, 0.1f), Transform(), 1.0f,
+                                                           EnvironmentMap::Mapping::LatLong);
+  const LightSelection with_map({lights[0], lights[1], map}, 10);
+  EXPECT_FALSE(with_map.uniform_sky_outweighed(finite_importance(with_map, {0, 1, 0})));
+
+  const LightSelection sky_alone({sky(0.1f)}, 10);
+  EXPECT_FALSE(sky_alone.uniform_sky_outweighed(1e30f));
 }
 
 TEST(LightSelection, ManyLightsUseThePowerDistribution) {
