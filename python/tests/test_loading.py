@@ -96,15 +96,22 @@ def test_ctrl_c_during_load_scene_raises_keyboard_interrupt_promptly(dermis_modu
     dermis_module.load_scene(big_scene, progress=timing)
     reading_seconds = marks["end"] - marks["start"]
 
-    sent = {}
-    def interrupt_while_reading(stage, fraction):
-        if stage == "reading big.ply" and "at" not in sent:
-            sent["at"], sent["fraction"] = time.monotonic(), fraction
-            os.kill(os.getpid(), signal.SIGINT)  # a real SIGINT, to this process
-    with pytest.raises(KeyboardInterrupt):
-        dermis_module.load_scene(big_scene, progress=interrupt_while_reading)
-    latency = time.monotonic() - sent["at"]
-    assert sent["fraction"] < 0.5
+    # The interrupt is sent at the first report of the reading stage. Reports come from a
+    # poll about every 50 ms; on a loaded machine (ctest -j2 runs another test beside this
+    # one) the first may come only past half of the file (seen: 0.55), where the test cannot
+    # tell a prompt stop from the end of reading: the load is then tried again, up to five times.
+    for attempt in range(5):
+        sent = {}
+        def interrupt_while_reading(stage, fraction):
+            if stage == "reading big.ply" and "at" not in sent:
+                sent["at"], sent["fraction"] = time.monotonic(), fraction
+                os.kill(os.getpid(), signal.SIGINT)  # a real SIGINT, to this process
+        with pytest.raises(KeyboardInterrupt):
+            dermis_module.load_scene(big_scene, progress=interrupt_while_reading)
+        latency = time.monotonic() - sent["at"]
+        if sent["fraction"] < 0.5:
+            break
+    assert sent["fraction"] < 0.5, "five loads in a row were first reported past half of the file"
     # Stopped within a second, and, where reading takes long enough to tell (an idle machine
     # reads the mesh in about 0.4 s), well before the rest of it would have ended. That the
     # reader itself stops mid-file is tested deterministically in C++ (SceneLoading.*).
