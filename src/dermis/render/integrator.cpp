@@ -284,7 +284,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       // expectation of a sum is the sum of the expectations, however the terms correlate).
       // On bench/vs_cycles' index-matched medium and variants (4x denser, lower albedo,
       // g 0.8, the light behind) the variance fell to 0.86-0.93x of an independent number
-      // for the point (docs/rendering.md, "Media").
+      // for the point (docs/rendering.md, "Direct light in a medium").
       const float u_segment_channel = sampler.get1d();
       if (sc.medium_sees_lights[medium] && depth < max_depth) {
         const SegmentPoint sp = sample_segment_point(m, segment, beta, u_segment_channel, u_flight.y);
