@@ -11,21 +11,20 @@ namespace {
 constexpr float kPiF = 3.14159265358979f;
 
 // Upper bound of cos(angle between unit axis a and any direction from the origin into
-// a sphere at unit direction w, distance d, radius r): cos(max(0, theta - alpha)) with
-// sin(alpha) = r / d (Conty Estevez & Kulla 2018, eq. 3, the cone of the bounds); cos(alpha)
-// given too, shared by the receiver's and the emitter's bound.
-inline float cos_bound(float cos_theta, float sin_alpha, float cos_alpha) {
-  if (cos_theta >= cos_alpha) return 1;
-  const float sin_theta = std::sqrt(std::max(0.0f, 1 - cos_theta * cos_theta));
-  return cos_theta * cos_alpha + sin_theta * sin_alpha;  // cos(theta - alpha)
+// a sphere at d, distance |d|, radius r): cos(max(0, theta - alpha)) with sin(alpha) =
+// r / |d| (Conty Estevez & Kulla 2018, eq. 3, the cone of the bounds), times d2 = |d|^2,
+// from a.d and |d| cos(alpha) = sqrt(d2 - r^2): cos(theta - alpha) |d|^2 =
+// (a.d) |d| cos(alpha) + r |d| sin(theta), one square root (and no division) per bound.
+inline float cos_bound_d2(float a_dot_d, float d2, float r, float dist_cos_alpha) {
+  if (a_dot_d >= dist_cos_alpha) return d2;  // theta <= alpha
+  return a_dot_d * dist_cos_alpha + r * std::sqrt(std::max(0.0f, d2 - a_dot_d * a_dot_d));
 }
-
 bool at_infinity(const Light& l) { return l.type == Light::Type::Infinite || l.type == Light::Type::Distant; }
 
 }  // namespace
 
-LightSelection::LightSelection(const std::vector<Light>& lights, float scene_radius, bool skip_uniform_sky_in_media)
-    : count_(lights.size()), skip_uniform_sky_in_media_(skip_uniform_sky_in_media) {
+LightSelection::LightSelection(const std::vector<Light>& lights, float scene_radius, bool outweighed_sky_gives_way)
+    : count_(lights.size()), outweighed_sky_gives_way_(outweighed_sky_gives_way) {
   if (lights.empty()) return;
   // The power distribution (lights at infinity and finite lights as two groups, each
   // with probability 1/2 when both exist: the power of a light at infinity grows with
@@ -139,17 +138,19 @@ float LightSelection::importance(std::size_t i, Vec3 p, Vec3 n) const {
       const float d2 = length_squared(d);
       const float r2 = b.radius * b.radius;
       if (d2 <= r2 * 1.0001f) return b.emission * b.area / std::max(r2, 1e-12f);  // inside the bounds
-      const float inv_dist = 1 / std::sqrt(d2), sin_alpha = b.radius * inv_dist;
-      const float cos_alpha = std::sqrt(std::max(0.0f, 1 - sin_alpha * sin_alpha));
+      // The cosine bounds times d2: one square root shared (|d| cos(alpha)), one per bound.
+      const float dist_cos_alpha = std::sqrt(d2 - r2);
       float c_s = 1, c_l = 1;
+      const float inv_d2 = 1 / d2;
       if (surface) {
-        c_s = cos_bound(dot(n, d) * inv_dist, sin_alpha, cos_alpha);
+        c_s = cos_bound_d2(dot(n, d), d2, b.radius, dist_cos_alpha) * inv_d2;
         if (c_s <= 0) return 0;  // the whole bounding sphere is below the tangent plane
       }
       // Emitter cosine over the bounds, either side of the triangle (conservative for
       // one-sided lights).
-      if (b.type == Light::Type::Triangle) c_l = cos_bound(std::abs(dot(b.normal, d)) * inv_dist, sin_alpha, cos_alpha);
-      return b.emission * b.area * std::max(c_l, 1e-4f) * c_s / d2;
+      if (b.type == Light::Type::Triangle)
+        c_l = cos_bound_d2(std::abs(dot(b.normal, d)), d2, b.radius, dist_cos_alpha) * inv_d2;
+      return b.emission * b.area * std::max(c_l, 1e-4f) * c_s * inv_d2;
     }
   }
   return 0;
@@ -195,9 +196,20 @@ float LightSelection::weights(Vec3 p, Vec3 n, int group, float* w) const {
     sum += w[i] = group_of(i, n) == group ? importance(i, p, n) : 0.0f;
     (bounds_[i].uniform_sky ? skies : others) += w[i];
   }
-  // In a medium, uniform skies give way to the other lights where those outweigh them
-  // (the header's rule).
-  if (skip_uniform_sky_in_media_ && skies > 0 && !surface(n) && others > skies) {
+  if (!outweighed_sky_gives_way_ || !(skies > 0)) return sum;
+  if (surface(n)) {
+    // At a surface the skies are a group of their own (group 1, the finite lights group 0):
+    // they give way where the finite lights outweigh them (the header's rule).
+    if (group != 1 || !infinite_all_uniform_) return sum;
+    float finite = 0;
+    for (std::size_t i = 0; i < count_; ++i)
+      if (!group_[i]) finite += importance(i, p, n);
+    if (!uniform_sky_outweighed(finite)) return sum;
+    std::fill(w, w + count_, 0.0f);
+    return 0;
+  }
+  // In a medium, where the other lights outweigh them (the header's rule).
+  if (others > skies) {
     for (std::size_t i = 0; i < count_; ++i)
       if (bounds_[i].uniform_sky) w[i] = 0;
     sum = others;

@@ -15,19 +15,25 @@
 // between them makes each sample carry one group's light scaled up, and when the sky's
 // light sample is mostly weighted away by MIS (a cosine-like BSDF finds a constant sky by
 // itself) that choice alone multiplied the variance of a Lambertian sphere twenty-fold.
-// At a point in a medium, a uniform sky (an `infinite` light without an image) is not
-// chosen where the other lights outweigh it (their importances there sum to more than
-// its own). Its light samples draw directions uniformly over the sphere, as the phase
-// function nearly does, so MIS keeps about half of each (against a technique that covers
-// it, a constant emitter's compensated density is zero: Karlik et al. 2019, "MIS
-// compensation"), and each is a sample the brighter lights lose. Its emission is then
-// found by the phase-sampled directions at MIS weight one (its probability is zero in
-// pmf() too). What its light samples add is the transmittance computed instead of flown
-// through, which deep in a dense medium under a bright sky is most of the light: where
-// the sky outweighs the others it keeps its share. Measured with bench/compare_efficiency.py
-// on bench/vs_cycles' index-matched medium (a small key light and a dim sky) and variants
-// (4x denser, sky 1.4-2.2x brighter): variance 0.75-0.85x at the same time; under a sky
-// that outweighs the key light (10x brighter sky, key 1/10) the images are unchanged.
+// A uniform sky (an `infinite` light without an image) gives way to the other lights where
+// they outweigh it: it is not chosen, its probability is zero in pmf() too, and its
+// emission is found by the sampled scattering directions at MIS weight one. In a medium
+// that is where the other lights' importances sum to more than its own (4 pi L); at a
+// surface, where the lights at infinity are a group of their own and all uniform skies,
+// where the finite lights' importances sum to more than theirs (pi L). Its light samples
+// draw directions as the scattering nearly does (uniformly over the sphere in a medium,
+// by the cosine at a surface), so MIS keeps about half of each (against a technique that
+// covers it, a constant emitter's compensated density is zero: Karlik et al. 2019, "MIS
+// compensation"), and each is a shadow ray that costs as much as the key light's and a
+// sample the brighter lights lose (in a medium, where one light is chosen among all).
+// What its light samples add is the transmittance computed instead of flown through,
+// which deep in a dense medium under a bright sky is most of the light, and their
+// stratification against an unoccluded sky: where the sky outweighs the others it keeps
+// its share. Measured with bench/compare_efficiency.py on bench/vs_cycles' index-matched
+// medium (a small key light and a dim sky) and variants (4x denser, sky 1.4-2.2x
+// brighter): variance 0.75-0.85x at the same time; under a sky that outweighs the key
+// light (10x brighter sky, key 1/10) the images are unchanged. At surfaces
+// (docs/rendering.md, "Light selection"): bust-burley 1.08x efficiency, bust-walk 1.04x.
 // With more lights, a point-independent distribution in proportion to power (lights at
 // infinity and finite lights as two groups, each chosen with probability 1/2).
 #pragma once
@@ -47,8 +53,8 @@ class LightSelection {
  public:
   LightSelection() = default;
   // `scene_radius` bounds the power of lights at infinity (power distribution only).
-  // skip_uniform_sky_in_media: the rule above (tests turn it off to compare).
-  LightSelection(const std::vector<Light>& lights, float scene_radius, bool skip_uniform_sky_in_media = true);
+  // outweighed_sky_gives_way: the rule above (tests turn it off to compare).
+  LightSelection(const std::vector<Light>& lights, float scene_radius, bool outweighed_sky_gives_way = true);
 
   bool pointwise() const { return pointwise_; }
   std::size_t size() const { return count_; }
@@ -74,12 +80,12 @@ class LightSelection {
   float pmf(int light, Vec3 p, Vec3 n) const;
 
   // At a surface point where the lights at infinity are sampled as a group of their own
-  // (groups(n) == 2): true when all of them are uniform skies and the finite lights'
-  // importances there, `finite_importance` (sample()'s group_importance for group 0), sum
-  // to more than theirs. The integrator then takes the sky's light sample at one of
-  // several exits averaged at a subsurface entry, weighted by their number (integrator.cpp).
+  // (groups(n) == 2): true when the rule above leaves them out there, that is when all of
+  // them are uniform skies and the finite lights' importances, `finite_importance`
+  // (sample()'s group_importance for group 0), sum to more than theirs. sample() for
+  // group 1 then chooses none; a caller that has the sum may skip that call.
   bool uniform_sky_outweighed(float finite_importance) const {
-    return infinite_all_uniform_ && finite_importance > uniform_sky_importance_;
+    return outweighed_sky_gives_way_ && infinite_all_uniform_ && finite_importance > uniform_sky_importance_;
   }
 
   // The unnormalised importance of light i at (p, n) (emissions relative to the brightest
@@ -112,7 +118,7 @@ class LightSelection {
   std::size_t count_ = 0;
   bool pointwise_ = false;
   bool split_ = false;
-  bool skip_uniform_sky_in_media_ = true;
+  bool outweighed_sky_gives_way_ = true;
   bool infinite_all_uniform_ = false;  // split_, and every light at infinity is a uniform sky
   float uniform_sky_importance_ = 0;   // their importances at a surface point, summed
 };

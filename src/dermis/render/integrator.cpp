@@ -109,19 +109,17 @@ bool add_bright_emission_seen(const RenderScene& sc, const Ray& ray, RGB weight,
 
 // One light sample from each group of the light selection (finite lights, lights at
 // infinity: lights/light_selection.h), two dimensions each. Where the finite lights
-// outweigh a uniform sky (LightSelection::uniform_sky_outweighed), the sky's sample is
-// weighted `outweighed_sky_weight`, and not taken where that is zero (its two dimensions are).
+// outweigh a uniform sky (LightSelection::uniform_sky_outweighed, from the importance sum
+// the first choice computes), the sky's sample is not taken (its two dimensions are):
+// the scattered direction finds it at MIS weight one.
 template <class Scatter>
 RGB estimate_direct(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
-                    Scatter&& scatter, float outweighed_sky_weight = 1) {
+                    Scatter&& scatter) {
   float finite_importance = 0;
   RGB L = estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 0, &finite_importance);
   if (sc.light_selection.groups(n) == 2) {
-    const float w =
-        outweighed_sky_weight != 1 && sc.light_selection.uniform_sky_outweighed(finite_importance) ? outweighed_sky_weight
-                                                                                                  : 1.0f;
-    if (w > 0)
-      L += estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 1) * w;
+    if (!sc.light_selection.uniform_sky_outweighed(finite_importance))
+      L += estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 1);
     else
       sampler.get2d();
   }
@@ -480,32 +478,19 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           return std::pair{bsdf_eval(b, wo_in, wi), bsdf_pdf(b, wo_in, wi)};
         });
       };
-      // Several exits averaged (below): the sky's light sample at one exit. At an exit
-      // point where the finite lights outweigh a uniform sky (LightSelection::
-      // uniform_sky_outweighed), the last of n exits takes the sky's light sample weighted
-      // n and the others none; elsewhere each takes its own. The exits are independent and
-      // identically distributed and the weights at any point sum to n over them, so the
-      // average keeps its mean; light the way on finds from the first exit keeps its MIS
-      // weight against a light sample at that point, which another exit takes in its place.
-      // A shadow ray to a sky that brings little of the light costs as much as one to
-      // the key light (bust-burley: the sky's light samples are 15 % of the render).
-      int exit_index = 0, exit_count = 1;
-      auto outweighed_sky_weight = [&] {
-        if (exit_count < 2) return 1.0f;
-        return exit_index == exit_count - 1 ? float(exit_count) : 0.0f;
-      };
       // Direct light leaving through the exit lobe sw at a point, from the outside's medium.
       auto light_through_lobe = [&](const SurfaceHit& at, const BSDF& sw, Sampler& smp) {
-        return estimate_direct(
-            sc, offset_ray_origin(at.p, at.ng, at.ng), at.ng, medium, smp, counters,
-            [&](Vec3 wi) { return std::pair{bsdf_eval(sw, at.ng, wi), bsdf_pdf(sw, at.ng, wi)}; },
-            outweighed_sky_weight());
+        return estimate_direct(sc, offset_ray_origin(at.p, at.ng, at.ng), at.ng, medium, smp, counters, [&](Vec3 wi) {
+          return std::pair{bsdf_eval(sw, at.ng, wi), bsdf_pdf(sw, at.ng, wi)};
+        });
       };
       auto exit_light = [&](const SurfaceHit& at, Sampler& smp) {
         RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
         return light_through_lobe(at, sm.exit_lobe(at, table_at), smp);
       };
       const SubsurfaceEntry entry{hit, wo, tracer, irradiance, interior_albedo, light_through, exit_light, refracted};
+      SubsurfaceExit ex;
+      const bool exited = sample_subsurface_exit(sm, entry, sampler, ex);
       // Several exits, each from a sampler region of its own, their direct light averaged
       // (each exit's estimate is unbiased, so is their mean); the path goes on from the
       // first. At the camera's first entry `subsurfacesamples` of them: the entry's cost
@@ -517,9 +502,6 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       const int exits = !sm.exits_through_lobe() ? 1
                         : first_entry            ? sc.settings.subsurface_samples
                                                  : split_count(beta, sc.settings.split_threshold, split_budget);
-      exit_count = exits;
-      SubsurfaceExit ex;
-      const bool exited = sample_subsurface_exit(sm, entry, sampler, ex);
       if (exits > 1) {
         RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
         auto exit_estimate = [&](const SubsurfaceExit& e, bool found) {
@@ -530,7 +512,6 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         };
         RGB sum = exit_estimate(ex, exited);
         for (int k = 1; k < exits; ++k) {
-          exit_index = k;
           sampler.set_dimension(Sampler::region(after_exit, 0x5a3e0u + uint32_t(k)), kStratifiedExitDimensions);
           SubsurfaceExit other;
           const bool found = sample_subsurface_exit(sm, entry, sampler, other);

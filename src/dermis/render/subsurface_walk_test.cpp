@@ -115,47 +115,6 @@ TEST(SubsurfaceRandomWalk, SeveralExitsAtTheFirstEntryKeepTheMean) {
   }
 }
 
-// The same where a bright point light outweighs the sky on the lit side: there the sky's
-// light sample is taken at the last of the exits, weighted by their number, and at no
-// other (integrator.cpp); on the unlit side at every exit. A second, brighter sky brings
-// about a third of the light on the lit side. The same picture within 4 sigma as one exit,
-// which takes its own sky sample everywhere.
-TEST(SubsurfaceRandomWalk, TheSkysLightSampleAtOneOfSeveralExitsKeepsTheMean) {
-  const std::string key = "LightSource \"point\" \"point3 from\" [1 -2 2] \"rgb I\" [100 100 100]\n"
-                          "LightSource \"infinite\" \"rgb L\" [2.4 2.4 2.4]\n";
-  const std::string header = testing::lit_sphere_header(16, key);
-  {
-    // The rule applies on the lit side and not on the unlit one.
-    Diagnostics diag;
-    auto sc = build_render_scene(parse_scene_string(header + "Material \"diffuse\"\nShape \"sphere\"\n"), diag);
-    auto outweighed = [&](Vec3 n) {
-      float pmf = 0, finite = 0;
-      sc->light_selection.sample(0.5f, n, n, &pmf, nullptr, 0, &finite);
-      return sc->light_selection.uniform_sky_outweighed(finite);
-    };
-    EXPECT_TRUE(outweighed(normalize(Vec3(1, -2, 2))));
-    EXPECT_FALSE(outweighed(normalize(Vec3(-1, 2, -2))));
-  }
-  for (const char* method : {"\"string method\" \"randomwalk\"",
-                             "\"string method\" \"disk\" \"string profile\" \"burley\""}) {
-    SCOPED_TRACE(method);
-    const std::string object = std::string("Material \"subsurface\" ") + kCoefficients + " \"float eta\" 1.4 " + method +
-                               "\nShape \"sphere\"\n";
-    std::string four = header + object;
-    four.replace(four.find("\"integer maxdepth\""), 0, "\"integer subsurfacesamples\" 4 ");
-    std::string single = header + object;
-    single.replace(single.find("\"integer maxdepth\""), 0, "\"integer subsurfacesamples\" 1 ");
-    Diagnostics diag;
-    const auto a = testing::pixel_statistics(*build_render_scene(parse_scene_string(four), diag), 256, 41);
-    const auto b = testing::pixel_statistics(*build_render_scene(parse_scene_string(single), diag), 256, 42);
-    testing::expect_same_region_means(a, b, 4, 4);
-    // The whole image as one region as well. Checked against broken weights on the lit
-    // side: the sky's sample taken at the other three exits too fails by 5-8 sigma, taken
-    // at the last with weight 1 fails in 4 x 4 regions, weighted 3 by 4.6 sigma.
-    testing::expect_same_region_means(a, b, 16, 16);
-  }
-}
-
 // On a floor: paths that leave the floor's diffuse bounce meet the sphere a second time,
 // where the entry is not split and its reflection shows a light's mirror image (a caustic
 // on the floor). The walk, whose entries add the emission a reflection meets at every
