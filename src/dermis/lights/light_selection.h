@@ -19,7 +19,8 @@
 // they outweigh it: it is not chosen, its probability is zero in pmf() too, and its
 // emission is found by the sampled scattering directions at MIS weight one. In a medium
 // that is where the other lights' importances sum to more than its own (4 pi L); at a
-// surface, where the lights at infinity are a group of their own and all uniform skies,
+// surface point where the caller asks for it (sky_gives_way: the integrator's subsurface
+// exits), where the lights at infinity are a group of their own and all uniform skies,
 // where the finite lights' importances sum to more than theirs (pi L). Its light samples
 // draw directions as the scattering nearly does (uniformly over the sphere in a medium,
 // by the cosine at a surface), so MIS keeps about half of each (against a technique that
@@ -33,7 +34,9 @@
 // medium (a small key light and a dim sky) and variants (4x denser, sky 1.4-2.2x
 // brighter): variance 0.75-0.85x at the same time; under a sky that outweighs the key
 // light (10x brighter sky, key 1/10) the images are unchanged. At surfaces
-// (docs/rendering.md, "Light selection"): bust-burley 1.08x efficiency, bust-walk 1.04x.
+// (docs/rendering.md, "Light selection"): bust-burley 1.08x efficiency, bust-walk 1.04x;
+// on a Lambertian sphere 0.95x (the sky's stratified light sample and the BSDF's direction
+// two samples of what the cosine lobe covers), so not at other surfaces.
 // With more lights, a point-independent distribution in proportion to power (lights at
 // infinity and finite lights as two groups, each chosen with probability 1/2).
 #pragma once
@@ -74,16 +77,20 @@ class LightSelection {
   // light (as Cycles' light_distribution_sample reuses its number).
   // `group_importance`, when given, receives the sum of the group's importances at (p, n)
   // (0 when the selection is not pointwise).
+  // `sky_gives_way`: at a surface point, whether the rule above applies there (the
+  // integrator lets it at subsurface exits only); in a medium it always does.
   int sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped = nullptr, int group = 0,
-             float* group_importance = nullptr) const;
-  // The probability that sample() for the light's group chooses `light` at (p, n).
-  float pmf(int light, Vec3 p, Vec3 n) const;
+             float* group_importance = nullptr, bool sky_gives_way = false) const;
+  // The probability that sample() for the light's group chooses `light` at (p, n), with
+  // the same sky_gives_way.
+  float pmf(int light, Vec3 p, Vec3 n, bool sky_gives_way = false) const;
 
   // At a surface point where the lights at infinity are sampled as a group of their own
-  // (groups(n) == 2): true when the rule above leaves them out there, that is when all of
-  // them are uniform skies and the finite lights' importances, `finite_importance`
-  // (sample()'s group_importance for group 0), sum to more than theirs. sample() for
-  // group 1 then chooses none; a caller that has the sum may skip that call.
+  // (groups(n) == 2): true when the rule above leaves them out at a point that asks for it
+  // (sky_gives_way), that is when all of them are uniform skies and the finite lights'
+  // importances, `finite_importance` (sample()'s group_importance for group 0), sum to
+  // more than theirs. sample() for group 1 with sky_gives_way then chooses none; a caller
+  // that has the sum may skip that call.
   bool uniform_sky_outweighed(float finite_importance) const {
     return outweighed_sky_gives_way_ && infinite_all_uniform_ && finite_importance > uniform_sky_importance_;
   }
@@ -96,7 +103,7 @@ class LightSelection {
  private:
   static bool surface(Vec3 n) { return n.x != 0 || n.y != 0 || n.z != 0; }
   // The weights sample() chooses from for the group at (p, n), their sum returned.
-  float weights(Vec3 p, Vec3 n, int group, float* w) const;
+  float weights(Vec3 p, Vec3 n, int group, float* w, bool sky_gives_way) const;
   // The group light i is sampled in at a point with normal n.
   int group_of(std::size_t i, Vec3 n) const { return groups(n) == 2 ? group_[i] : 0; }
 

@@ -79,14 +79,9 @@ TEST(LightSelection, ProbabilitiesSumToOneAndMatchTheChoices) {
     std::vector<double> expected(lights.size()), observed(lights.size(), 0);
     for (std::size_t i = 0; i < lights.size(); ++i) total += expected[i] = sel.pmf(int(i), p, n);
     const bool split = sel.groups(n) == 2;
-    // At a surface the sky is its group's only light, unless the finite lights outweigh it
-    // there (it then gives way: its group chooses none).
-    float unused, finite = 0;
-    sel.sample(0.5f, p, n, &unused, nullptr, 0, &finite);
-    const bool sky_chosen = split && !sel.uniform_sky_outweighed(finite);
-    EXPECT_NEAR(total, split ? (sky_chosen ? 2.0 : 1.0) : 1.0, 1e-5);  // one distribution per group
+    EXPECT_NEAR(total, split ? 2.0 : 1.0, 1e-5);  // one distribution per group
     if (split) {
-      EXPECT_FLOAT_EQ(sel.pmf(2, p, n), sky_chosen ? 1 : 0);
+      EXPECT_FLOAT_EQ(sel.pmf(2, p, n), 1);  // the sky is its group's only light
     }
     const int n_samples = 200000;
     for (int k = 0; k < n_samples; ++k) {
@@ -108,7 +103,7 @@ TEST(LightSelection, ProbabilitiesSumToOneAndMatchTheChoices) {
     EXPECT_GT(r.p_value, kChiSquareAlpha) << "trial " << trial << " chi2 " << r.statistic;
     float pmf;
     if (split) {
-      EXPECT_EQ(sel.sample(rng.uniform(), p, n, &pmf, nullptr, 1), sky_chosen ? 2 : -1);
+      EXPECT_EQ(sel.sample(rng.uniform(), p, n, &pmf, nullptr, 1), 2);
     }
   }
 }
@@ -232,7 +227,8 @@ TEST(LightSelection, AUniformSkyGivesWayInAMediumToLightsThatOutweighIt) {
 // sample() reports for group 0) exceed its own, pi L: facing a bright quad, not facing away
 // from it (importance zero), not when the sky is bright, not for a sky with an image, not
 // with the rule off, and never with lights at infinity alone. Where it is outweighed it
-// gives way: its group chooses no light and its probability is zero.
+// gives way at a point that asks for it (sky_gives_way): its group chooses no light and its
+// probability is zero; at other surface points it keeps its group.
 TEST(LightSelection, AUniformSkyGivesWayAtASurfaceWhereTheFiniteLightsOutweighIt) {
   const std::vector<Light> lights = {triangle({-0.5f, 3, -0.5f}, {0.5f, 3, -0.5f}, {0.5f, 3, 0.5f}, 40),
                                      triangle({-0.5f, 3, -0.5f}, {0.5f, 3, 0.5f}, {-0.5f, 3, 0.5f}, 40), sky(0.1f)};
@@ -250,26 +246,28 @@ TEST(LightSelection, AUniformSkyGivesWayAtASurfaceWhereTheFiniteLightsOutweighIt
   EXPECT_FALSE(sel.uniform_sky_outweighed(finite_importance(sel, {0, -1, 0})));  // the quad behind
   EXPECT_EQ(finite_importance(sel, {0, -1, 0}), 0.0f);
   float pmf = 1;
-  EXPECT_EQ(sel.sample(0.5f, p, {0, 1, 0}, &pmf, nullptr, 1), -1);  // facing: the sky gives way
+  EXPECT_EQ(sel.sample(0.5f, p, {0, 1, 0}, &pmf, nullptr, 1, nullptr, true), -1);  // facing: the sky gives way
   EXPECT_EQ(pmf, 0.0f);
-  EXPECT_EQ(sel.pmf(2, p, {0, 1, 0}), 0.0f);
-  EXPECT_EQ(sel.sample(0.5f, p, {0, -1, 0}, &pmf, nullptr, 1), 2);  // the quad behind: the sky keeps its group
+  EXPECT_EQ(sel.pmf(2, p, {0, 1, 0}, true), 0.0f);
+  EXPECT_EQ(sel.sample(0.5f, p, {0, 1, 0}, &pmf, nullptr, 1), 2);  // not asked for: it keeps its group
+  EXPECT_FLOAT_EQ(sel.pmf(2, p, {0, 1, 0}), 1.0f);
+  EXPECT_EQ(sel.sample(0.5f, p, {0, -1, 0}, &pmf, nullptr, 1, nullptr, true), 2);  // the quad behind
   EXPECT_FLOAT_EQ(pmf, 1.0f);
-  EXPECT_FLOAT_EQ(sel.pmf(2, p, {0, -1, 0}), 1.0f);
+  EXPECT_FLOAT_EQ(sel.pmf(2, p, {0, -1, 0}, true), 1.0f);
   const LightSelection off(lights, 10, false);
   EXPECT_FALSE(off.uniform_sky_outweighed(finite_importance(off, {0, 1, 0})));
-  EXPECT_FLOAT_EQ(off.pmf(2, p, {0, 1, 0}), 1.0f);
+  EXPECT_FLOAT_EQ(off.pmf(2, p, {0, 1, 0}, true), 1.0f);
 
   const LightSelection bright_sky({lights[0], lights[1], sky(400)}, 10);
   EXPECT_FALSE(bright_sky.uniform_sky_outweighed(finite_importance(bright_sky, {0, 1, 0})));
-  EXPECT_FLOAT_EQ(bright_sky.pmf(2, p, {0, 1, 0}), 1.0f);
+  EXPECT_FLOAT_EQ(bright_sky.pmf(2, p, {0, 1, 0}, true), 1.0f);
 
   Light map = sky(0.1f);
   map.environment = std::make_shared<const EnvironmentMap>(2, 1, std::vector<float>(6, 0.1f), Transform(), 1.0f,
                                                            EnvironmentMap::Mapping::LatLong);
   const LightSelection with_map({lights[0], lights[1], map}, 10);
   EXPECT_FALSE(with_map.uniform_sky_outweighed(finite_importance(with_map, {0, 1, 0})));
-  EXPECT_FLOAT_EQ(with_map.pmf(2, p, {0, 1, 0}), 1.0f);
+  EXPECT_FLOAT_EQ(with_map.pmf(2, p, {0, 1, 0}, true), 1.0f);
 
   const LightSelection sky_alone({sky(0.1f)}, 10);
   EXPECT_FALSE(sky_alone.uniform_sky_outweighed(1e30f));

@@ -51,10 +51,11 @@ inline Vec3 direction_about(Vec3 axis, float cos_theta, float u) {
 // choice would scatter them).
 template <class Scatter>
 RGB estimate_direct_group(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
-                          Scatter&& scatter, int group, float* group_importance = nullptr) {
+                          Scatter&& scatter, int group, float* group_importance = nullptr,
+                          bool sky_gives_way = false) {
   const Vec2 u = sampler.get2d();
   float pmf, u_reused = 0;
-  const int li = sc.light_selection.sample(u.x, p, n, &pmf, &u_reused, group, group_importance);
+  const int li = sc.light_selection.sample(u.x, p, n, &pmf, &u_reused, group, group_importance, sky_gives_way);
   if (li < 0 || pmf <= 0) return RGB(0);
   const Vec2 u_position{u_reused, u.y};
   const Light& light = sc.lights[li];
@@ -108,18 +109,19 @@ bool add_bright_emission_seen(const RenderScene& sc, const Ray& ray, RGB weight,
 }
 
 // One light sample from each group of the light selection (finite lights, lights at
-// infinity: lights/light_selection.h), two dimensions each. Where the finite lights
-// outweigh a uniform sky (LightSelection::uniform_sky_outweighed, from the importance sum
-// the first choice computes), the sky's sample is not taken (its two dimensions are):
-// the scattered direction finds it at MIS weight one.
+// infinity: lights/light_selection.h), two dimensions each. With sky_gives_way (the
+// subsurface exits), where the finite lights outweigh a uniform sky
+// (LightSelection::uniform_sky_outweighed, from the importance sum the first choice
+// computes), the sky's sample is not taken (its two dimensions are): the scattered
+// direction, whose vertex says sky_gives_way too, finds it at MIS weight one.
 template <class Scatter>
 RGB estimate_direct(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
-                    Scatter&& scatter) {
+                    Scatter&& scatter, bool sky_gives_way = false) {
   float finite_importance = 0;
   RGB L = estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 0, &finite_importance);
   if (sc.light_selection.groups(n) == 2) {
-    if (!sc.light_selection.uniform_sky_outweighed(finite_importance))
-      L += estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 1);
+    if (!sky_gives_way || !sc.light_selection.uniform_sky_outweighed(finite_importance))
+      L += estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 1, nullptr, sky_gives_way);
     else
       sampler.get2d();
   }
@@ -226,6 +228,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
   // The last scattering event's next-event point and normal (integrator.h PathStart).
   Vec3 prev_p = start.from_camera ? ray.o : start.prev_p;
   Vec3 prev_n = start.from_camera ? Vec3(0, 0, 0) : start.prev_n;
+  bool prev_sky_gives_way = !start.from_camera && start.prev_sky_gives_way;
   int depth = start.depth, crossings = 0;
   // The emission at the next surface (or at infinity) was counted already (a subsurface
   // entry's reflection, below): the path goes on from there without it.
@@ -317,6 +320,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         specular = false;
         prev_p = p;
         prev_n = Vec3(0, 0, 0);
+        prev_sky_gives_way = false;
         ray = Ray{p, wi};
         if (!survives_roulette(sc.medium_sees_lights[medium] ? kMediumRouletteThreshold : kSurfaceRouletteThreshold))
           break;
@@ -332,7 +336,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         RGB Le = infinite_light_radiance(light, ray.d);
         if (Le.is_black()) continue;
         float w = specular ? 1.0f
-                           : power_heuristic(prev_pdf, sc.light_selection.pmf(li, prev_p, prev_n) *
+                           : power_heuristic(prev_pdf, sc.light_selection.pmf(li, prev_p, prev_n, prev_sky_gives_way) *
                                                            light_pdf(light, prev_p, ray.d, {}, {}, prev_n));
         L += beta * Le * w;
       }
@@ -346,7 +350,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       RGB Le = area_light_radiance(light, hit.ng, -ray.d);
       if (!Le.is_black()) {
         float w = specular ? 1.0f
-                           : power_heuristic(prev_pdf, sc.light_selection.pmf(li, prev_p, prev_n) *
+                           : power_heuristic(prev_pdf, sc.light_selection.pmf(li, prev_p, prev_n, prev_sky_gives_way) *
                                                            light_pdf(light, prev_p, ray.d, hit.p, hit.ng));
         L += beta * Le * w;
       }
@@ -408,6 +412,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           prev_pdf = bs->pdf;
           prev_p = entry_nee ? p_out : hit.p;
           prev_n = hit.ng;
+          prev_sky_gives_way = false;
           ray = Ray{offset_ray_origin(hit.p, hit.ng, bs->wi), bs->wi};
           if (!beta.is_finite() || beta.is_black()) break;
           continue;
@@ -480,9 +485,10 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       };
       // Direct light leaving through the exit lobe sw at a point, from the outside's medium.
       auto light_through_lobe = [&](const SurfaceHit& at, const BSDF& sw, Sampler& smp) {
-        return estimate_direct(sc, offset_ray_origin(at.p, at.ng, at.ng), at.ng, medium, smp, counters, [&](Vec3 wi) {
-          return std::pair{bsdf_eval(sw, at.ng, wi), bsdf_pdf(sw, at.ng, wi)};
-        });
+        return estimate_direct(
+            sc, offset_ray_origin(at.p, at.ng, at.ng), at.ng, medium, smp, counters,
+            [&](Vec3 wi) { return std::pair{bsdf_eval(sw, at.ng, wi), bsdf_pdf(sw, at.ng, wi)}; },
+            /*sky_gives_way=*/true);
       };
       auto exit_light = [&](const SurfaceHit& at, Sampler& smp) {
         RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
@@ -540,6 +546,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         prev_pdf = ex.direction_pdf;
         prev_p = weighed ? offset_ray_origin(ex.hit.p, ex.hit.ng, ex.hit.ng) : ex.hit.p;
         prev_n = ex.hit.ng;
+        prev_sky_gives_way = false;  // light_through's samples
         ray = Ray{offset_ray_origin(ex.hit.p, ex.hit.ng, ex.direction), ex.direction};
         continue;
       }
@@ -569,6 +576,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           copy.prev_pdf = bk->pdf;
           copy.prev_p = p_out;
           copy.prev_n = ex.hit.ng;
+          copy.prev_sky_gives_way = true;
           copy.depth = depth;
           copy.first_dimension = Sampler::region(here, 0x5b127u + uint32_t(k));
           copy.rough_glass_nee = start.rough_glass_nee;
@@ -586,6 +594,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       prev_pdf = bs->pdf;
       prev_p = p_out;
       prev_n = ex.hit.ng;
+      prev_sky_gives_way = true;
       ray = Ray{p_out, bs->wi};
       if (!beta.is_finite() || beta.is_black()) break;
       if (!survives_roulette(kSurfaceRouletteThreshold)) break;
@@ -674,6 +683,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     const bool behind = two_sided_nee && bs->transmission;
     prev_p = behind ? p_back : p_out;
     prev_n = behind ? -surface_n : surface_n;
+    prev_sky_gives_way = false;
     if (bs->transmission) {
       const int before = medium;
       medium = medium_after_crossing(s, bs->wi, hit.ng, medium);

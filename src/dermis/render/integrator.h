@@ -42,6 +42,9 @@ struct PathStart {
   float prev_pdf = 0;
   Vec3 prev_p;  // the next-event point there (offset off the surface)
   Vec3 prev_n;  // and the normal of the hemisphere its light selection saw (zero in a medium)
+  // Whether an outweighed uniform sky gave way there (LightSelection's sky_gives_way: at
+  // subsurface exits).
+  bool prev_sky_gives_way = false;
   int depth = 0;  // scattering events already taken
   uint64_t first_dimension = kCameraDimensions;  // of vertex 0's block
   // A camera path follows both reflection and transmission at its first smooth
