@@ -34,9 +34,10 @@
 // medium (a small key light and a dim sky) and variants (4x denser, sky 1.4-2.2x
 // brighter): variance 0.75-0.85x at the same time; under a sky that outweighs the key
 // light (10x brighter sky, key 1/10) the images are unchanged. At surfaces
-// (docs/rendering.md, "Light selection"): bust-burley 1.08x efficiency, bust-walk 1.04x;
-// on a Lambertian sphere 0.95x (the sky's stratified light sample and the BSDF's direction
-// two samples of what the cosine lobe covers), so not at other surfaces.
+// (docs/rendering.md, "Light selection"), at subsurface exits: bust-burley 1.07x
+// efficiency, bust-walk 1.03x, sphere-burley 0.94x; on a Lambertian sphere 0.95x (the
+// sky's stratified light sample and the BSDF's direction two samples of what the cosine
+// lobe covers), so not at other surfaces.
 // With more lights, a point-independent distribution in proportion to power (lights at
 // infinity and finite lights as two groups, each chosen with probability 1/2).
 #pragma once
