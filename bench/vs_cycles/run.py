@@ -12,7 +12,8 @@ image is measured against its own renderer's reference over the object's pixels.
 
 Measurement (as bench/sss_methods.py): E[(A - R)^2] = Var A + bias^2 + Var R, and the
 reference's own per-pixel variance is estimated from its two halves h1, h2 as
-(h1 - h2)^2 / 4 and subtracted. Efficiency = 1 / (MSE x render time) (higher is better;
+(h1 - h2)^2 / 4 and subtracted. Each sample count is rendered with several seeds in both
+renderers and its MSE is their mean (the expected MSE; one heavy-tailed image reads low). Efficiency = 1 / (MSE x render time) (higher is better;
 for unbiased estimators it does not depend on the sample count).
 """
 
@@ -114,14 +115,21 @@ def dermis_render(args, scene_file, out, spp=None, seconds=None, seed=1, res=Non
     return Run(out, secs, samples / npx, wall, cmd=" ".join(cmd), warnings=warnings, approx=approx, reported=reported)
 
 
-def repeated(runs):
-    """Repeats of one render (same seed, so the same image): the median time, and all the
-    times (the run-to-run spread of a shared machine, reported beside the figures)."""
-    times = sorted(r.seconds for r in runs)
-    r = runs[len(runs) // 2] if len(runs) % 2 else runs[0]
-    r.seconds = float(np.median(times))
-    r.info["times"] = times
-    return r
+class Level:
+    """The renders of one sweep sample count, one per seed (1, 2, ...): its time is the
+    median of theirs (all of them listed: the run-to-run spread of a shared machine), its
+    MSE the mean of theirs. One image's MSE is a poor estimate of the expected MSE where
+    the error is heavy-tailed (rare bright paths): most single images miss the fireflies
+    that the mean contains, so one seed reads low, and more so for the renderer with the
+    heavier tail (bust-burley at 16 spp: Cycles' MSE over seeds 2-9 averaged 1.5x its
+    seed-1 figure, Dermis' 1.01x; twentieth session)."""
+
+    def __init__(self, runs):
+        self.runs = runs
+        self.times = sorted(r.seconds for r in runs)
+        self.seconds = float(np.median(self.times))
+        self.spp = runs[0].spp
+        self.first = runs[0]  # seed 1: the image of the contact sheet
 
 
 _load_wall = {}
@@ -190,19 +198,27 @@ class Family:
         a, b = halves[0].load(), halves[1].load()
         self.ref = 0.5 * (a + b)
         self.ref_var = (a - b) ** 2 / 4  # per-pixel variance of the averaged reference
-        self.rows = [self.measure(r) for r in sweep]
+        self.rows = [self.measure(level) for level in sweep]
 
-    def measure(self, r):
+    def measure(self, level):
+        """The level's MSE: the mean over its seeds' images of the MSE less the reference's
+        variance; ± from the spread over the seeds (one seed: from the spread of the
+        per-pixel squared errors, pixels taken as independent)."""
         m = self.mask
-        img = r.load()
-        mse = float(np.mean((img - self.ref)[m] ** 2))
         var_ref = float(np.mean(self.ref_var[m]))
-        d = np.mean((img - self.ref)[m] ** 2 - self.ref_var[m], axis=-1)
-        se = float(np.std(d) / math.sqrt(d.size))
-        corr = max(mse - var_ref, 1e-30)
-        times = r.info.get("times", [r.seconds])
-        return dict(run=r, spp=r.spp, seconds=r.seconds, mse=mse, var_ref=var_ref, mse_corr=corr, rse=se / corr,
-                    eff=1.0 / (corr * max(r.seconds, 1e-3)), tmin=min(times), tmax=max(times), times=times)
+        per_seed, pixel_se = [], 0.0
+        for r in level.runs:
+            err2 = (r.load() - self.ref)[m] ** 2
+            per_seed.append(float(np.mean(err2)) - var_ref)
+            d = np.mean(err2 - self.ref_var[m], axis=-1)
+            pixel_se = float(np.std(d) / math.sqrt(d.size))
+        k = len(per_seed)
+        corr = max(float(np.mean(per_seed)), 1e-30)
+        se = float(np.std(per_seed, ddof=1) / math.sqrt(k)) if k > 1 else pixel_se
+        return dict(run=level.first, spp=level.spp, seconds=level.seconds, mse=corr + var_ref, var_ref=var_ref,
+                    mse_corr=corr, rse=se / corr, seeds=k, per_seed=per_seed,
+                    eff=1.0 / (corr * max(level.seconds, 1e-3)), tmin=level.times[0], tmax=level.times[-1],
+                    times=level.times)
 
     @property
     def ref_spp(self):
@@ -272,19 +288,23 @@ def run_scene(args, name):
         log(f"  dermis '{label}': {scene_file}")
         halves = [dermis_render(args, scene_file, os.path.join(work, f"dermis-{i}-ref{k}.exr"), spp=rspp, seconds=half,
                                 seed=1000 + k, res=sc["res"]) for k in (1, 2)]
-        sweep = [repeated([dermis_render(args, scene_file, os.path.join(work, f"dermis-{i}-{n}spp.exr"), spp=n, seed=1,
-                                         res=sc["res"]) for _ in range(args.repeats)]) for n in args.spp]
+        sweep = [Level([dermis_render(args, scene_file, os.path.join(work, f"dermis-{i}-{n}spp-s{seed}.exr"), spp=n,
+                                      seed=seed, res=sc["res"]) for seed in range(1, k + 1)])
+                 for n, k in zip(args.spp, args.seeds)]
         dermis[label] = Family(label, halves, sweep, mask)
         dermis[label].scene_file = scene_file
 
     log("  cycles")
     renders = [dict(out=os.path.join(work, f"cycles-ref{k}.exr"), spp=rspp or HUGE_SPP, seed=1000 + k,
                     time_limit=half or 0.0) for k in (1, 2)]
-    renders += [dict(out=os.path.join(work, f"cycles-{n}spp-r{k}.exr"), spp=n, seed=1)
-                for n in args.spp for k in range(args.repeats)]
+    renders += [dict(out=os.path.join(work, f"cycles-{n}spp-s{seed}.exr"), spp=n, seed=seed)
+                for n, k in zip(args.spp, args.seeds) for seed in range(1, k + 1)]
     runs, info, cmd = cycles_renders(args, sc, renders, work)
-    R = args.repeats
-    cycles = Family("Cycles", runs[:2], [repeated(runs[2 + j * R:2 + (j + 1) * R]) for j in range(len(args.spp))], mask)
+    levels, at = [], 2
+    for k in args.seeds:
+        levels.append(Level(runs[at:at + k]))
+        at += k
+    cycles = Family("Cycles", runs[:2], levels, mask)
     cycles.cmd = cmd
 
     first = next(iter(dermis.values()))
@@ -372,21 +392,26 @@ def write_report(args, results, info, total, path, image_dir, argv):
          if args.reference_time else f"of {args.reference_spp // 2} spp each")
       + "; their difference estimates the reference's own variance, which is subtracted from every MSE "
         "(E(A−R)² = Var A + bias² + Var R; the method of `bench/sss_methods.py`).")
-    w(f"- **Sweep**: {', '.join(str(n) for n in args.spp)} samples per pixel, seed 1. **MSE** over the pixels fully "
+    w(f"- **Sweep**: {', '.join(f'{n} samples per pixel with seeds 1–{k}' if k > 1 else f'{n} with seed 1' for n, k in zip(args.spp, args.seeds))}, "
+      "the same seeds in both renderers. **MSE** over the pixels fully "
       "covered by the object (a Dermis render of the object as a unit emitter; coverage > 0.999), mean over R, G, B, "
-      "against the renderer's OWN reference: it measures noise, not the differences between the renderers' models.")
+      "against the renderer's OWN reference: it measures noise, not the differences between the renderers' models. "
+      "A sample count's MSE is the mean of its seeds' MSEs: an estimate of the expected MSE. One image's MSE reads low "
+      "where the error is heavy-tailed (most images miss the rare bright paths that the mean contains), and more so "
+      "for the renderer with the heavier tail, so a single seed is not a fair comparison.")
     w("- **Time**: Dermis — the time `dermis render` reports for the render stage (`render_image`: tiles, "
       "all samples; excludes parsing, scene/BVH build and the albedo-inversion table, image writing; printed "
       "in milliseconds; ≈ marks an older build's 0.1 s figure replaced by wall time minus load time). Cycles — `cycles.ViewLayer.render_time` from the EXR's metadata (path tracing only; "
       "excludes `synchronization_time`: scene export, BVH, shader compilation; 10 ms resolution). The wall time of "
       "`bpy.ops.render.render()` (sync + render + EXR write) is listed too.")
-    w(f"- **Repeats**: each sweep render is run {args.repeats} times (same seed: the same image); its time is the "
-      "median, with the fastest and slowest repeat in brackets. A shared machine's run-to-run spread is as large as "
+    w("- **Time** of a sample count: the median of its seeds' render times, with the fastest and slowest in "
+      "brackets. A shared machine's run-to-run spread is as large as "
       "some of the differences measured here, so it is shown rather than hidden.")
     w("- **Efficiency** = 1 / (MSE × time); the ratio Dermis ÷ Cycles is the speed-up of Dermis at equal error "
-      "(> 1: Dermis reaches the same noise in less time). ± is one standard error from the spread of the per-pixel "
-      "squared errors (pixels taken as independent); [lo–hi] is the ratio at the least and the most favourable "
-      "pairing of the two renderers' repeat times.\n")
+      "(> 1: Dermis reaches the same noise in less time). ± is one standard error from the spread of the seeds' "
+      "MSEs (both renderers' in quadrature; with one seed, from the spread of the per-pixel squared errors, pixels "
+      "taken as independent); [lo–hi] is the ratio at the least and the most favourable "
+      "pairing of the two renderers' fastest and slowest render times.\n")
 
     w("## Summary: efficiency Dermis ÷ Cycles\n")
     w("| scene | Dermis variant | " + " | ".join(f"{n} spp" for n in args.spp) + " | geometric mean |")
@@ -395,7 +420,7 @@ def write_report(args, results, info, total, path, image_dir, argv):
         for label, f in r["dermis"].items():
             ratios = [rd["eff"] / rc["eff"] for rd, rc in zip(f.rows, r["cycles"].rows)]
             errs = [q * math.hypot(rd["rse"], rc["rse"]) for q, rd, rc in zip(ratios, f.rows, r["cycles"].rows)]
-            # The ratio at the least and the most favourable pairing of the repeats' times.
+            # The ratio at the least and the most favourable pairing of the seeds' times.
             t = lambda x: max(x, 1e-3)  # as in the efficiency
             pairs = list(zip(ratios, f.rows, r["cycles"].rows))
             lo = [q * t(rd["seconds"]) / t(rd["tmax"]) * t(rc["tmin"]) / t(rc["seconds"]) for q, rd, rc in pairs]
@@ -423,8 +448,8 @@ def write_report(args, results, info, total, path, image_dir, argv):
         elif m["kind"] == "medium":
             w(f"Medium: sigma_a {v3(m['sigma_a'], '{:g}')}, sigma_s {v3(m['sigma_s'], '{:g}')} per mm, HG g {m['g']:g}; "
               + ("index-matched boundary." if m["boundary"] == "matched" else f"smooth dielectric, IOR {m['eta']:g}.") + "\n")
-        w("| renderer | spp | time (s) | other time (s) | MSE (ref. noise removed) | ref. variance removed | efficiency |")
-        w("|---|---|---|---|---|---|---|")
+        w("| renderer | spp | seeds | time (s) | other time (s) | MSE (ref. noise removed) | lowest–highest seed | ref. variance removed | efficiency |")
+        w("|---|---|---|---|---|---|---|---|---|")
         fams = list(r["dermis"].items()) + [("Cycles", r["cycles"])]
         for label, f in fams:
             for row in f.rows:
@@ -433,8 +458,9 @@ def write_report(args, results, info, total, path, image_dir, argv):
                          else f"sync {run.info['sync']:.2f}, operator {run.wall:.1f}")
                 approx = "≈" if run.info.get("approx") else ""
                 spread = f" ({row['tmin']:.2f}–{row['tmax']:.2f})" if len(row["times"]) > 1 else ""
-                w(f"| {'Dermis ' + label if label != 'Cycles' else 'Cycles'} | {row['spp']:.0f} | {approx}{row['seconds']:.2f}{spread} | "
-                  f"{other} | {row['mse_corr']:.4g} ± {row['mse_corr'] * row['rse']:.2g} | {row['var_ref']:.3g} | "
+                w(f"| {'Dermis ' + label if label != 'Cycles' else 'Cycles'} | {row['spp']:.0f} | {row['seeds']} | {approx}{row['seconds']:.2f}{spread} | "
+                  f"{other} | {row['mse_corr']:.4g} ± {row['mse_corr'] * row['rse']:.2g} | "
+                  f"{min(row['per_seed']):.3g}–{max(row['per_seed']):.3g} | {row['var_ref']:.3g} | "
                   f"{row['eff']:.4g} |")
         refs = "; ".join(f"{'Dermis ' + label if label != 'Cycles' else 'Cycles'} {f.ref_spp:.0f} spp in {f.ref_seconds:.1f} s"
                          for label, f in fams)
@@ -487,9 +513,9 @@ def main():
     ap.add_argument("--scenes", default=",".join(S.DEFAULT_SCENES),
                     help=f"comma-separated, from {', '.join(S.SCENES)} (default: all of them)")
     ap.add_argument("--spp", default="16,64,256", help="sweep sample counts (default 16,64,256)")
-    ap.add_argument("--repeats", type=int, default=3,
-                    help="times each sweep render is repeated (same seed, same image): its time is the median, "
-                         "and the spread is reported (default 3)")
+    ap.add_argument("--seeds", default="8,8,4",
+                    help="seeds per sweep sample count (one number, or one per --spp; default 8,8,4): the MSE is "
+                         "the mean over the seeds, the time the median")
     ap.add_argument("--reference-time", type=float, default=40.0,
                     help="seconds per reference per renderer (two halves; default 40)")
     ap.add_argument("--reference-spp", type=int, default=0, help="instead of --reference-time: spp per reference")
@@ -510,8 +536,6 @@ def main():
                     "(default: git rev-parse --short HEAD)")
     ap.add_argument("--note", default="", help="a sentence for the report (e.g. the state of the machine)")
     args = ap.parse_args()
-    if args.repeats < 1:
-        ap.error("--repeats must be at least 1")
     argv = sys.argv[1:]
     if args.quick:
         args.res = args.res or (64, 64)
@@ -521,7 +545,14 @@ def main():
             args.reference_time = 4.0
         args.no_docs = True
         args.sheet_spp = 16
+        if args.seeds == "8,8,4":
+            args.seeds = "2"
     args.spp = [int(x) for x in args.spp.split(",")]
+    args.seeds = [int(x) for x in args.seeds.split(",")]
+    if len(args.seeds) == 1:
+        args.seeds *= len(args.spp)
+    if len(args.seeds) != len(args.spp) or min(args.seeds) < 1:
+        ap.error("--seeds: one number >= 1, or one per --spp")
     if args.reference_spp:
         args.reference_time = 0
     args.dermis = os.path.abspath(args.dermis)
