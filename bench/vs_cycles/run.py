@@ -7,7 +7,7 @@ reference (two independent time-limited halves) and a sweep of sample counts; ea
 image is measured against its own renderer's reference over the object's pixels.
 
   /usr/bin/python3 bench/vs_cycles/run.py --quick                 # smoke test, ~2 min
-  /usr/bin/python3 bench/vs_cycles/run.py --reference-time 40     # the full run (~15 min on 2 cores)
+  /usr/bin/python3 bench/vs_cycles/run.py --reference-time 40     # the full run (~18 min on 2 cores)
   /usr/bin/python3 bench/vs_cycles/run.py --scenes medium-matched,calibration --spp 16,64
 
 Measurement (as bench/sss_methods.py): E[(A - R)^2] = Var A + bias^2 + Var R, and the
