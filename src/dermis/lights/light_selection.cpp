@@ -109,6 +109,23 @@ LightSelection::LightSelection(const std::vector<Light>& lights, float scene_rad
     }
 }
 
+bool LightSelection::may_meet_finite_emitter(Vec3 o, Vec3 d) const {
+  if (!pointwise_) return count_ > 0;
+  for (const Bounds& b : bounds_) {
+    if (b.type != Light::Type::Triangle && b.type != Light::Type::Sphere) continue;
+    // The ray meets the sphere (c, r) where the distance from c to the line is at most r,
+    // ahead of o or with o inside.
+    const Vec3 oc = b.center - o;
+    const float along = dot(oc, d);
+    const float r = b.radius * 1.001f + 1e-5f * (std::abs(b.center.x) + std::abs(b.center.y) + std::abs(b.center.z));
+    const float d2 = length_squared(oc);
+    if (d2 <= r * r) return true;
+    if (along <= 0) continue;
+    if (d2 - along * along <= r * r) return true;
+  }
+  return false;
+}
+
 float LightSelection::importance(std::size_t i, Vec3 p, Vec3 n) const {
   const Bounds& b = bounds_[i];
   const bool surface = n.x != 0 || n.y != 0 || n.z != 0;

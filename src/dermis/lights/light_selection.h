@@ -96,6 +96,11 @@ class LightSelection {
     return outweighed_sky_gives_way_ && infinite_all_uniform_ && finite_importance > uniform_sky_importance_;
   }
 
+  // Whether a ray from o along the unit direction d may meet a finite emitter (an area
+  // light: its bounding sphere in front of o, with a margin for round-off); conservative:
+  // true whenever the bounds are not kept (more than kPointwiseLightLimit lights).
+  bool may_meet_finite_emitter(Vec3 o, Vec3 d) const;
+
   // The unnormalised importance of light i at (p, n) (emissions relative to the brightest
   // light's); zero only where it cannot contribute. Exposed for tests. (The uniform-sky
   // rule above is applied over all lights, in sample() and pmf(), not here.)

@@ -335,5 +335,41 @@ TEST(LightSelection, NoLightsNoChoice) {
   EXPECT_EQ(pmf, 0.0f);
 }
 
+// may_meet_finite_emitter (the integrator's test before it traces a reflection that could
+// only matter if it met a light) is conservative: never false for a ray that meets an
+// area light (rays from random points toward random points on the quad and the sphere
+// light), false for rays that pass beside every area light, and true whenever the
+// bounds are not kept.
+TEST(LightSelection, MayMeetFiniteEmitterIsNeverFalseForARayThatMeetsOne) {
+  const std::vector<Light> lights = mixed_lights();
+  const LightSelection sel(lights, 10);
+  ASSERT_TRUE(sel.pointwise());
+  Rng rng(17, 0);
+  for (int k = 0; k < 20000; ++k) {
+    const Vec3 o(4 * rng.uniform() - 2, 4 * rng.uniform() - 2, 4 * rng.uniform() - 2);
+    Vec3 target;
+    if (k % 2 == 0) {
+      const Light& t = lights[k % 4 == 0 ? 0 : 1];
+      const Vec2 b = sample_uniform_triangle({rng.uniform(), rng.uniform()});
+      target = t.p0 * b.x + t.p1 * b.y + t.p2 * (1 - b.x - b.y);
+    } else {
+      target = lights[3].center + lights[3].radius * sample_uniform_sphere({rng.uniform(), rng.uniform()});
+    }
+    const Vec3 d = normalize(target - o);
+    ASSERT_TRUE(sel.may_meet_finite_emitter(o, d)) << k;
+  }
+  // Beside every area light: point and spot lights are not met by rays.
+  EXPECT_FALSE(sel.may_meet_finite_emitter({0, 0, 0}, {0, -1, 0}));
+  EXPECT_FALSE(sel.may_meet_finite_emitter({0, 0, 0}, normalize(Vec3(0, -2, 1))));  // toward the point light
+  EXPECT_FALSE(sel.may_meet_finite_emitter({0, 0, 0}, {0, 0, 1}));                  // toward the spot light
+  EXPECT_FALSE(sel.may_meet_finite_emitter({0, 0, 0}, {-1, 0, 0}));  // away from the sphere light
+  EXPECT_TRUE(sel.may_meet_finite_emitter({3, 0.1f, 0}, {0, -1, 0}));  // from inside its bounds
+  // Without the bounds (more lights than kPointwiseLightLimit): always true.
+  std::vector<Light> many;
+  for (std::size_t i = 0; i <= kPointwiseLightLimit; ++i)
+    many.push_back(triangle({float(i), 3, 0}, {float(i) + 0.5f, 3, 0}, {float(i), 3, 0.5f}, 1));
+  EXPECT_TRUE(LightSelection(many, 10).may_meet_finite_emitter({0, 0, 0}, {0, -1, 0}));
+}
+
 }  // namespace
 }  // namespace dermis

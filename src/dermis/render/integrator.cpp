@@ -97,11 +97,24 @@ float mean_sky_luminance(const RenderScene& sc) {
   return sum;
 }
 
+// Whether the emission `ray` meets may be brighter than twice the mean sky, known without
+// tracing it: only where it may meet a finite emitter (LightSelection's bounds) or the
+// lights at infinity are that bright along it (a uniform sky never is).
+bool may_see_bright_emission(const RenderScene& sc, const Ray& ray) {
+  if (sc.light_selection.may_meet_finite_emitter(ray.o, ray.d)) return true;
+  RGB Le(0);
+  for (int li : sc.infinite_lights) Le += infinite_light_radiance(sc.lights[li], ray.d);
+  return Le.luminance() > 2 * mean_sky_luminance(sc);
+}
+
 // Adds weight x the emission `ray` meets (emission_seen) to L where it is brighter than
 // twice the mean sky, and says whether it did: a smooth reflection's emission counted at
 // every hit, a reflected path then going on without it (trace_path, at subsurface entries
 // and smooth glass). Any rule that looks at the emission alone keeps the estimate unbiased.
+// Where it cannot be that bright (may_see_bright_emission) the ray is not traced: the
+// same result.
 bool add_bright_emission_seen(const RenderScene& sc, const Ray& ray, RGB weight, PathCounters& counters, RGB& L) {
+  if (!may_see_bright_emission(sc, ray)) return false;
   const RGB Le = emission_seen(sc, ray, counters);
   if (!(Le.luminance() > 2 * mean_sky_luminance(sc))) return false;
   L += weight * Le;
@@ -246,6 +259,21 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     if (!(sampler.get1d() < p)) return false;
     beta /= p;
     return true;
+  };
+
+  // The camera's first smooth reflection, split off with weight `weight` (F, or F times the
+  // glass lobe's weight): followed always where it may see a bright emitter (a small
+  // light's highlight, which it was split off for); elsewhere (the sky, the object
+  // again) it goes on with probability min(1, max(beta) x weight), Russian roulette
+  // (pbrt-v4's rule, russian_roulette.h) on the branch's throughput, its radiance then
+  // divided by that probability. Returns the probability it went on with, 0 when it did
+  // not; the decision's number comes from a region of its own.
+  auto reflection_survival = [&](const Ray& reflected_ray, float weight) -> float {
+    if (!start.reflection_roulette || may_see_bright_emission(sc, reflected_ray)) return 1.0f;
+    const float q = roulette_survival(beta.max() * eta_scale * weight, kSurfaceRouletteThreshold);
+    if (q >= 1) return 1.0f;
+    sampler.set_dimension(Sampler::region(sampler.dimension(), 0x5e1eu));
+    return sampler.get1d() < q ? q : 0.0f;
   };
 
   // A textured `volumetric` object: the path takes the medium of the point where it
@@ -424,19 +452,22 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         // weighted F and 1 - F (unbiased: one sample of each term of F L_r + (1 - F) L_t).
         // Chosen by Fresnel, a sharp highlight of a small light rests on the few per cent
         // of samples that reflect: on the skin-like sphere it made half the image's error.
-        if (F > 0) {
-          const uint64_t resume = sampler.dimension();
+        // Where the reflection cannot see a bright emitter it goes on with probability
+        // about F (reflection_survival): it costs a ray for a few per cent of dim light.
+        const Vec3 wi = reflect(wo, hit.ng);
+        const Ray reflected_ray{offset_ray_origin(hit.p, hit.ng, wi), wi};
+        const uint64_t resume = sampler.dimension();
+        if (const float q = F > 0 ? reflection_survival(reflected_ray, F) : 0.0f; q > 0) {
           PathStart reflected;  // after a specular bounce: emission counts in full
           reflected.depth = depth;
           reflected.rough_glass_nee = start.rough_glass_nee;
           reflected.reflection_emission = start.reflection_emission;
+          reflected.reflection_roulette = start.reflection_roulette;
           reflected.first_dimension = Sampler::region(resume, 0x5e1fu);
           reflected.split_budget = &split_budget;
-          Vec3 wi = reflect(wo, hit.ng);
-          L += beta * F * trace_path(sc, Ray{offset_ray_origin(hit.p, hit.ng, wi), wi}, medium, sampler, counters,
-                                     reflected);
-          sampler.set_dimension(resume);
+          L += beta * (F / q) * trace_path(sc, reflected_ray, medium, sampler, counters, reflected);
         }
+        sampler.set_dimension(resume);
         beta *= 1 - F;
       } else {
         // Reflection with probability F, else transmission (weights F/F, (1 - F)/(1 - F)).
@@ -641,19 +672,22 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       // The camera's first hit on glass is split like a subsurface entry: the reflection
       // is followed with weight F, the transmission below with 1 - F (one sample of each
       // term; the sampled lobes' weights are F/F and (1 - F)/(1 - F) times 1/eta^2).
+      // The reflection as at a subsurface entry (reflection_survival).
       const float F = fresnel_dielectric(dot(wo, bsdf.n), bsdf.eta);
       if (F > 0 && F < 1) {
         auto reflected = bsdf_sample(bsdf, wo, 0.0f, u_dir);
         if (reflected && !reflected->transmission) {
           const uint64_t resume = sampler.dimension();
-          PathStart rs;
-          rs.depth = depth;
-          rs.rough_glass_nee = start.rough_glass_nee;
-          rs.reflection_emission = start.reflection_emission;
-          rs.first_dimension = Sampler::region(resume, 0x5e1fu);
-          L += beta * reflected->weight * F *
-               trace_path(sc, Ray{offset_ray_origin(hit.p, hit.ng, reflected->wi), reflected->wi}, medium, sampler,
-                          counters, rs);
+          const Ray reflected_ray{offset_ray_origin(hit.p, hit.ng, reflected->wi), reflected->wi};
+          if (const float q = reflection_survival(reflected_ray, F * reflected->weight.max()); q > 0) {
+            PathStart rs;
+            rs.depth = depth;
+            rs.rough_glass_nee = start.rough_glass_nee;
+            rs.reflection_emission = start.reflection_emission;
+            rs.reflection_roulette = start.reflection_roulette;
+            rs.first_dimension = Sampler::region(resume, 0x5e1fu);
+            L += beta * reflected->weight * (F / q) * trace_path(sc, reflected_ray, medium, sampler, counters, rs);
+          }
           sampler.set_dimension(resume);
           beta *= 1 - F;
           u_lobe = 1.0f;  // the transmission below (u_lobe >= F)

@@ -60,6 +60,10 @@ struct PathStart {
   // F, goes on without it (tests turn it off to compare with finding that emission only on
   // the paths that reflect).
   bool reflection_emission = true;
+  // The camera's first smooth reflection, split off at a subsurface entry or glass: where
+  // it cannot see a bright emitter, Russian roulette on its throughput F (tests turn it
+  // off to compare with following it always).
+  bool reflection_roulette = true;
   // The copies that path splitting may still add for this camera sample
   // (render/path_splitting.h), shared by the paths nested in it; null: a budget of its own.
   int* split_budget = nullptr;
