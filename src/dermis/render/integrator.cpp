@@ -264,9 +264,9 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
   // The camera's first smooth reflection, split off with weight `weight` (F, or F times the
   // glass lobe's weight): followed always where it may see a bright emitter (a small
   // light's highlight, which it was split off for); elsewhere (the sky, the object
-  // again) it goes on with probability min(1, max(beta) x weight), Russian roulette
-  // (pbrt-v4's rule, russian_roulette.h) on the branch's throughput, its radiance then
-  // divided by that probability. Returns the probability it went on with, 0 when it did
+  // again) it goes on with probability min(1, max(beta) x eta scale x weight): Russian
+  // roulette (pbrt-v4's rule, russian_roulette.h) on the branch's throughput, its
+  // radiance then divided by that probability. Returns the probability it went on with, 0 when it did
   // not; the decision's number comes from a region of its own.
   auto reflection_survival = [&](const Ray& reflected_ray, float weight) -> float {
     if (!start.reflection_roulette || may_see_bright_emission(sc, reflected_ray)) return 1.0f;
