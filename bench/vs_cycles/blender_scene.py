@@ -18,6 +18,9 @@ import time
 import bpy
 from mathutils import Matrix, Vector
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import scenes  # noqa: E402  (pure Python: the ellipsoid's triangles)
+
 args = sys.argv[sys.argv.index("--") + 1:]
 job = json.load(open(args[0]))
 sc = job["scene"]
@@ -108,7 +111,7 @@ def world():
     w = bpy.data.worlds.new("sky")
     w.use_nodes = True
     bg = w.node_tree.nodes["Background"]
-    bg.inputs["Color"].default_value = (*sc["sky"], 1.0)
+    bg.inputs["Color"].default_value = (*(sc["sky"] or (0.0, 0.0, 0.0)), 1.0)
     bg.inputs["Strength"].default_value = 1.0  # radiance = colour x strength
     scene.world = w
 
@@ -124,8 +127,7 @@ def mesh_object(name, verts, faces, smooth=False):
     return obj
 
 
-def key_light():
-    L = sc["light"]
+def key_light(L):
     obj = mesh_object("key", [tuple(c) for c in L["corners"]], [(0, 1, 2, 3)])
     mat = bpy.data.materials.new("key")
     mat.use_nodes = True
@@ -174,6 +176,9 @@ def shape():
         for p in obj.data.polygons:
             p.use_smooth = True
         return obj
+    if s["kind"] == "ellipsoid":  # the very triangles Dermis gets, flat shaded in both
+        v, f = scenes.ellipsoid_mesh(s["center"], s["semi_axes"], s["segments"], s["rings"])
+        return mesh_object("ellipsoid", [tuple(x) for x in v], [tuple(x) for x in f], smooth=False)
     if s["kind"] == "obj":
         # Coordinates as written (no axis conversion: Dermis reads the file through Assimp
         # as is); flat shading, as Dermis shades with geometric normals.
@@ -255,7 +260,8 @@ def material(obj):
 settings(job["threads"])
 camera()
 world()
-key_light()
+for L in sc["lights"]:
+    key_light(L)
 obj = shape()
 material(obj)
 

@@ -2,6 +2,8 @@
 
 import os
 
+import scenes
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
@@ -29,22 +31,28 @@ WorldBegin
 
 
 def lights(sc):
-    L = sc["light"]
-    p = "  ".join(_v(c) for c in L["corners"])
-    return f"""
-LightSource "infinite" "rgb L" [ {_v(sc['sky'])} ]
-AttributeBegin
-  # One-sided key light (emits toward the object), black on both sides.
+    """The sky (none: a black background) and the one-sided quad lights."""
+    out = f'\nLightSource "infinite" "rgb L" [ {_v(sc["sky"])} ]\n' if sc["sky"] else "\n"
+    for L in sc["lights"]:
+        p = "  ".join(_v(c) for c in L["corners"])
+        out += f"""AttributeBegin
+  # One-sided quad light (emits toward the object), black on both sides.
   Material "diffuse" "rgb reflectance" [ 0 0 0 ]
   AreaLightSource "diffuse" "rgb L" [ {_v(L['radiance'])} ] "bool twosided" false
   Shape "trianglemesh" "point3 P" [ {p} ] "integer indices" [ 0 1 2  0 2 3 ]
 AttributeEnd
 """
+    return out
 
 
 def shape_text(shape):
     if shape["kind"] == "sphere":
         return f'Translate {_v(shape["center"])}\n  Shape "sphere" "float radius" [ {shape["radius"]:g} ]'
+    if shape["kind"] == "ellipsoid":  # flat-shaded triangles (no normals), as in Blender
+        verts, faces = scenes.ellipsoid_mesh(shape["center"], shape["semi_axes"], shape["segments"], shape["rings"])
+        p = " ".join(_v(v) for v in verts)
+        i = " ".join(" ".join(str(k) for k in f) for f in faces)
+        return f'Shape "trianglemesh" "point3 P" [ {p} ]\n    "integer indices" [ {i} ]'
     if shape["kind"] == "obj":
         return f'Shape "objmesh" "string filename" "{os.path.join(ROOT, shape["path"])}"'
     raise ValueError(shape["kind"])

@@ -41,7 +41,9 @@ import scenes as S  # noqa: E402
 from dermis_output import LIMIT_RE, RENDER_RE, strip, write_png  # noqa: E402
 
 HUGE_SPP = 1000000
-DOC = os.path.join(ROOT, "docs", "results-vs-cycles.md")
+# The family's report, and the classic seven scenes' (issue 15) beside it.
+DOC = {"family": os.path.join(ROOT, "docs", "results-vs-cycles.md"),
+       "classic": os.path.join(ROOT, "docs", "results-vs-cycles-classic.md")}
 IMAGES = os.path.join(ROOT, "docs", "images", "vs-cycles")
 
 
@@ -98,7 +100,7 @@ def dermis_render(args, scene_file, out, spp=None, seconds=None, seed=1, res=Non
     if p.returncode != 0:
         sys.exit(f"failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr}")
     m = RENDER_RE.search(p.stderr)
-    reported, samples = float(m.group(1)), int(m.group(3))
+    reported, mrays, samples = float(m.group(1)), float(m.group(2)), int(m.group(3))
     lm = LIMIT_RE.search(p.stderr)
     npx = res[0] * res[1]
     warnings = [l for l in p.stderr.splitlines() if "warning" in l]
@@ -112,7 +114,8 @@ def dermis_render(args, scene_file, out, spp=None, seconds=None, seed=1, res=Non
     log(f"    dermis {os.path.basename(out)}: render {reported:.3f} s{f' (~{secs:.2f} s)' if approx else ''} "
         f"(process {wall:.1f} s), {samples / npx:.1f} spp"
         + (f" [{lm.group(1)}..{lm.group(2)}]" if lm else "") + (f"  {'; '.join(warnings)}" if warnings else ""))
-    return Run(out, secs, samples / npx, wall, cmd=" ".join(cmd), warnings=warnings, approx=approx, reported=reported)
+    return Run(out, secs, samples / npx, wall, cmd=" ".join(cmd), warnings=warnings, approx=approx, reported=reported,
+               rays_per_sample=mrays * 1e6 * reported / max(samples, 1))
 
 
 class Level:
@@ -128,6 +131,11 @@ class Level:
         self.runs = runs
         self.times = sorted(r.seconds for r in runs)
         self.seconds = float(np.median(self.times))
+        # The whole process (Dermis: `dermis render` from start to exit; Cycles: the
+        # render operator, sync + render + EXR write, in an already started Blender).
+        self.process = float(np.median([r.wall for r in runs]))
+        rays = [r.info["rays_per_sample"] for r in runs if "rays_per_sample" in r.info]
+        self.rays_per_sample = float(np.median(rays)) if rays else None
         self.spp = runs[0].spp
         self.first = runs[0]  # seed 1: the image of the contact sheet
 
@@ -198,13 +206,21 @@ class Family:
         a, b = halves[0].load(), halves[1].load()
         self.ref = 0.5 * (a + b)
         self.ref_var = (a - b) ** 2 / 4  # per-pixel variance of the averaged reference
-        self.rows = [self.measure(level) for level in sweep]
+        # Two conventions: MSE over the object's pixels with the render stage's time (the
+        # primary one), and MSE over the whole image (silhouettes included) with the time
+        # of the whole process.
+        self.rows = [self.measure(level, mask) for level in sweep]
+        whole = np.ones_like(mask)
+        self.rows_image = []
+        for level in sweep:
+            r = self.measure(level, whole)
+            r.update(seconds=level.process, eff=1.0 / (r["mse_corr"] * max(level.process, 1e-3)))
+            self.rows_image.append(r)
 
-    def measure(self, level):
-        """The level's MSE: the mean over its seeds' images of the MSE less the reference's
-        variance; ± from the spread over the seeds (one seed: from the spread of the
-        per-pixel squared errors, pixels taken as independent)."""
-        m = self.mask
+    def measure(self, level, m):
+        """The level's MSE over the pixels of mask m: the mean over its seeds' images of the
+        MSE less the reference's variance; ± from the spread over the seeds (one seed: from
+        the spread of the per-pixel squared errors, pixels taken as independent)."""
         var_ref = float(np.mean(self.ref_var[m]))
         per_seed, pixel_se = [], 0.0
         for r in level.runs:
@@ -218,7 +234,7 @@ class Family:
         return dict(run=level.first, spp=level.spp, seconds=level.seconds, mse=corr + var_ref, var_ref=var_ref,
                     mse_corr=corr, rse=se / corr, seeds=k, per_seed=per_seed,
                     eff=1.0 / (corr * max(level.seconds, 1e-3)), tmin=level.times[0], tmax=level.times[-1],
-                    times=level.times)
+                    times=level.times, process=level.process, rays_per_sample=level.rays_per_sample)
 
     @property
     def ref_spp(self):
@@ -318,7 +334,8 @@ def run_scene(args, name):
         f"(mirrored {xc['corr_mirror']:.3f}); 8x8 blocks |rel diff| median {xc['block_med']:.3f} max {xc['block_max']:.3f}")
     for label, f in dermis.items():
         for rd, rc in zip(f.rows, cycles.rows):
-            log(f"  {rd['spp']:.0f} spp: Dermis '{label}' {rd['seconds']:.2f} s MSE {rd['mse_corr']:.3g}  |  Cycles "
+            log(f"  {rd['spp']:.0f} spp: Dermis '{label}' {rd['seconds']:.2f} s MSE {rd['mse_corr']:.3g} "
+                f"({rd['rays_per_sample'] or 0:.1f} rays/sample)  |  Cycles "
                 f"{rc['seconds']:.2f} s MSE {rc['mse_corr']:.3g}  ->  efficiency ratio {rd['eff'] / rc['eff']:.2f}")
     return dict(name=name, sc=sc, mask=mask, dermis=dermis, cycles=cycles, info=info, xcs=xcs, work=work)
 
@@ -360,6 +377,113 @@ def contact_sheet(res, spp, out):
 
 def v3(v, f="{:.4f}"):
     return "(" + ", ".join(f.format(x) for x in v) + ")"
+
+
+def gmean(v):
+    return math.exp(sum(math.log(max(x, 1e-30)) for x in v) / len(v))
+
+
+def variant_kind(label):
+    """walk, disk or volumetric: the method family of a Dermis variant's label."""
+    if label.startswith("volpath") or label == "volumetric":
+        return "volumetric"
+    return "walk" if label.startswith("randomwalk") else "disk"
+
+
+def family_entries(results):
+    """One entry per (family configuration, Dermis variant): the efficiency ratios in both
+    conventions (geometric mean over the sweep and its lowest sample count), the cost and
+    the MSE per sample against Cycles, and Dermis' rays per sample."""
+    out = []
+    for r in results:
+        fam = r["sc"].get("family")
+        if not fam:
+            continue
+        c = r["cycles"]
+        for i, (label, f) in enumerate(r["dermis"].items()):
+            obj = [d["eff"] / k["eff"] for d, k in zip(f.rows, c.rows)]
+            img = [d["eff"] / k["eff"] for d, k in zip(f.rows_image, c.rows_image)]
+            cost = [(d["seconds"] / d["spp"]) / (k["seconds"] / k["spp"]) for d, k in zip(f.rows, c.rows)]
+            mse = [(d["mse_corr"] * d["spp"]) / (k["mse_corr"] * k["spp"]) for d, k in zip(f.rows, c.rows)]
+            rays = [d["rays_per_sample"] for d in f.rows if d.get("rays_per_sample")]
+            out.append(dict(fam, scene=r["name"], label=label, kind=variant_kind(label), default=(i == 0),
+                            obj=gmean(obj), obj_min=min(obj), img=gmean(img), img_min=min(img),
+                            cost=gmean(cost), mse=gmean(mse), rays=float(np.median(rays)) if rays else float("nan")))
+    return out
+
+
+def family_targets(entries):
+    """Issue 40's targets, evaluated on the run (object convention, the primary one)."""
+    d = [e["obj"] for e in entries if e["default"]]
+    disk = [e["obj"] for e in entries if e["kind"] == "disk"]
+    vol = [e["obj"] for e in entries if e["kind"] == "volumetric"]
+    t = []
+    if d:
+        t.append(("default method: geometric mean >= 3", gmean(d), gmean(d) >= 3))
+        t.append(("default method: every configuration >= 2", min(d), min(d) >= 2))
+    if disk:
+        t.append(("disk: geometric mean >= 1.5 (its Cycles counterpart, Christensen-Burley)", gmean(disk),
+                  gmean(disk) >= 1.5))
+    if vol:
+        t.append(("volumetric: every medium >= 2", min(vol), min(vol) >= 2))
+    return t
+
+
+def family_chart(entries, path):
+    """Efficiency ratio per configuration and method, both conventions (log scale)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = [f"{e['config']} {e['kind']}{' (default)' if e['default'] else ''}" for e in entries]
+    names = [f"{e['config']} {e['geometry']} {e['balance']} {'' if e['scale'] is None else format(e['scale'], 'g')} "
+             f"{e['albedo']} — {e['kind']}" for e in entries]
+    y = np.arange(len(rows))[::-1]
+    fig, ax = plt.subplots(figsize=(8.5, 0.28 * len(rows) + 1.4))
+    colors = {"walk": "#3b7dd8", "disk": "#e08a2e", "volumetric": "#4aa35a"}
+    ax.barh(y + 0.2, [e["obj"] for e in entries], height=0.38, color=[colors[e["kind"]] for e in entries],
+            label="object pixels, render-stage time")
+    ax.barh(y - 0.2, [e["img"] for e in entries], height=0.38, color=[colors[e["kind"]] for e in entries],
+            alpha=0.45, hatch="//", label="whole image, whole-process time")
+    for x, style in ((1, "-"), (2, ":"), (3, "--")):
+        ax.axvline(x, color="k", lw=0.8, ls=style)
+    ax.set_xscale("log")
+    ax.set_yticks(y)
+    ax.set_yticklabels(names, fontsize=7)
+    ax.set_xlabel("efficiency Dermis ÷ Cycles (1 / (MSE × time)), geometric mean over the sample counts")
+    ax.legend(fontsize=7, loc="lower right")
+    ax.set_title("Dermis vs Cycles on the scene family (solid: walk blue, disk orange, volumetric green)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def write_family_section(w, entries, image_dir, rel_images):
+    w("## The scene family: efficiency Dermis ÷ Cycles per configuration\n")
+    w("Configurations chosen before any tuning (`bench/vs_cycles/scenes.py`, FAMILY_CONFIGS), the same renderer "
+      "settings everywhere. **obj**: MSE over the object's pixels, render-stage time (the primary convention); "
+      "**img**: MSE over the whole image (silhouettes included), time of the whole process (`dermis render` from "
+      "start to exit; Cycles' render operator: sync + render + EXR write). Each: geometric mean over the sample "
+      "counts, and the lowest of them in brackets. **cost/sample** and **MSE×spp**: Dermis ÷ Cycles (render stage, "
+      "object), geometric mean over the sample counts. **rays/sample**: Dermis' rays traced per camera sample "
+      "(median over the sweep; Cycles 3.4 does not report its ray count).\n")
+    w("| config | geometry | light | mfp/size | albedo | method | obj | img | cost/sample | MSE×spp | rays/sample |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|")
+    for e in entries:
+        sc = "—" if e["scale"] is None else f"{e['scale']:g}"
+        w(f"| {e['config']} | {e['geometry']} | {e['balance']} | {sc} | {e['albedo']} | {e['kind']}"
+          f"{' (default)' if e['default'] else ''} | **{e['obj']:.3g}** [{e['obj_min']:.3g}] | {e['img']:.3g} "
+          f"[{e['img_min']:.3g}] | {e['cost']:.3g} | {e['mse']:.3g} | {e['rays']:.1f} |")
+    w("")
+    w("Targets of issue 40 (object convention):\n")
+    for name, value, ok in family_targets(entries):
+        w(f"- {name}: **{value:.3g}** — {'met' if ok else 'not met'}")
+    img = [e["img"] for e in entries if e["default"]]
+    if img:
+        w(f"- (whole-image convention: default method geometric mean {gmean(img):.3g}, lowest {min(img):.3g})")
+    w("")
+    os.makedirs(image_dir, exist_ok=True)
+    family_chart(entries, os.path.join(image_dir, "family-efficiency.png"))
+    w(f"![efficiency ratio per configuration]({rel_images}/family-efficiency.png)\n")
 
 
 def write_report(args, results, info, total, path, image_dir, argv):
@@ -431,6 +555,10 @@ def write_report(args, results, info, total, path, image_dir, argv):
                                                          for q, e, a, b in zip(ratios, errs, lo, hi))
               + f" | **{gm:.3g}** [{gmean(lo):.3g}–{gmean(hi):.3g}] |")
     w("")
+
+    entries = family_entries(results)
+    if entries:
+        write_family_section(w, entries, image_dir, rel_images)
 
     w("## Per scene\n")
     for r in results:
@@ -510,14 +638,17 @@ FINDINGS_MARKER = "<!-- findings: written by hand below this line; kept when run
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--scenes", default=",".join(S.DEFAULT_SCENES),
-                    help=f"comma-separated, from {', '.join(S.SCENES)} (default: all of them)")
-    ap.add_argument("--spp", default="16,64,256", help="sweep sample counts (default 16,64,256)")
-    ap.add_argument("--seeds", default="8,8,4",
-                    help="seeds per sweep sample count (one number, or one per --spp; default 8,8,4): the MSE is "
-                         "the mean over the seeds, the time the median")
-    ap.add_argument("--reference-time", type=float, default=40.0,
-                    help="seconds per reference per renderer (two halves; default 40)")
+    ap.add_argument("--set", choices=["family", "classic"], default="family",
+                    help="family (default): the scene family of issue 40, chosen before tuning (scenes.FAMILY); "
+                         "classic: the seven scenes of issue 15")
+    ap.add_argument("--scenes", default="", help=f"comma-separated scene names instead of --set, from "
+                    f"{', '.join(S.SCENES)}")
+    ap.add_argument("--spp", default="", help="sweep sample counts (default: family 16,64; classic 16,64,256)")
+    ap.add_argument("--seeds", default="",
+                    help="seeds per sweep sample count (one number, or one per --spp; default: family 6,4; classic "
+                         "8,8,4): the MSE is the mean over the seeds, the time the median")
+    ap.add_argument("--reference-time", type=float, default=0.0,
+                    help="seconds per reference per renderer (two halves; default: family 16, classic 40)")
     ap.add_argument("--reference-spp", type=int, default=0, help="instead of --reference-time: spp per reference")
     ap.add_argument("--dermis", default=os.path.join(ROOT, "build", "dermis"))
     ap.add_argument("--dermis-sampler", default="",
@@ -530,23 +661,25 @@ def main():
     ap.add_argument("--res", type=lambda s: tuple(int(x) for x in s.lower().split("x")), help="override WxH")
     ap.add_argument("--sheet-spp", type=int, default=64, help="spp of the error maps in the contact sheets")
     ap.add_argument("--quick", action="store_true",
-                    help="smoke test: 64x64, spp 4,16, 4 s references, report in --out (not docs/)")
+                    help="smoke test: 48x36 (classic: 64x64), spp 4,16, 2 seeds, 2 s references (classic: 4 s), "
+                         "report in --out (not docs/)")
     ap.add_argument("--no-docs", action="store_true", help="write the report into --out instead of docs/")
     ap.add_argument("--dermis-commit", default="", help="the commit the Dermis binary was built from "
                     "(default: git rev-parse --short HEAD)")
     ap.add_argument("--note", default="", help="a sentence for the report (e.g. the state of the machine)")
     args = ap.parse_args()
     argv = sys.argv[1:]
+    family = args.set == "family" and not args.scenes
+    if not args.spp:
+        args.spp = "4,16" if args.quick else "16,64" if family else "16,64,256"
+    if not args.seeds:
+        args.seeds = "2" if args.quick else "6,4" if family else "8,8,4"
+    if not args.reference_time and not args.reference_spp:
+        args.reference_time = (2.0 if family else 4.0) if args.quick else 16.0 if family else 40.0
     if args.quick:
-        args.res = args.res or (64, 64)
-        if args.spp == "16,64,256":
-            args.spp = "4,16"
-        if args.reference_time == 40.0 and not args.reference_spp:
-            args.reference_time = 4.0
+        args.res = args.res or ((48, 36) if family else (64, 64))
         args.no_docs = True
         args.sheet_spp = 16
-        if args.seeds == "8,8,4":
-            args.seeds = "2"
     args.spp = [int(x) for x in args.spp.split(",")]
     args.seeds = [int(x) for x in args.seeds.split(",")]
     if len(args.seeds) == 1:
@@ -563,7 +696,7 @@ def main():
         time.sleep(30)
     else:
         sys.exit(f"{args.dermis} not found: build first (make build)")
-    names = [n for n in args.scenes.split(",") if n]
+    names = [n for n in args.scenes.split(",") if n] or (list(S.FAMILY) if args.set == "family" else S.DEFAULT_SCENES)
     for n in names:
         if n not in S.SCENES:
             sys.exit(f"unknown scene {n}; known: {', '.join(S.SCENES)}")
@@ -587,7 +720,8 @@ def main():
         write_report(args, results, info, total, os.path.join(args.out, "results-vs-cycles.md"),
                      os.path.join(args.out, "images"), argv)
     else:
-        write_report(args, results, info, total, DOC, IMAGES, argv)
+        write_report(args, results, info, total, DOC["classic" if args.set == "classic" and not args.scenes else "family"],
+                     IMAGES, argv)
 
 
 if __name__ == "__main__":

@@ -72,18 +72,19 @@ def quad_light(center, target, size, radiance):
 SPHERE_GEOM = dict(
     shape=dict(kind="sphere", center=[0.0, 0.0, 0.0], radius=20.0),
     camera=dict(eye=[-110.0, -130.0, 40.0], target=[0.0, 0.0, 0.0], up=[0.0, 0.0, 1.0], fov=22.0),
-    light=quad_light([-100.0, 30.0, 80.0], [0.0, 0.0, 0.0], 30.0, KEY),
+    lights=[quad_light([-100.0, 30.0, 80.0], [0.0, 0.0, 0.0], 30.0, KEY)],
 )
 BUST_GEOM = dict(
     shape=dict(kind="obj", path=NEFERTITI),
     camera=dict(eye=[-850.0, -1000.0, 150.0], target=[0.0, 0.0, 10.0], up=[0.0, 0.0, 1.0], fov=28.0),
-    light=quad_light([-800.0, -500.0, 600.0], [0.0, 0.0, 0.0], 300.0, KEY),
+    lights=[quad_light([-800.0, -500.0, 600.0], [0.0, 0.0, 0.0], 300.0, KEY)],
 )
 
 
-def scene(name, geom, material, checks, dermis, ref_factor=1.0):
-    """ref_factor multiplies the reference time of the run (run.py --reference-time)."""
-    return dict(name=name, res=list(RES), sky=SKY, max_depth=MAX_DEPTH, material=material, checks=checks,
+def scene(name, geom, material, checks, dermis, ref_factor=1.0, sky=SKY, res=RES):
+    """ref_factor multiplies the reference time of the run (run.py --reference-time); sky
+    None: no environment light (a black background)."""
+    return dict(name=name, res=list(res), sky=sky, max_depth=MAX_DEPTH, material=material, checks=checks,
                 dermis=dermis, ref_factor=ref_factor, **geom)
 
 
@@ -133,6 +134,141 @@ SCENES = {
 DEFAULT_SCENES = ["sphere-walk", "sphere-burley", "bust-walk", "bust-burley", "medium-matched", "medium-glass",
                   "calibration"]
 
+
+# ---------------------------------------------------------------- the scene family (issue 40)
+#
+# Chosen before any tuning (and never tuned per scene): every configuration uses the same
+# renderer settings; only geometry, light balance, scale and material change. The span:
+#   light balance  sky only | one small key light only | both | a backlight through the object
+#                  (hidden behind it from the camera) with the sky;
+#   scale          mean mfp / the object's smallest extent (sphere diameter 40 mm, the bust's
+#                  depth 240 mm, the fin's thickness 6 mm) about 0.01, 0.1 and 1;
+#   geometry       the sphere, the Nefertiti bust, a thin ear-like fin (a flat ellipsoid);
+#   albedo         0.3 (dark) to 0.95 (milk);
+#   plus the index-matched and the in-glass homogeneous medium under the sky and the small key.
+# Each subsurface configuration is rendered twice: Dermis' default method (the random walk)
+# against Cycles' Random Walk, and Dermis' `disk` probes (Christensen-Burley) against
+# Cycles' Christensen-Burley.
+
+FAMILY_RES = (128, 96)
+SMALL_KEY = [9.0 * x for x in KEY]  # a third of the key's side, the same power
+
+# Surface albedo A and the ratio of the channels' mfp (scaled to the configuration's mean).
+FAMILY_MATERIALS = {
+    "skin": dict(reflectance=[0.85, 0.55, 0.40], ratio=[8.0, 4.0, 2.0]),
+    "milk": dict(reflectance=[0.95, 0.93, 0.88], ratio=[1.2, 1.0, 0.8]),
+    "wax": dict(reflectance=[0.90, 0.75, 0.50], ratio=[1.5, 1.0, 0.6]),
+    "jade": dict(reflectance=[0.35, 0.60, 0.45], ratio=[1.0, 1.3, 1.0]),
+    "dark": dict(reflectance=[0.30, 0.28, 0.32], ratio=[1.0, 1.0, 1.0]),
+}
+
+FIN_SEMI_AXES = [25.0, 3.0, 18.0]  # mm: 50 wide, 36 high, 6 thick (along y, facing the camera)
+
+# Per geometry: shape, camera, the object's size for the scale (its smallest extent, mm),
+# the small key light and the backlight (behind the object on the camera's line of sight,
+# smaller than the object's silhouette: hidden from the camera).
+FAMILY_GEOMETRY = {
+    "sphere": dict(
+        shape=SPHERE_GEOM["shape"], camera=dict(SPHERE_GEOM["camera"], fov=18.0), size=40.0,
+        key=quad_light([-100.0, 30.0, 80.0], [0.0, 0.0, 0.0], 10.0, SMALL_KEY),
+        back=quad_light([55.0, 65.0, -20.0], [0.0, 0.0, 0.0], 10.0, SMALL_KEY)),
+    "bust": dict(
+        shape=BUST_GEOM["shape"], camera=dict(BUST_GEOM["camera"], fov=36.0), size=240.0,
+        key=quad_light([-800.0, -500.0, 600.0], [0.0, 0.0, 0.0], 100.0, SMALL_KEY),
+        back=None),
+    "fin": dict(
+        shape=dict(kind="ellipsoid", center=[0.0, 0.0, 0.0], semi_axes=FIN_SEMI_AXES, segments=96, rings=48),
+        camera=dict(eye=[-40.0, -150.0, 20.0], target=[0.0, 0.0, 0.0], up=[0.0, 0.0, 1.0], fov=26.0), size=6.0,
+        key=quad_light([-90.0, -80.0, 70.0], [0.0, 0.0, 0.0], 10.0, SMALL_KEY),
+        back=quad_light([10.0, 60.0, 5.0], [0.0, 0.0, 0.0], 8.0, SMALL_KEY)),
+}
+
+# (geometry, light balance, scale, material): twelve subsurface configurations.
+FAMILY_CONFIGS = [
+    ("sphere", "both", 0.1, "skin"),
+    ("sphere", "sky", 0.1, "milk"),
+    ("sphere", "key", 0.1, "jade"),
+    ("sphere", "both", 0.01, "wax"),
+    ("sphere", "both", 1.0, "milk"),
+    ("sphere", "back", 1.0, "skin"),
+    ("bust", "both", 0.01, "skin"),
+    ("bust", "sky", 0.01, "dark"),
+    ("bust", "key", 0.1, "wax"),
+    ("fin", "back", 0.1, "skin"),
+    ("fin", "both", 1.0, "milk"),
+    ("fin", "key", 0.01, "dark"),
+]
+# The two media (sphere, sky + small key), each with the variants of its classic scene: the
+# volumetric path tracer in the index-matched sphere; the walk with a dielectric boundary
+# and the `volumetric` method in glass.
+FAMILY_MEDIA = ["matched", "glass"]
+
+
+def ellipsoid_mesh(center, semi_axes, segments, rings):
+    """A UV-tessellated ellipsoid: vertices and counter-clockwise (outward) triangles."""
+    verts = [[center[0], center[1], center[2] - semi_axes[2]]]
+    for i in range(1, rings):
+        th = math.pi * i / rings
+        for j in range(segments):
+            ph = 2.0 * math.pi * j / segments
+            d = [math.sin(th) * math.cos(ph), math.sin(th) * math.sin(ph), -math.cos(th)]
+            verts.append([c + a * x for c, a, x in zip(center, semi_axes, d)])
+    verts.append([center[0], center[1], center[2] + semi_axes[2]])
+    top = len(verts) - 1
+    ring = lambda i, j: 1 + (i - 1) * segments + j % segments  # noqa: E731
+    faces = [[0, ring(1, j + 1), ring(1, j)] for j in range(segments)]
+    for i in range(1, rings - 1):
+        for j in range(segments):
+            a, b, c, d = ring(i, j), ring(i, j + 1), ring(i + 1, j + 1), ring(i + 1, j)
+            faces += [[a, b, c], [a, c, d]]
+    faces += [[ring(rings - 1, j), ring(rings - 1, j + 1), top] for j in range(segments)]
+    return verts, faces
+
+
+def _family_lights(g, balance):
+    sky = SKY if balance in ("sky", "both", "back") else None
+    lights = {"sky": [], "key": [g["key"]], "both": [g["key"]], "back": [g["back"]]}[balance]
+    assert all(lights), f"no {balance} light for this geometry"
+    return sky, lights
+
+
+def _family_scenes():
+    out = {}
+    for k, (geo, balance, scale, mat) in enumerate(FAMILY_CONFIGS, 1):
+        g, m = FAMILY_GEOMETRY[geo], FAMILY_MATERIALS[mat]
+        sky, lights = _family_lights(g, balance)
+        mean = sum(m["ratio"]) / 3.0
+        mfp = [scale * g["size"] * r / mean for r in m["ratio"]]
+        base = f"f{k:02d}-{geo}-{balance}-{scale:g}-{mat}"
+        geom = dict(shape=g["shape"], camera=g["camera"], lights=lights)
+        info = dict(config=f"f{k:02d}", geometry=geo, balance=balance, scale=scale, albedo=mat)
+        for method, label, cycles, extra in (
+                ("randomwalk", "randomwalk (default)", "Random Walk", ""),
+                ("burley", "disk burley", "Christensen-Burley", '"string method" "disk" "string profile" "burley"')):
+            name = f"{base}-{'walk' if method == 'randomwalk' else 'disk'}"
+            sc = scene(name, geom, dict(kind="subsurface", method=method, reflectance=m["reflectance"], mfp=mfp,
+                                        eta=1.4, g=0.0),
+                       f"Family configuration {info['config']}: {geo}, light {balance}, mfp/size {scale:g} "
+                       f"(mfp {', '.join(f'{x:.3g}' for x in mfp)} mm), albedo {mat}; Dermis `{label}` vs Cycles "
+                       f"{cycles}.", {label: extra}, sky=sky, res=FAMILY_RES)
+            sc["family"] = dict(info, method="walk" if method == "randomwalk" else "disk")
+            out[name] = sc
+    g = FAMILY_GEOMETRY["sphere"]
+    sky, lights = _family_lights(g, "both")
+    geom = dict(shape=g["shape"], camera=g["camera"], lights=lights)
+    for k, boundary in enumerate(FAMILY_MEDIA, len(FAMILY_CONFIGS) + 1):
+        name = f"f{k:02d}-medium-{boundary}"
+        src = SCENES[f"medium-{boundary}"]
+        sc = scene(name, geom, src["material"], f"Family configuration f{k:02d}: " + src["checks"] +
+                   " Under the sky and the small key light.", src["dermis"], sky=sky, res=FAMILY_RES)
+        sc["family"] = dict(config=f"f{k:02d}", geometry="sphere", balance="both", scale=None,
+                            albedo=f"medium ({boundary})", method="volumetric" if boundary == "matched" else "walk")
+        out[name] = sc
+    return out
+
+
+FAMILY = _family_scenes()
+SCENES.update(FAMILY)
 
 # ---------------------------------------------------------------- parameter conversions
 
