@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libembree-dev libtbb-dev
-  libopenimageio-dev openimageio-tools
+  libopenimageio-dev openimageio-tools libopenexr-dev libpng-dev
   libassimp-dev zlib1g-dev
   libcli11-dev libfmt-dev libpcg-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev

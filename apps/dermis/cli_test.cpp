@@ -87,6 +87,45 @@ TEST_F(Cli, RendersAScene) {
   EXPECT_EQ(img.height, 16);
 }
 
+// OpenImageIO is a plugin loaded on the first image read (render/image_plugin.h): a render
+// that reads no image writes its .exr and .png without it; one that reads a texture says
+// that the plugin is missing, with status 2 and no output.
+TEST_F(Cli, RendersWithoutTheImagePluginUnlessItReadsAnImage) {
+  const std::string no_plugin = "DERMIS_OIIO_PLUGIN=" + path("missing.so") + " ";
+  auto run_without = [&](const std::string& args) {
+    CommandResult r;
+    FILE* p = popen((no_plugin + DERMIS_BINARY + " " + args + " 2>&1").c_str(), "r");
+    char buf[4096];
+    std::size_t n;
+    while (p && (n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
+    const int st = p ? pclose(p) : -1;
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return r;
+  };
+  CommandResult ok = run_without("render " + write("s.pbrt", kSmallScene) + " -q -o " + path("out.exr"));
+  ASSERT_EQ(ok.status, 0) << ok.output;
+  EXPECT_TRUE(fs::exists(path("out.png")));
+  EXPECT_EQ(dermis::read_image(path("out.exr")).width, 24);  // this process has the plugin
+
+  dermis::write_image(path("tex.png"), dermis::Image(4, 4, dermis::RGB(0.5f)));
+  const std::string textured = R"(
+LookAt 0 0 -4  0 0 0  0 1 0
+Camera "perspective" "float fov" 40
+Film "rgb" "integer xresolution" 8 "integer yresolution" 8
+WorldBegin
+LightSource "infinite" "rgb L" [0.5 0.5 0.5]
+Texture "t" "spectrum" "imagemap" "string filename" ")" + path("tex.png") + R"("
+Material "diffuse" "texture reflectance" "t"
+Shape "sphere" "float radius" 1
+)";
+  CommandResult bad = run_without("render " + write("t.pbrt", textured) + " -q -o " + path("t.exr"));
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("libdermis_oiio.so"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(path("t.exr")));
+  CommandResult good = run_dermis("render " + path("t.pbrt") + " -q -o " + path("t.exr"));
+  EXPECT_EQ(good.status, 0) << good.output;
+}
+
 TEST_F(Cli, SameSeedSameImageWithOneAndTwoThreads) {
   std::string scene = write("s.pbrt", kSmallScene);
   ASSERT_EQ(run_dermis("render " + scene + " -q --threads 1 --seed 9 -o " + path("a.exr")).status, 0);

@@ -1,18 +1,29 @@
 #include "dermis/render/image.h"
 
-#include "dermis/render/exr_header_check.h"
-
-#include <OpenImageIO/imageio.h>
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
 #include <fmt/format.h>
+#include <png.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <exception>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <system_error>
+
+#include "dermis/render/exr_header_check.h"
+#include "dermis/render/image_plugin.h"
 
 namespace dermis {
 
@@ -23,32 +34,12 @@ std::string lower(std::string s) {
   return s;
 }
 
-// How the values of a file's channels relate to linear radiance.
-enum class Encoding { kLinear, kSrgb, kGamma };
-
-Encoding file_encoding(const OIIO::ImageSpec& spec, float* gamma) {
-  const std::string cs = lower(spec.get_string_attribute("oiio:ColorSpace"));
-  if (cs.find("srgb") != std::string::npos) return Encoding::kSrgb;
-  if (cs.find("linear") != std::string::npos || cs == "scene_linear") return Encoding::kLinear;
-  if (cs.rfind("gamma", 0) == 0) {
-    // OIIO names a PNG gAMA chunk "GammaCorrected" with the exponent in oiio:Gamma
-    // (or spells it "GammaX.Y").
-    *gamma = spec.get_float_attribute("oiio:Gamma", 0.0f);
-    if (*gamma <= 0) *gamma = std::strtof(cs.c_str() + 5, nullptr);
-    if (*gamma > 0) return Encoding::kGamma;
-  }
-  // Untagged: integer data (PNG, JPEG, 8/16-bit TIFF) is display-encoded by
-  // convention; floating-point data is linear.
-  const auto base = spec.format.basetype;
-  const bool integer = base == OIIO::TypeDesc::UINT8 || base == OIIO::TypeDesc::UINT16 ||
-                       base == OIIO::TypeDesc::INT8 || base == OIIO::TypeDesc::INT16;
-  return integer ? Encoding::kSrgb : Encoding::kLinear;
-}
-
-// The OIIO format name for a file extension, and the pixel type written there.
+// How a file extension is written: OpenEXR and PNG (what a render writes) here, with
+// Debian's OpenEXR and libpng; the others by the OpenImageIO plugin (image_plugin.h).
+enum class Writer { kExr, kPng, kPlugin };
 struct OutputFormat {
-  const char* oiio_name;
-  OIIO::TypeDesc type;
+  Writer writer;
+  const char* plugin_format;  // kPlugin: OpenImageIO's format name
   bool srgb_8bit;
 };
 
@@ -56,42 +47,64 @@ const char* kSupportedExtensions = ".exr, .hdr, .tif, .tiff, .png, .jpg, .jpeg";
 
 OutputFormat output_format(const std::string& path) {
   const std::string ext = lower(std::filesystem::path(path).extension().string());
-  if (ext == ".exr") return {"openexr", OIIO::TypeDesc::FLOAT, false};
-  if (ext == ".hdr") return {"hdr", OIIO::TypeDesc::FLOAT, false};
-  if (ext == ".tif" || ext == ".tiff") return {"tiff", OIIO::TypeDesc::FLOAT, false};
-  if (ext == ".png") return {"png", OIIO::TypeDesc::UINT8, true};
-  if (ext == ".jpg" || ext == ".jpeg") return {"jpeg", OIIO::TypeDesc::UINT8, true};
+  if (ext == ".exr") return {Writer::kExr, nullptr, false};
+  if (ext == ".png") return {Writer::kPng, nullptr, true};
+  if (ext == ".hdr") return {Writer::kPlugin, "hdr", false};
+  if (ext == ".tif" || ext == ".tiff") return {Writer::kPlugin, "tiff", false};
+  if (ext == ".jpg" || ext == ".jpeg") return {Writer::kPlugin, "jpeg", true};
   throw std::runtime_error(fmt::format("{}: cannot write image: unknown extension '{}' (supported: {})", path,
                                        ext, kSupportedExtensions));
 }
 
-// What a header may claim before its pixels are read: at most kMaxImagePixels pixels, and,
-// for formats whose compression ratio is bounded (PNG's deflate, HDR's run lengths, most
-// OpenEXR compressions), no more bytes of pixels than the file could inflate to. A lying header is refused here
-// rather than allocated (a 100-byte PNG claiming 65535 x 65535 used to take 1.8 GB).
-constexpr std::size_t kMaxImagePixels = std::size_t(1) << 27;  // 16384 x 8192
-constexpr std::uintmax_t kMaxDeflateRatio = 1032;              // deflate's largest expansion
+// 32-bit float R, G, B, zip-compressed, tagged linear (as OpenImageIO wrote it before).
+void write_exr(const std::string& path, const Image& img) {
+  Imf::Header header(img.width, img.height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  header.insert("oiio:ColorSpace", Imf::StringAttribute("Linear"));
+  Imf::FrameBuffer fb;
+  const std::size_t xs = 3 * sizeof(float), ys = xs * std::size_t(img.width);
+  char* base = reinterpret_cast<char*>(const_cast<float*>(img.pixels.data()));
+  const char* names[3] = {"R", "G", "B"};
+  for (int c = 0; c < 3; ++c) {
+    header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+    fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+  }
+  Imf::OutputFile file(path.c_str(), header);
+  file.setFrameBuffer(fb);
+  file.writePixels(img.height);
+}
 
-template <class Fail>
-void check_image_size(const OIIO::ImageSpec& spec, const std::string& format, const std::string& path, Fail fail) {
-  const std::size_t pixels = std::size_t(spec.width) * std::size_t(spec.height);
-  if (pixels > kMaxImagePixels)
-    throw fail(fmt::format("the header claims {}x{} pixels, more than the {} a texture may have", spec.width,
-                           spec.height, kMaxImagePixels));
-  // OpenEXR: zip/zips/pxr24 (deflate after at most 4:3), piz, rle, b44 stay within twice
-  // deflate's ratio; DWAA/DWAB (DCT then deflate) have no such bound and are not checked.
-  std::uintmax_t ratio = 0;
-  if (format == "png" || format == "hdr") ratio = kMaxDeflateRatio;
-  if (format == "openexr" && lower(spec.get_string_attribute("compression")).rfind("dwa", 0) != 0)
-    ratio = 2 * kMaxDeflateRatio;
-  if (ratio == 0) return;
-  std::error_code ec;
-  const std::uintmax_t file_bytes = std::filesystem::file_size(path, ec);
-  const std::uintmax_t pixel_bytes = std::uintmax_t(pixels) * std::uintmax_t(spec.pixel_bytes());
-  if (!ec && pixel_bytes / ratio > file_bytes)
-    throw fail(fmt::format("the header claims {}x{} pixels ({} bytes) but the file holds only {} bytes: a corrupt "
-                           "or truncated file",
-                           spec.width, spec.height, pixel_bytes, file_bytes));
+// libpng's part of write_png: false when libpng failed (its errors longjmp back here, so
+// this frame holds no C++ object: setjmp's rule).
+bool png_write_rgb8(png_structp png, png_infop info, std::FILE* f, int width, int height, const float* data,
+                    png_byte* row) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_init_io(png, f);
+  png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+  png_write_info(png, info);
+  const std::size_t n = 3 * std::size_t(width);
+  for (int y = 0; y < height; ++y) {
+    const float* src = data + n * std::size_t(y);
+    for (std::size_t i = 0; i < n; ++i) row[i] = png_byte(std::lround(src[i] * 255.0f));
+    png_write_row(png, row);
+  }
+  png_write_end(png, nullptr);
+  return true;
+}
+
+// 8-bit RGB from sRGB-encoded values in [0, 1] (`data`), rounded, with an sRGB chunk.
+void write_png(const std::string& path, int width, int height, const std::vector<float>& data) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "wb"), &std::fclose);
+  if (!f) throw std::runtime_error(std::strerror(errno));
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  std::vector<png_byte> row(3 * std::size_t(width));
+  const bool ok = info && png_write_rgb8(png, info, f.get(), width, height, data.data(), row.data());
+  png_destroy_write_struct(&png, info ? &info : nullptr);
+  if (!ok) throw std::runtime_error("libpng failed to write it");
+  if (std::fflush(f.get()) != 0) throw std::runtime_error(std::strerror(errno));
 }
 
 }  // namespace
@@ -119,35 +132,21 @@ Image read_image(const std::string& path) {
   };
   // OpenEXR allocates what a header's attributes claim before reading them.
   if (const std::string problem = exr_header_problem(path); !problem.empty()) throw fail(problem);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    std::string why = OIIO::geterror();
-    throw fail(why.empty() ? "unknown error" : why);
-  }
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    throw fail(fmt::format("empty image ({}x{}, {} channels)", spec.width, spec.height, spec.nchannels));
-  check_image_size(spec, in->format_name(), path, fail);
-  // Only the channels used are read (a header may claim thousands).
-  const int nc = std::min(spec.nchannels, 3);
-  std::vector<float> raw(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(nc));
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, raw.data())) {
-    std::string why = in->geterror();
-    throw fail(why.empty() ? "read failed" : why);
-  }
-  float gamma = 1;
-  const Encoding encoding = file_encoding(spec, &gamma);
-  in->close();
+  DecodedImage raw;
+  std::string why;
+  image_plugin().read(path.c_str(), &raw, &why);
+  if (!why.empty()) throw fail(why);
 
-  Image img(spec.width, spec.height);
+  Image img(raw.width, raw.height);
+  const std::size_t nc = std::size_t(raw.channels);
   // Gray and gray+alpha replicate channel 0; RGB and RGBA (and more) take the first three.
   const bool gray = nc < 3;
   for (std::size_t i = 0; i < img.pixel_count(); ++i) {
-    for (int c = 0; c < 3; ++c) {
-      float v = raw[i * std::size_t(nc) + std::size_t(gray ? 0 : c)];
-      if (encoding == Encoding::kSrgb) v = srgb_to_linear(v);
-      else if (encoding == Encoding::kGamma) v = std::pow(std::max(v, 0.0f), gamma);
-      img.pixels[3 * i + std::size_t(c)] = v;
+    for (std::size_t c = 0; c < 3; ++c) {
+      float v = raw.data[i * nc + (gray ? 0 : c)];
+      if (raw.encoding == DecodedImage::Encoding::kSrgb) v = srgb_to_linear(v);
+      else if (raw.encoding == DecodedImage::Encoding::kGamma) v = std::pow(std::max(v, 0.0f), raw.gamma);
+      img.pixels[3 * i + c] = v;
     }
   }
   return img;
@@ -167,14 +166,11 @@ void write_image(const std::string& path, const Image& img) {
     }
   }
 
-  std::vector<float> data = img.pixels;
-  if (format.srgb_8bit)
-    for (float& v : data) v = linear_to_srgb(std::clamp(v, 0.0f, 1.0f));  // OIIO rounds to 8 bits
-
-  OIIO::ImageSpec spec(img.width, img.height, 3, format.type);
-  if (format.oiio_name == std::string("openexr")) spec.attribute("compression", "zip");
-  if (format.oiio_name == std::string("jpeg")) spec.attribute("Compression", "jpeg:95");
-  spec.attribute("oiio:ColorSpace", format.srgb_8bit ? "sRGB" : "Linear");
+  std::vector<float> data;
+  if (format.srgb_8bit) {
+    data = img.pixels;
+    for (float& v : data) v = linear_to_srgb(std::clamp(v, 0.0f, 1.0f));  // rounded to 8 bits by the writer
+  }
 
   const std::string tmp = fmt::format("{}.tmp-{}", path, static_cast<long>(::getpid()));
   auto fail = [&](const std::string& why) {
@@ -182,15 +178,20 @@ void write_image(const std::string& path, const Image& img) {
     std::filesystem::remove(tmp, ec);
     return std::runtime_error(fmt::format("{}: could not write image: {}", path, why));
   };
-  auto out = OIIO::ImageOutput::create(format.oiio_name);
-  if (!out) throw fail(fmt::format("OpenImageIO has no '{}' writer: {}", format.oiio_name, OIIO::geterror()));
-  if (!out->open(tmp, spec)) throw fail(out->geterror());
-  if (!out->write_image(OIIO::TypeDesc::FLOAT, data.data())) {
-    std::string why = out->geterror();
-    out->close();
-    throw fail(why);
+  try {
+    if (format.writer == Writer::kExr) {
+      write_exr(tmp, img);
+    } else if (format.writer == Writer::kPng) {
+      write_png(tmp, img.width, img.height, data);
+    } else {
+      std::string why;
+      image_plugin().write(tmp.c_str(), format.plugin_format, img.width, img.height,
+                           format.srgb_8bit ? data.data() : img.pixels.data(), &why);
+      if (!why.empty()) throw std::runtime_error(why);
+    }
+  } catch (const std::exception& e) {
+    throw fail(e.what());
   }
-  if (!out->close()) throw fail(out->geterror());
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) throw fail(fmt::format("rename from {} failed: {}", tmp, ec.message()));

@@ -1,4 +1,5 @@
-// Images in memory (linear RGB float) and their files, through OpenImageIO.
+// Images in memory (linear RGB float) and their files: OpenEXR and PNG written with
+// OpenEXR and libpng, everything else through the OpenImageIO plugin (image_plugin.h).
 #pragma once
 
 #include <string>
@@ -32,7 +33,7 @@ struct Image {
 float srgb_to_linear(float encoded);
 float linear_to_srgb(float linear);
 
-// Reads any format OpenImageIO reads. Gray (1 channel) is replicated, gray+alpha
+// Reads any format OpenImageIO reads (through the plugin). Gray (1 channel) is replicated, gray+alpha
 // and RGBA drop the alpha, extra channels beyond the fourth are ignored. 8- and
 // 16-bit integer data tagged (or, untagged, presumed) sRGB is linearized.
 // Throws std::runtime_error("PATH: could not read image: REASON").

@@ -78,7 +78,8 @@ class BurleyProfile {
   // is clamped so that the value stays finite.
   double eval(double r) const {
     r = std::max(r, 1e-6 * d_);
-    return albedo_ * (std::exp(-r / d_) + std::exp(-r / (3 * d_))) / (8 * kPiD * d_ * r);
+    const double u = third_exponential(r);
+    return albedo_ * (u * u * u + u) / (8 * kPiD * d_ * r);
   }
   double r_max() const { return r_max_; }
   double r_max(double energy_fraction) const {
@@ -89,10 +90,14 @@ class BurleyProfile {
   // 2 pi r R / (A kept) = (e^{-r/d} + e^{-r/(3d)}) / (4 d kept) on [0, r_max].
   double pdf_radius(double r) const {
     if (r < 0 || r > r_max_) return 0;
-    return (std::exp(-r / d_) + std::exp(-r / (3 * d_))) / (4 * d_ * kept_);
+    const double u = third_exponential(r);
+    return (u * u * u + u) / (4 * d_ * kept_);
   }
   // Radial CDF F(r) = 1 - e^{-r/d}/4 - 3 e^{-r/(3d)}/4 (Christensen & Burley 2015, sec. 3).
-  double cdf(double r) const { return 1 - 0.25 * std::exp(-r / d_) - 0.75 * std::exp(-r / (3 * d_)); }
+  double cdf(double r) const {
+    const double u = third_exponential(r);
+    return 1 - 0.25 * u * u * u - 0.75 * u;
+  }
 
   // F(r) = xi in closed form: with u = e^{-r/(3d)}, u^3 + 3u - 4(1 - xi) = 0 (METHODS 1.4).
   // Cardano: with c = 2(1 - xi) and a = cbrt(c + sqrt(c^2 + 1)) the real root is
@@ -105,6 +110,10 @@ class BurleyProfile {
   }
 
  private:
+  // u = e^{-r/(3d)}; the profile's other exponential is e^{-r/d} = u^3: one exp, not two
+  // (the probes evaluate R and every strategy's pdf at each hit).
+  double third_exponential(double r) const { return std::exp(-r / (3 * d_)); }
+
   double albedo_ = 0;
   double kept_ = kDefaultKeptFraction;
   double scale_ = 1;
