@@ -64,8 +64,9 @@ int run_study(const std::vector<std::string>& args) {
   const char* old = std::getenv("PYTHONPATH");
   const std::string path = dir.string() + (old && *old ? std::string(":") + old : std::string());
   setenv("PYTHONPATH", path.c_str(), 1);
-  // How the study names itself in its usage and in the report's command line.
-  setenv("DERMIS_STUDY_PROG", (self_path().string() + " study").c_str(), 1);
+  // How the study names itself in its usage and in the report's command line: as the
+  // user types it, `dermis study`.
+  setenv("DERMIS_STUDY_PROG", (self_path().filename().string() + " study").c_str(), 1);
 
   std::vector<std::string> words = {python, "-m", "dermis.study"};
   words.insert(words.end(), args.begin(), args.end());

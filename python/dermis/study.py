@@ -130,7 +130,7 @@ def parse_args(argv):
     ap.add_argument("--threads", type=int, default=0, help="render threads (default 0: all cores)")
     ap.add_argument("--res", type=_resolution, metavar="WxH", help="film resolution (default: the scene's)")
     ap.add_argument("--seed", type=int, default=1, help="first seed of the test renders (default 1)")
-    ap.add_argument("--out", metavar="DIR", help="output folder (default study-<scene name>)")
+    ap.add_argument("-o", "--out", metavar="DIR", help="output folder (default study-<scene name>)")
     args = ap.parse_args(argv)
     try:
         args.methods = [Method(s) for s in args.methods.split(",") if s.strip()]

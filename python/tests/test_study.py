@@ -117,9 +117,16 @@ def test_study_bad_input_is_status_2(tiny, tmp_path, capsys):
 def test_dermis_study_subcommand(dermis_binary, tiny):
     p = subprocess.run([dermis_binary, "study", "--help"], capture_output=True, text=True, timeout=60)
     assert p.returncode == 0, p.stderr
-    assert "--methods" in p.stdout and "study" in p.stdout.splitlines()[0]
+    assert "--methods" in p.stdout
+    assert p.stdout.splitlines()[0].startswith("usage: dermis study "), p.stdout.splitlines()[0]
     p = subprocess.run([dermis_binary, "study", str(tiny)], capture_output=True, text=True, timeout=60)
     assert p.returncode == 2 and "--methods" in p.stderr
+
+
+def test_out_and_o_name_the_same_folder(tiny):
+    # `-o` as in `dermis render` (issue 39).
+    assert study.parse_args([str(tiny), "--methods", "disk", "--time", "1", "-o", "a"]).out == "a"
+    assert study.parse_args([str(tiny), "--methods", "disk", "--time", "1", "--out", "b"]).out == "b"
 
 
 def test_method_specs_with_labels():
