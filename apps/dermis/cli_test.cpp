@@ -22,9 +22,10 @@ struct CommandResult {
   std::string output;  // stdout and stderr
 };
 
-CommandResult run_dermis(const std::string& args) {
+// `env`: variable assignments put before the command ("NAME=value ").
+CommandResult run_dermis(const std::string& args, const std::string& env = "") {
   CommandResult r;
-  std::string cmd = std::string(DERMIS_BINARY) + " " + args + " 2>&1";
+  std::string cmd = env + std::string(DERMIS_BINARY) + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
   char buf[4096];
@@ -92,16 +93,7 @@ TEST_F(Cli, RendersAScene) {
 // that the plugin is missing, with status 2 and no output.
 TEST_F(Cli, RendersWithoutTheImagePluginUnlessItReadsAnImage) {
   const std::string no_plugin = "DERMIS_OIIO_PLUGIN=" + path("missing.so") + " ";
-  auto run_without = [&](const std::string& args) {
-    CommandResult r;
-    FILE* p = popen((no_plugin + DERMIS_BINARY + " " + args + " 2>&1").c_str(), "r");
-    char buf[4096];
-    std::size_t n;
-    while (p && (n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-    const int st = p ? pclose(p) : -1;
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
-  };
+  auto run_without = [&](const std::string& args) { return run_dermis(args, no_plugin); };
   CommandResult ok = run_without("render " + write("s.pbrt", kSmallScene) + " -q -o " + path("out.exr"));
   ASSERT_EQ(ok.status, 0) << ok.output;
   EXPECT_TRUE(fs::exists(path("out.png")));

@@ -438,11 +438,10 @@ def family_chart(entries, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    rows = [f"{e['config']} {e['kind']}{' (default)' if e['default'] else ''}" for e in entries]
     names = [f"{e['config']} {e['geometry']} {e['balance']} {'' if e['scale'] is None else format(e['scale'], 'g')} "
              f"{e['albedo']} — {e['kind']}" for e in entries]
-    y = np.arange(len(rows))[::-1]
-    fig, ax = plt.subplots(figsize=(8.5, 0.28 * len(rows) + 1.4))
+    y = np.arange(len(entries))[::-1]
+    fig, ax = plt.subplots(figsize=(8.5, 0.28 * len(entries) + 1.4))
     colors = {"walk": "#3b7dd8", "disk": "#e08a2e", "volumetric": "#4aa35a"}
     ax.barh(y + 0.2, [e["obj"] for e in entries], height=0.38, color=[colors[e["kind"]] for e in entries],
             label="object pixels, render-stage time")

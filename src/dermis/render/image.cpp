@@ -104,7 +104,7 @@ void write_png(const std::string& path, int width, int height, const std::vector
   const bool ok = info && png_write_rgb8(png, info, f.get(), width, height, data.data(), row.data());
   png_destroy_write_struct(&png, info ? &info : nullptr);
   if (!ok) throw std::runtime_error("libpng failed to write it");
-  if (std::fflush(f.get()) != 0) throw std::runtime_error(std::strerror(errno));
+  if (std::fclose(f.release()) != 0) throw std::runtime_error(std::strerror(errno));  // a full disk shows here
 }
 
 }  // namespace
