@@ -62,6 +62,13 @@ void MpiProcessGroup::sum_all(std::span<int64_t> values) {
   MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
 }
 
+void MpiProcessGroup::sum_all(std::span<float> values) {
+  for (std::size_t at = 0; at < values.size(); at += kPiece) {
+    const int n = int(std::min(kPiece, values.size() - at));
+    MPI_Allreduce(MPI_IN_PLACE, values.data() + at, n, MPI_FLOAT, MPI_SUM, MPI_COMM_WORLD);
+  }
+}
+
 void MpiProcessGroup::sum_to_root(std::span<double> values) { sum_to_root_in_pieces(values, MPI_DOUBLE, rank_); }
 void MpiProcessGroup::sum_to_root(std::span<uint32_t> values) { sum_to_root_in_pieces(values, MPI_UINT32_T, rank_); }
 void MpiProcessGroup::sum_to_root(std::span<uint64_t> values) { sum_to_root_in_pieces(values, MPI_UINT64_T, rank_); }

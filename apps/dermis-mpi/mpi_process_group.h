@@ -18,6 +18,7 @@ class MpiProcessGroup : public ProcessGroup {
   void allgather(std::span<double> values, std::size_t width) override;
   void broadcast(std::span<double> values) override;
   void sum_all(std::span<int64_t> values) override;
+  void sum_all(std::span<float> values) override;
   void sum_to_root(std::span<double> values) override;
   void sum_to_root(std::span<uint32_t> values) override;
   void sum_to_root(std::span<uint64_t> values) override;

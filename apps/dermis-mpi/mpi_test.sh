@@ -2,6 +2,7 @@
 # The tests of dermis-mpi (registered by apps/dermis-mpi/CMakeLists.txt):
 #   mpi_test.sh CHECK DERMIS DERMIS_MPI MPIEXEC
 # walk, pointcloud: `mpirun -n 2` renders the image of `dermis render`, bit for bit;
+# adaptive: the same with --noise-threshold;
 # timelimit: both ranks stop and rank 0 writes; badscene: one message, exit status 2;
 # rankfails: a rank that fails alone while preparing ends the job (MPI_Abort), status 2.
 set -u
@@ -60,6 +61,19 @@ SCENE
     # One summary, by rank 0, with every rank's samples.
     [ "$(grep -c '^dermis: wrote' "$dir/log")" = 1 ] || { cat "$dir/log"; fail "not one summary line"; }
     grep -q "$((48 * 40 * 4)) samples" "$dir/log" || { cat "$dir/log"; fail "samples of all ranks not summed"; }
+    ;;
+  adaptive)
+    # Adaptive sampling: the passes' decisions use the whole image's error map, exchanged
+    # between the ranks; the image (and so every pixel's count) is the single process's.
+    cat > "$dir/s.pbrt" <<SCENE
+$header
+Material "subsurface" "rgb reflectance" [0.8 0.5 0.3] "rgb mfp" [0.3 0.2 0.1] "string method" "randomwalk"
+Shape "sphere" "float radius" 0.9
+SCENE
+    "$dermis" render "$dir/s.pbrt" -q --no-png --seed 5 --spp 128 --noise-threshold 0.05 -o "$dir/one.exr" || fail "dermis render"
+    mpi render "$dir/s.pbrt" --no-png --seed 5 --spp 128 --noise-threshold 0.05 -o "$dir/two.exr" > "$dir/log" 2>&1 || { cat "$dir/log"; fail "dermis-mpi render"; }
+    same_image "$dir/two.exr" "$dir/one.exr"
+    grep -q 'adaptive sampling: .* converged' "$dir/log" || { cat "$dir/log"; fail "no adaptive summary"; }
     ;;
   timelimit)
     cat > "$dir/s.pbrt" <<SCENE

@@ -1,14 +1,20 @@
 // End-to-end tests of the `dermis` command line: the real binary, real files.
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "dermis/render/image.h"
 #include "dermis/scene/scene_test_util.h"
@@ -125,6 +131,69 @@ TEST_F(Cli, SameSeedSameImageWithOneAndTwoThreads) {
   dermis::Image a = dermis::read_image(path("a.exr")), b = dermis::read_image(path("b.exr"));
   ASSERT_EQ(a.pixels.size(), b.pixels.size());
   EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)));
+}
+
+// One float channel of an OpenEXR file (empty if it has no such channel).
+std::vector<float> exr_channel(const std::string& path, const char* name) {
+  Imf::InputFile file(path.c_str());
+  if (!file.header().channels().findChannel(name)) return {};
+  const Imath::Box2i box = file.header().dataWindow();
+  const int w = box.max.x - box.min.x + 1, h = box.max.y - box.min.y + 1;
+  std::vector<float> values(std::size_t(w) * h);
+  Imf::FrameBuffer fb;
+  fb.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()), sizeof(float), sizeof(float) * w));
+  file.setFrameBuffer(fb);
+  file.readPixels(box.min.y, box.max.y);
+  return values;
+}
+
+// --noise-threshold: the .exr gains the per-pixel sample counts and error estimates, the
+// summary says how many pixels converged; another format gets them in STEM-maps.exr;
+// the scene's Sampler can ask for it; bad values are refused with the place.
+TEST_F(Cli, AdaptiveSamplingWritesTheCountAndErrorChannels) {
+  std::string scene = write("s.pbrt", kSmallScene);
+  CommandResult r = run_dermis("render " + scene + " --no-png --spp 64 --noise-threshold 0.05 -o " + path("a.exr"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("at most 64 spp (noise threshold 0.05, at least 16)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("adaptive sampling: "), std::string::npos) << r.output;
+  const std::vector<float> samples = exr_channel(path("a.exr"), "samples"), error = exr_channel(path("a.exr"), "error");
+  ASSERT_EQ(samples.size(), 24u * 16u);
+  ASSERT_EQ(error.size(), samples.size());
+  const auto [fewest, most] = std::minmax_element(samples.begin(), samples.end());
+  EXPECT_EQ(*fewest, 16.0f);  // the background converges at once
+  EXPECT_EQ(*most, 64.0f);    // the milk does not at 0.05
+  for (std::size_t p = 0; p < samples.size(); ++p)
+    if (samples[p] < 64) {
+      EXPECT_LE(error[p], 0.05f) << p;
+    }
+  CommandResult uniform = run_dermis("render " + scene + " -q --no-png --spp 4 -o " + path("u.exr"));
+  ASSERT_EQ(uniform.status, 0) << uniform.output;
+  EXPECT_TRUE(exr_channel(path("u.exr"), "samples").empty());
+
+  CommandResult png = run_dermis("render " + scene + " -q --spp 32 --noise-threshold 0.1 -o " + path("p.png"));
+  ASSERT_EQ(png.status, 0) << png.output;
+  EXPECT_EQ(exr_channel(path("p-maps.exr"), "samples").size(), 24u * 16u);
+
+  std::string text = kSmallScene;
+  const std::string asked = "\"integer pixelsamples\" 4";
+  text.replace(text.find(asked), asked.size(),
+               "\"integer pixelsamples\" 32 \"float noisethreshold\" 0.1 \"integer minpixelsamples\" 8");
+  CommandResult from_scene = run_dermis("render " + write("t.pbrt", text) + " --no-png -o " + path("t.exr"));
+  ASSERT_EQ(from_scene.status, 0) << from_scene.output;
+  EXPECT_NE(from_scene.output.find("at most 32 spp (noise threshold 0.1, at least 8)"), std::string::npos)
+      << from_scene.output;
+  const std::vector<float> counts = exr_channel(path("t.exr"), "samples");
+  ASSERT_FALSE(counts.empty());
+  EXPECT_EQ(*std::min_element(counts.begin(), counts.end()), 8.0f);
+
+  EXPECT_EQ(run_dermis("render " + scene + " --noise-threshold -0.1 -o " + path("o.exr")).status, 2);
+  EXPECT_EQ(run_dermis("render " + scene + " --noise-threshold 0.1 --min-spp 0 -o " + path("o.exr")).status, 2);
+  text.replace(text.find("0.1"), 3, "-1.");
+  CommandResult bad = run_dermis("render " + write("b.pbrt", text) + " -o " + path("o.exr"));
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.output.find("b.pbrt:5:"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("noisethreshold must be 0 (off) or a positive"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(path("o.exr")));
 }
 
 // --checkpoint then --resume with more samples: the same pixels as one render of that

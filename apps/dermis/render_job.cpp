@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <memory>
@@ -92,6 +93,15 @@ void add_render_options(CLI::App& cmd, RenderArgs& args) {
   cmd.add_option("--res", args.res, "resolution WIDTHxHEIGHT, overriding the Film's");
   cmd.add_option("--time-limit", args.time_limit, "stop after this many seconds, keeping the samples taken")
       ->check(kNonNegative);
+  cmd.add_option("--noise-threshold", args.noise_threshold,
+                 "adaptive sampling: pixels stop once the estimated relative error of their value, and of their "
+                 "neighbours', is below this (e.g. 0.01; 0: off); --spp is then the most a pixel takes "
+                 "(default: the scene's Sampler noisethreshold, else off)")
+      ->check(kNonNegative);
+  cmd.add_option("--min-spp", args.min_spp,
+                 "with --noise-threshold, samples every pixel takes before any stops (default: the scene's Sampler "
+                 "minpixelsamples, else max(16, sqrt(spp)) rounded up to a multiple of 16)")
+      ->check(kPositive);
   cmd.add_flag("-q,--quiet", args.quiet, "no progress bar or summary");
   cmd.add_option("--points", args.points, "points per `pointcloud` subsurface object (default: chosen from the illumination, or its pointdensity; up to its maxpoints)")
       ->check(kPositive);
@@ -121,7 +131,8 @@ namespace {
 
 // After rendering: rank 0 writes the image and the summary; returns the exit status.
 int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& group, const std::string& out,
-                     const std::string& ext, RenderResult& r, const PreparationReport& preparation, int spp);
+                     const std::string& ext, RenderResult& r, const PreparationReport& preparation,
+                     const RenderOptions& opt);
 
 }  // namespace
 
@@ -168,15 +179,18 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
       desc.film.yres = h;
     }
     {
-      // The film holds 3 doubles and a count per pixel: refuse what cannot be allocated.
+      // The film's sums, squares and counts: refuse what cannot be allocated.
       const PixelBounds px = film_pixel_bounds(desc.film);
-      const double pixels = double(px.width()) * px.height(), gib = pixels * 28 / double(1ull << 30);
+      const double pixels = double(px.width()) * px.height(),
+                   gib = pixels * double(Film::kBytesPerPixel) / double(1ull << 30);
       if (pixels > double(1ull << 28))
         throw std::invalid_argument(fmt::format("{}: a film of {}x{} pixels is too large (it would need {:.0f} GiB); "
                                                 "lower the Film's xresolution/yresolution or use --res",
                                                 a.scene, px.width(), px.height(), gib));
     }
     if (a.spp > 0) desc.settings.spp = a.spp;
+    if (a.noise_threshold >= 0) desc.settings.noise_threshold = a.noise_threshold;
+    if (a.min_spp > 0) desc.settings.min_spp = a.min_spp;
     if (!a.sampler.empty()) parse_sampler_kind(a.sampler, desc.settings.sampler);  // checked by CLI11
     if (root)
       for (const auto& w : desc.diagnostics.warnings) fmt::print(stderr, "{}\n", w);
@@ -268,6 +282,8 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   opt.seed = a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
   opt.sampler = desc.settings.sampler;
   opt.time_limit = a.time_limit;
+  opt.adaptive.noise_threshold = desc.settings.noise_threshold;
+  opt.adaptive.min_spp = desc.settings.min_spp;
   opt.cancel = &g_interrupted;
   opt.group = &group;
   opt.tile_assignment = job.tile_assignment;
@@ -275,6 +291,10 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   const int64_t total = int64_t(pixels.width()) * pixels.height() * opt.spp;
   Progress progress("Rendering", total, progress_style);
   opt.progress = [&progress](int64_t n) { progress.advance(n); };
+  if (opt.adaptive.enabled())
+    opt.adaptive_progress = [&progress](int64_t converged, int64_t pixels) {
+      progress.set_note(fmt::format("{:.1f}% of pixels converged", 100.0 * double(converged) / double(pixels)));
+    };
   if (resumed) {
     opt.resume = &*resumed;
     int64_t had = 0;
@@ -295,15 +315,20 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   }
 
   if (!quiet)
-    fmt::print(stderr, "dermis: {} — {}x{}, {} spp, {} shapes, {} lights{}\n", a.scene, scene->film.xres,
-               scene->film.yres, opt.spp, scene->shapes.size(), scene->lights.size(),
+    fmt::print(stderr, "dermis: {} — {}x{}, {}{} spp{}, {} shapes, {} lights{}\n", a.scene, scene->film.xres,
+               scene->film.yres, opt.adaptive.enabled() ? "at most " : "", opt.spp,
+               opt.adaptive.enabled() ? fmt::format(" (noise threshold {:g}, at least {})", opt.adaptive.noise_threshold,
+                                                    opt.adaptive.min_spp > 0 ? std::min(opt.adaptive.min_spp, opt.spp)
+                                                                             : default_min_spp(opt.spp))
+                                      : "",
+               scene->shapes.size(), scene->lights.size(),
                group.size() > 1 ? fmt::format(", {} processes", group.size()) : "");
   RenderResult r = render_image(*scene, opt);  // stops at once if a stop signal came during preparation
   restore_signals();
   progress.finish();
   // Rank 0 holds the image. The others wait until it is written (mpirun ends the job
   // as soon as one rank exits with a non-zero status) and exit with its status.
-  int64_t status = root ? write_and_report(a, job, group, out, ext, r, preparation, opt.spp) : 0;
+  int64_t status = root ? write_and_report(a, job, group, out, ext, r, preparation, opt) : 0;
   group.sum_all(std::span<int64_t>(&status, 1));
   return int(status);
 }
@@ -311,24 +336,48 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
 namespace {
 
 int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& group, const std::string& out,
-                     const std::string& ext, RenderResult& r, const PreparationReport& preparation, int spp) {
+                     const std::string& ext, RenderResult& r, const PreparationReport& preparation,
+                     const RenderOptions& opt) {
   const std::string& program = job.program;
+  const int spp = opt.spp;
   std::filesystem::path out_path(out);
   Image img;
   img.width = r.width;
   img.height = r.height;
   img.pixels = std::move(r.rgb);
+  // Adaptive sampling's maps: channels of the .exr, or beside another format in STEM-maps.exr.
+  std::string maps_path;
+  if (opt.adaptive.enabled()) {
+    img.extra_channels.push_back({"samples", std::vector<float>(r.sample_counts.begin(), r.sample_counts.end())});
+    std::vector<float> error = r.relative_error;
+    for (float& e : error)
+      if (!std::isfinite(e)) e = -1;  // unknown: fewer than 2 samples
+    img.extra_channels.push_back({"error", std::move(error)});
+    if (ext != ".exr") maps_path = (out_path.parent_path() / (out_path.stem().string() + "-maps.exr")).string();
+  }
   try {
     write_image(out, img);
-    if (ext == ".exr" && !a.no_png) write_image(out_path.replace_extension(".png").string(), img);
+    if (!maps_path.empty()) write_image(maps_path, img);
+    img.extra_channels.clear();
+    if (ext == ".exr" && !a.no_png) write_image(std::filesystem::path(out).replace_extension(".png").string(), img);
   } catch (const std::exception& e) {
     fmt::print(stderr, "{}: {}\n", program, e.what());
     return 2;
   }
 
   double mrays = r.seconds > 0 ? double(r.rays) / r.seconds * 1e-6 : 0;
-  fmt::print(stderr, "dermis: wrote {}{} in {:.3f} s ({:.2f} Mrays/s, {} samples)\n", out,
-             ext == ".exr" && !a.no_png ? " and its .png" : "", r.seconds, mrays, r.samples);
+  fmt::print(stderr, "dermis: wrote {}{}{} in {:.3f} s ({:.2f} Mrays/s, {} samples)\n", out,
+             ext == ".exr" && !a.no_png ? " and its .png" : "", maps_path.empty() ? "" : " and " + maps_path,
+             r.seconds, mrays, r.samples);
+  if (opt.adaptive.enabled() && !a.quiet) {
+    const double pixels = double(r.sample_counts.size());
+    fmt::print(stderr,
+               "dermis: adaptive sampling: {:.1f}% of pixels converged (with their neighbours, at or below the noise "
+               "threshold {:g}); {}..{} samples per pixel, {:.1f} on average (the .exr's 'samples' and 'error' "
+               "channels)\n",
+               100.0 * double(r.converged_pixels) / pixels, opt.adaptive.noise_threshold, r.min_spp, r.max_spp,
+               double(r.samples) / pixels);
+  }
   if (group.size() > 1 && !a.quiet) {
     // The load balance: each process's time rendering its tiles, waits excluded.
     std::string times;

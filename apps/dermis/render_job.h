@@ -24,6 +24,8 @@ struct RenderArgs {
   std::string sampler;  // empty: the scene's Sampler
   std::string output, res;
   double time_limit = 0;
+  double noise_threshold = -1;  // negative: the scene's Sampler "noisethreshold" (0: off)
+  int min_spp = 0;              // 0: the scene's, else the default
   bool quiet = false, no_png = false;
   int64_t points = 0;
   std::string save_pointcloud, load_pointcloud;

@@ -84,7 +84,8 @@ std::shared_ptr<RenderScene> prepared_scene(Scene& s, uint64_t seed, SamplerKind
 }
 
 py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed, int threads, double time_limit,
-                  std::optional<std::string> sampler, const py::object& progress, bool stats) {
+                  std::optional<std::string> sampler, const py::object& progress, bool stats,
+                  std::optional<double> noise_threshold, std::optional<int> min_spp) {
   BusyGuard busy(s);
   RenderOptions opt;
   opt.spp = spp.value_or(s.desc.settings.spp);
@@ -98,6 +99,13 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
   opt.sampler = s.desc.settings.sampler;
   if (sampler && !parse_sampler_kind(*sampler, opt.sampler))
     throw py::value_error(fmt::format("sampler must be 'sobol' or 'independent', got '{}'", *sampler));
+  opt.adaptive.noise_threshold = noise_threshold.value_or(s.desc.settings.noise_threshold);
+  if (!(opt.adaptive.noise_threshold >= 0) || !std::isfinite(opt.adaptive.noise_threshold))
+    throw py::value_error(
+        fmt::format("noise_threshold must be >= 0 (0: off), got {}", opt.adaptive.noise_threshold));
+  opt.adaptive.min_spp = min_spp.value_or(s.desc.settings.min_spp);
+  if (opt.adaptive.min_spp < 0 || (min_spp && *min_spp <= 0))
+    throw py::value_error(fmt::format("min_spp must be positive, got {}", opt.adaptive.min_spp));
 
   std::shared_ptr<RenderScene> scene = prepared_scene(s, opt.seed, opt.sampler);
 
@@ -111,7 +119,7 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
   RenderResult r;
   const double cpu0 = process_cpu_seconds();
   auto poll = [&] {
-    const int64_t d = done.load();
+    const int64_t d = std::min(done.load(), total);  // adaptive sampling may count a little over
     if (!progress.is_none() && d != reported) {
       reported = d;
       progress(d, total);
@@ -119,7 +127,7 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
   };
   auto error = run_interruptible([&] { r = render_image(*scene, opt); }, cancel, poll);
   const double cpu_seconds = process_cpu_seconds() - cpu0;
-  if (!error && !progress.is_none() && reported != done.load()) progress(done.load(), total);
+  if (!error && !progress.is_none() && reported != std::min(done.load(), total)) progress(std::min(done.load(), total), total);
 
   py::array_t<float> image({py::ssize_t(r.height), py::ssize_t(r.width), py::ssize_t(3)});
   std::copy(r.rgb.begin(), r.rgb.end(), image.mutable_data());
@@ -136,6 +144,14 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
   st["truncated"] = r.truncated;
   st["interrupted"] = r.interrupted;
   st["time_limited"] = r.time_limited;
+  st["noise_threshold"] = opt.adaptive.noise_threshold;
+  py::array_t<uint32_t> counts({py::ssize_t(r.height), py::ssize_t(r.width)});
+  std::copy(r.sample_counts.begin(), r.sample_counts.end(), counts.mutable_data());
+  st["sample_counts"] = counts;
+  py::array_t<float> rel_error({py::ssize_t(r.height), py::ssize_t(r.width)});
+  std::copy(r.relative_error.begin(), r.relative_error.end(), rel_error.mutable_data());
+  st["relative_error"] = rel_error;
+  st["converged_pixels"] = r.converged_pixels;
   if (error) {
     if (!error->matches(PyExc_KeyboardInterrupt)) throw *error;
     py::object e = py::reinterpret_borrow<py::object>(g_render_interrupted)(
@@ -161,7 +177,8 @@ void bind_render(py::module_& m) {
   m.attr("RenderInterrupted") = py::reinterpret_borrow<py::object>(g_render_interrupted);
   m.def("render", &render, py::arg("scene"), py::kw_only(), py::arg("spp") = py::none(), py::arg("seed") = py::none(),
         py::arg("threads") = 0, py::arg("time_limit") = 0.0, py::arg("sampler") = py::none(),
-        py::arg("progress") = py::none(), py::arg("stats") = false,
+        py::arg("progress") = py::none(), py::arg("stats") = false, py::arg("noise_threshold") = py::none(),
+        py::arg("min_spp") = py::none(),
         R"(Renders a scene; returns a float32 NumPy array (height, width, 3) of linear RGB.
 
 spp: samples per pixel (default: scene.spp, the scene's Sampler).
@@ -176,7 +193,14 @@ progress: a callable progress(done, total) of pixel samples, called on this thre
   about every 50 ms and once at the end.
 stats: also return a dict (image, stats): seconds (wall), cpu_seconds (this process),
   spp, seed, samples, min_spp, max_spp, rays, nonfinite (NaN/inf samples, dropped),
-  truncated (paths cut short), interrupted, time_limited.
+  truncated (paths cut short), interrupted, time_limited, noise_threshold,
+  sample_counts (uint32 array (height, width)), relative_error (float32 array: each
+  pixel's estimated relative error; inf with fewer than 2 samples), converged_pixels.
+noise_threshold: adaptive sampling (default: the scene's Sampler "noisethreshold"; 0: off):
+  pixels stop once their estimated relative error, and their neighbours', is below it;
+  spp is then the most a pixel takes.
+min_spp: with noise_threshold, the samples every pixel takes first (default: the
+  scene's "minpixelsamples", else max(16, sqrt(spp)) rounded up to a multiple of 16).
 The GIL is released while rendering. Ctrl-C raises dermis.RenderInterrupted (a
 KeyboardInterrupt) whose .image is the partial image. The scene's assembly and
 preparation (BVH, albedo tables, point clouds) are kept for the next render until the

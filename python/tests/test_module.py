@@ -114,6 +114,29 @@ def test_progress_and_stats(dermis_module, sphere_scene):
     assert not stats["interrupted"] and not stats["time_limited"]
 
 
+def test_adaptive_sampling_equals_the_command_line_and_reports_its_maps(dermis_module, sphere_scene, dermis_binary,
+                                                                        tmp_path):
+    scene_file = tmp_path / "sphere.pbrt"
+    scene_file.write_text(SPHERE_SCENE)
+    exr = tmp_path / "sphere.exr"
+    subprocess.run([dermis_binary, "render", str(scene_file), "--seed", "7", "--spp", "64", "--noise-threshold", "0.05",
+                    "-q", "--no-png", "-o", str(exr)], check=True)
+    calls = []
+    image, stats = dermis_module.render(sphere_scene, seed=7, spp=64, noise_threshold=0.05, stats=True,
+                                        progress=lambda done, total: calls.append((done, total)))
+    assert np.array_equal(dermis_module.read_image(str(exr)), image)
+    counts, error = stats["sample_counts"], stats["relative_error"]
+    assert counts.shape == error.shape == (18, 24)
+    assert counts.min() == 16 and counts.max() == 64 and stats["samples"] == counts.sum()
+    assert (error[counts < 64] <= 0.05).all()
+    assert 0 < stats["converged_pixels"] < 24 * 18
+    assert calls[-1] == (24 * 18 * 64, 24 * 18 * 64)
+    with pytest.raises(ValueError, match="noise_threshold"):
+        dermis_module.render(sphere_scene, noise_threshold=-1)
+    with pytest.raises(ValueError, match="min_spp"):
+        dermis_module.render(sphere_scene, noise_threshold=0.1, min_spp=0)
+
+
 def test_time_limit_keeps_the_samples_taken(dermis_module, sphere_scene):
     sphere_scene.resolution = (96, 72)
     image, stats = dermis_module.render(sphere_scene, spp=1 << 20, time_limit=0.3, stats=True)

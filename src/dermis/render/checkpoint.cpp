@@ -15,9 +15,10 @@ namespace dermis {
 namespace {
 
 // File layout (native byte order): magic, version, the key, then width x height x 3
-// doubles (the sums) and width x height uint32 (the sample counts).
+// doubles (the sums), as many (the sums of squares), width x height uint32 (the sample
+// counts) and as many (the pass's targets). Version 1 had no squares and no targets.
 constexpr char kMagic[8] = {'D', 'E', 'R', 'M', 'C', 'K', 'P', 'T'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;
 
 struct Header {
   char magic[8];
@@ -65,8 +66,12 @@ void write_checkpoint(const std::string& path, const CheckpointKey& key, const F
     const Header h = header_of(key);
     const bool ok = std::fwrite(&h, sizeof h, 1, f.get()) == 1 &&
                     std::fwrite(film.sum.data(), sizeof(double), film.sum.size(), f.get()) == film.sum.size() &&
+                    std::fwrite(film.sum_sq.data(), sizeof(double), film.sum_sq.size(), f.get()) ==
+                        film.sum_sq.size() &&
                     std::fwrite(film.samples.data(), sizeof(uint32_t), film.samples.size(), f.get()) ==
                         film.samples.size() &&
+                    std::fwrite(film.target.data(), sizeof(uint32_t), film.target.size(), f.get()) ==
+                        film.target.size() &&
                     std::fflush(f.get()) == 0;
     if (!ok) throw fail(std::strerror(errno));
   }
@@ -86,6 +91,9 @@ Film read_checkpoint(const std::string& path, const CheckpointKey& expected) {
   Header h{};
   if (std::fread(&h, sizeof h, 1, f.get()) != 1 || std::memcmp(h.magic, kMagic, sizeof kMagic) != 0)
     throw fail("it is not a Dermis checkpoint");
+  if (h.version == 1)
+    throw fail("it was written by an older Dermis (checkpoint version 1, without the per-pixel variances that "
+               "version 2 keeps); resume it with that Dermis, or render again");
   if (h.version != kVersion) throw fail(fmt::format("version {}, this Dermis reads version {}", h.version, kVersion));
   const Header want = header_of(expected);
   if (h.scene_hash != want.scene_hash) throw fail("it was written for another scene (the scene file changed)");
@@ -98,11 +106,15 @@ Film read_checkpoint(const std::string& path, const CheckpointKey& expected) {
                            h.full_height, h.x0, h.x1, h.y0, h.y1, want.full_width, want.full_height));
   Film film(expected.pixels.width(), expected.pixels.height());
   const bool ok = std::fread(film.sum.data(), sizeof(double), film.sum.size(), f.get()) == film.sum.size() &&
-                  std::fread(film.samples.data(), sizeof(uint32_t), film.samples.size(), f.get()) == film.samples.size();
+                  std::fread(film.sum_sq.data(), sizeof(double), film.sum_sq.size(), f.get()) == film.sum_sq.size() &&
+                  std::fread(film.samples.data(), sizeof(uint32_t), film.samples.size(), f.get()) ==
+                      film.samples.size() &&
+                  std::fread(film.target.data(), sizeof(uint32_t), film.target.size(), f.get()) == film.target.size();
   unsigned char extra;
   if (!ok || std::fread(&extra, 1, 1, f.get()) != 0) throw fail("it is truncated or has extra bytes");
   for (std::size_t i = 0; i < film.sum.size(); ++i)
-    if (!std::isfinite(film.sum[i]) || film.sum[i] < 0) throw fail("it holds a negative or non-finite sum");
+    if (!std::isfinite(film.sum[i]) || film.sum[i] < 0 || !std::isfinite(film.sum_sq[i]) || film.sum_sq[i] < 0)
+      throw fail("it holds a negative or non-finite sum");
   return film;
 }
 

@@ -28,13 +28,16 @@ TEST(Checkpoint, RoundTripIsExactAndMismatchesAreRefused) {
   CheckpointKey key{fingerprint("scene text"), 7, SamplerKind::Sobol, 20, 10, {2, 1, 5, 3}};
   Film film(3, 2);
   for (std::size_t i = 0; i < film.sum.size(); ++i) film.sum[i] = 0.1 * double(i) + 1e-17;
-  for (std::size_t i = 0; i < film.samples.size(); ++i) film.samples[i] = uint32_t(i + 1);
+  for (std::size_t i = 0; i < film.sum_sq.size(); ++i) film.sum_sq[i] = 0.3 * double(i) + 1e-16;
+  for (std::size_t i = 0; i < film.samples.size(); ++i) film.samples[i] = uint32_t(i + 1), film.target[i] = uint32_t(2 * i);
   const std::string path = temp_path("roundtrip");
   write_checkpoint(path, key, film);
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
   const Film back = read_checkpoint(path, key);
   EXPECT_EQ(back.sum, film.sum);
   EXPECT_EQ(back.samples, film.samples);
+  EXPECT_EQ(back.sum_sq, film.sum_sq);
+  EXPECT_EQ(back.target, film.target);
 
   CheckpointKey other = key;
   other.scene_hash = fingerprint("scene text!");

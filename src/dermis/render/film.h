@@ -36,9 +36,24 @@ PixelBounds film_pixel_bounds(const FilmDesc& film);
 struct Film {
   int width = 0, height = 0;
   std::vector<double> sum;         // 3 per pixel
+  std::vector<double> sum_sq;      // 3 per pixel: the sums of squares (the per-pixel variance)
   std::vector<uint32_t> samples;   // samples taken per pixel (non-finite ones included, as zero)
+  // The sample count each pixel is to reach in the pass under way (renderer.cpp): a render
+  // stopped in the middle of a pass is resumed by finishing that pass first, so that the
+  // result equals a render never stopped even where pixels take different counts.
+  std::vector<uint32_t> target;
 
-  Film(int w, int h) : width(w), height(h), sum(std::size_t(w) * h * 3, 0.0), samples(std::size_t(w) * h, 0) {}
+  // Bytes of memory per pixel, for refusing a film that cannot be allocated.
+  static constexpr std::size_t kBytesPerPixel = 6 * sizeof(double) + 2 * sizeof(uint32_t);
+
+  Film(int w, int h)
+      : width(w),
+        height(h),
+        sum(std::size_t(w) * h * 3, 0.0),
+        sum_sq(std::size_t(w) * h * 3, 0.0),
+        samples(std::size_t(w) * h, 0),
+        target(std::size_t(w) * h, 0) {}
+  std::size_t pixel_count() const { return samples.size(); }
   // Linear RGB: the mean of each pixel's samples (0 where none were taken).
   std::vector<float> resolve() const;
 };

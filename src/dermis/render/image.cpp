@@ -56,7 +56,8 @@ OutputFormat output_format(const std::string& path) {
                                        ext, kSupportedExtensions));
 }
 
-// 32-bit float R, G, B, zip-compressed, tagged linear (as OpenImageIO wrote it before).
+// 32-bit float R, G, B and the extra channels, zip-compressed, tagged linear (as
+// OpenImageIO wrote it before).
 void write_exr(const std::string& path, const Image& img) {
   Imf::Header header(img.width, img.height);
   header.compression() = Imf::ZIP_COMPRESSION;
@@ -68,6 +69,14 @@ void write_exr(const std::string& path, const Image& img) {
   for (int c = 0; c < 3; ++c) {
     header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
     fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+  }
+  for (const Image::Channel& extra : img.extra_channels) {
+    if (extra.values.size() != img.pixel_count())
+      throw std::invalid_argument(fmt::format("channel '{}' has {} values for {} pixels", extra.name,
+                                              extra.values.size(), img.pixel_count()));
+    header.channels().insert(extra.name, Imf::Channel(Imf::FLOAT));
+    char* values = reinterpret_cast<char*>(const_cast<float*>(extra.values.data()));
+    fb.insert(extra.name, Imf::Slice(Imf::FLOAT, values, sizeof(float), sizeof(float) * std::size_t(img.width)));
   }
   Imf::OutputFile file(path.c_str(), header);
   file.setFrameBuffer(fb);

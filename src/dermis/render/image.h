@@ -13,6 +13,13 @@ namespace dermis {
 struct Image {
   int width = 0, height = 0;
   std::vector<float> pixels;
+  // Further per-pixel values written as channels of their own by the OpenEXR writer (and
+  // ignored by the other formats): e.g. a render's sample counts and error estimates.
+  struct Channel {
+    std::string name;
+    std::vector<float> values;  // one per pixel
+  };
+  std::vector<Channel> extra_channels;
 
   Image() = default;
   // A width x height image filled with `fill`; throws std::invalid_argument on negative sizes.
@@ -39,7 +46,7 @@ float linear_to_srgb(float linear);
 // Throws std::runtime_error("PATH: could not read image: REASON").
 Image read_image(const std::string& path);
 
-// Writes by extension: .exr (32-bit float, zip), .hdr (RGBE), .tif/.tiff (32-bit float),
+// Writes by extension: .exr (32-bit float, zip; with the extra channels), .hdr (RGBE), .tif/.tiff (32-bit float),
 // .png/.jpg/.jpeg (sRGB-encoded 8-bit, clamped to [0, 1]). The file appears
 // atomically: it is written to "PATH.tmp-PID" beside PATH, then renamed. Throws
 // std::runtime_error for an unknown extension, a non-finite pixel, or a failed write

@@ -43,6 +43,7 @@ class ProcessGroup {
   virtual void broadcast(std::span<double> /*values*/) {}
   // Element-wise sums over the processes, on every process (stop flags, counts).
   virtual void sum_all(std::span<int64_t> /*values*/) {}
+  virtual void sum_all(std::span<float> /*values*/) {}  // per-pixel maps: each from its owner
   // Element-wise sums over the processes, on rank 0 only (elsewhere: unspecified).
   virtual void sum_to_root(std::span<double> /*values*/) {}
   virtual void sum_to_root(std::span<uint32_t> /*values*/) {}

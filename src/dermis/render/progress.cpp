@@ -82,6 +82,11 @@ void Progress::advance(int64_t n) {
   draw(t, false);
 }
 
+void Progress::set_note(std::string note) {
+  std::lock_guard lock(draw_mutex_);
+  note_ = std::move(note);
+}
+
 void Progress::finish() {
   if (finished_.exchange(true)) return;
   if (style_ == Style::kQuiet) return;
@@ -91,10 +96,13 @@ void Progress::finish() {
 
 void Progress::draw(int64_t t, bool final) {
   next_redraw_ns_.store(t + kRedrawIntervalNs, std::memory_order_relaxed);
-  const int64_t done = done_.load(std::memory_order_relaxed);
+  // A job may learn of work it need not do after counting some of it twice (adaptive
+  // sampling): never more than the total is shown.
+  const int64_t done = total_ > 0 ? std::min(done_.load(std::memory_order_relaxed), total_) : done_.load(std::memory_order_relaxed);
   const double elapsed = double(t) * 1e-9;
   if (style_ == Style::kBar) {
     std::string bar = format_progress_bar(label_, done, total_, elapsed);
+    if (!note_.empty()) bar += ", " + note_;
     const std::size_t length = bar.size();
     // Blank out the tail of a longer previous bar.
     if (length < last_bar_length_) bar.append(last_bar_length_ - length, ' ');
@@ -104,14 +112,17 @@ void Progress::draw(int64_t t, bool final) {
     if (final) std::fputc('\n', out_);
   } else if (style_ == Style::kLines) {
     if (final) {
-      std::fputs(fmt::format("{}: done ({}/{}) in {}\n", label_, done, total_, format_duration(elapsed)).c_str(),
+      std::fputs(fmt::format("{}: done ({}/{}) in {}{}\n", label_, done, total_, format_duration(elapsed),
+                             note_.empty() ? "" : ", " + note_)
+                     .c_str(),
                  out_);
     } else {
       const int d = decile(done);
       if (d <= last_decile_ && t - last_line_ns_ < kLineIntervalNs) return;
       last_decile_ = std::max(last_decile_, d);
       last_line_ns_ = t;
-      std::fputs((format_progress_line(label_, done, total_, elapsed) + "\n").c_str(), out_);
+      std::fputs((format_progress_line(label_, done, total_, elapsed) + (note_.empty() ? "" : ", " + note_) + "\n").c_str(),
+                 out_);
     }
   }
   std::fflush(out_);

@@ -41,6 +41,9 @@ class Progress {
   // add and a clock read; whichever thread first passes the next redraw time (at most
   // 10 per second), or in line mode crosses a 10% step, draws, if nobody else is drawing.
   void advance(int64_t n = 1);
+  // A few words shown after the bar or line from the next redraw on (e.g. "62% of pixels
+  // converged"); empty: none.
+  void set_note(std::string note);
   // Draws the final state (bar: ends the line; lines: "label: done in ..."). Idempotent.
   void finish();
 
@@ -67,6 +70,7 @@ class Progress {
   int last_decile_ = 0;
   int64_t last_line_ns_ = 0;
   std::size_t last_bar_length_ = 0;
+  std::string note_;
 };
 
 }  // namespace dermis

@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "dermis/core/sampler.h"
+#include "dermis/render/adaptive_sampling.h"
 #include "dermis/render/film.h"
 #include "dermis/render/integrator.h"
 
@@ -67,22 +69,22 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
     return opt.time_limit > 0 && std::chrono::duration<double>(Clock::now() - start).count() >= opt.time_limit;
   };
 
-  // Samples [first, up_to) of each pixel of the tile, where `first` is what its pixels
-  // have (every pixel of a tile has the same count).
-  auto render_tile = [&](const Tile& t, int up_to) {
-    const int first_sample = int(film.samples[std::size_t(t.y0) * w + t.x0]);
-    const int n_samples = up_to - first_sample;
-    if (n_samples <= 0) return;
+  // Each pixel of the tile, from the samples it has up to its target, in sample order.
+  auto render_tile = [&](const Tile& t) {
     PathCounters counters;
     uint64_t bad = 0;
+    int64_t taken = 0;
     for (int y = t.y0; y < t.y1; ++y)
       for (int x = t.x0; x < t.x1; ++x) {
         const std::size_t pixel = std::size_t(y) * w + x;  // in the film
+        const uint32_t first_sample = film.samples[pixel], up_to = film.target[pixel];
+        if (up_to <= first_sample) continue;
         const int image_x = x_begin + x, image_y = y_begin + y;
         const std::size_t image_pixel = std::size_t(image_y) * full_w + image_x;
-        double sum[3] = {film.sum[3 * pixel], film.sum[3 * pixel + 1], film.sum[3 * pixel + 2]};
-        for (int s = first_sample; s < first_sample + n_samples; ++s) {
-          Sampler sampler(opt.sampler, opt.seed, image_pixel, uint32_t(s));
+        double sum[3], sum_sq[3];
+        for (int c = 0; c < 3; ++c) sum[c] = film.sum[3 * pixel + c], sum_sq[c] = film.sum_sq[3 * pixel + c];
+        for (uint32_t s = first_sample; s < up_to; ++s) {
+          Sampler sampler(opt.sampler, opt.seed, image_pixel, s);
           Vec2 offset = filter.sample(sampler.get2d());  // dimensions 0, 1
           Vec2 film_pos{float(image_x) + 0.5f + offset.x, float(image_y) + 0.5f + offset.y};
           Ray ray = sc.camera.generate_ray(film_pos, sampler.get2d());  // 2, 3: the lens
@@ -91,33 +93,99 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
             ++bad;  // never reaches the film: counted as a zero sample and reported
             continue;
           }
-          for (int c = 0; c < 3; ++c) sum[c] += L[c];
+          for (int c = 0; c < 3; ++c) sum[c] += L[c], sum_sq[c] += double(L[c]) * L[c];
         }
-        for (int c = 0; c < 3; ++c) film.sum[3 * pixel + c] = sum[c];
-        film.samples[pixel] += uint32_t(n_samples);
+        for (int c = 0; c < 3; ++c) film.sum[3 * pixel + c] = sum[c], film.sum_sq[3 * pixel + c] = sum_sq[c];
+        film.samples[pixel] = up_to;
+        taken += up_to - first_sample;
       }
     nonfinite += bad;
     rays += counters.rays;
     truncated += counters.truncated;
-    const int64_t taken = int64_t(t.x1 - t.x0) * (t.y1 - t.y0) * n_samples;
     pass_samples += taken;
-    if (opt.progress) opt.progress(taken);
+    if (opt.progress && taken > 0) opt.progress(taken);
   };
 
   const int threads = opt.threads > 0 ? opt.threads : tbb::this_task_arena::max_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   tbb::task_arena arena(threads);
 
-  // Passes of 1, 1, 2, 4, ... samples per pixel (at most 16), so that an interrupt or
-  // the time limit leaves every pixel with a similar number of samples.
-  // A resumed film goes on from its fewest samples; tiles that have more skip ahead.
-  int done = opt.resume ? int(*std::min_element(film.samples.begin(), film.samples.end())) : 0;
-  int pass_size = std::clamp(done, 1, 16);
+  // The passes. Up to min_spp (every pixel; without adaptive sampling, the whole count),
+  // passes of 1, 1, 2, 4, ... samples per pixel (at most 16), so that an interrupt or the
+  // time limit leaves every pixel with a similar number of samples. Then, with adaptive
+  // sampling, passes in which the pixels whose neighbourhood is above the threshold take
+  // more (adaptive_sampling.h), until none is left.
+  const AdaptiveSampling& adaptive = opt.adaptive;
+  const uint32_t spp = uint32_t(opt.spp);
+  const uint32_t min_spp = !adaptive.enabled() ? spp
+                           : adaptive.min_spp > 0 ? std::min<uint32_t>(uint32_t(adaptive.min_spp), spp)
+                                                  : uint32_t(default_min_spp(opt.spp));
+  // A resumed film finishes the pass it was stopped in (its pixels below their target).
+  bool pass_pending = false;
+  if (opt.resume)
+    for (std::size_t p = 0; p < film.pixel_count(); ++p) {
+      film.target[p] = std::min(film.target[p], spp);  // a resume with fewer samples takes none
+      pass_pending = pass_pending || film.samples[p] < film.target[p];
+    }
+  // The pixels this process owns.
+  std::vector<std::size_t> own_pixels;
+  for (const Tile& t : tiles)
+    for (int y = t.y0; y < t.y1; ++y)
+      for (int x = t.x0; x < t.x1; ++x) own_pixels.push_back(std::size_t(y) * w + x);
+  std::vector<float> error, nearby_error;
+  if (adaptive.enabled()) error.resize(film.pixel_count()), nearby_error.resize(film.pixel_count());
+  int64_t credited = 0;  // samples the progress was told of for pixels that stopped early
+
+  // The count every pixel has reached in the passes taken by all (the processes of a
+  // group keep it in step).
+  uint32_t done = 0;
+  auto fewest_samples = [&] {
+    uint32_t fewest = spp;
+    for (std::size_t p : own_pixels) fewest = std::min(fewest, film.samples[p]);
+    return fewest;
+  };
+  if (opt.resume && !pass_pending) done = fewest_samples();
+  // Sets the next pass's targets; false when there is none.
+  auto plan_pass = [&]() -> bool {
+    if (done < min_spp) {
+      // Every pixel: passes of 1, 1, 2, 4, ..., 16 (a resumed film: as many as it has).
+      const uint32_t n = std::min(std::clamp<uint32_t>(done, 1, 16), min_spp - done);
+      for (std::size_t p : own_pixels) film.target[p] = std::max(film.samples[p], done + n);
+      done += n;
+      return true;
+    }
+    if (!adaptive.enabled()) return false;
+    std::fill(error.begin(), error.end(), 0.0f);
+    for (std::size_t p : own_pixels) error[p] = pixel_relative_error(film, p, sc.film.exposure_scale);
+    if (group.size() > 1) group.sum_all(std::span<float>(error));  // each pixel from its owner, others add 0
+    neighbourhood_max(error, w, h, nearby_error);
+    int64_t active = 0, skipped = 0, converged = 0;
+    for (float e : nearby_error) converged += e <= adaptive.noise_threshold ? 1 : 0;
+    for (std::size_t p : own_pixels) {
+      const bool go_on = nearby_error[p] > adaptive.noise_threshold && film.samples[p] < spp;
+      film.target[p] = go_on ? next_adaptive_count(film.samples[p], spp) : film.samples[p];
+      active += go_on ? 1 : 0;
+      if (!go_on) skipped += int64_t(spp) - int64_t(film.samples[p]);
+    }
+    if (skipped > credited) {
+      if (opt.progress) opt.progress(skipped - credited);
+      pass_samples += skipped - credited;
+      credited = skipped;
+    }
+    if (opt.adaptive_progress) opt.adaptive_progress(converged, int64_t(film.pixel_count()));
+    return group.any(active > 0);
+  };
+
   double busy = 0;
   auto last_checkpoint = Clock::now();
-  while (done < opt.spp && !stop) {
-    int n = std::min({pass_size, opt.spp - done, 16});
+  while (!stop) {
     pass_samples = 0;
+    if (pass_pending) {
+      pass_pending = false;
+      done = std::numeric_limits<uint32_t>::max();  // set below, from the pixels
+    } else if (!plan_pass()) {
+      break;
+    }
     const auto pass_start = Clock::now();
     arena.execute([&] {
       tbb::parallel_for(std::size_t(0), tiles.size(), [&](std::size_t i) {
@@ -132,13 +200,14 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
           time_limited = true;
           return;
         }
-        render_tile(tiles[i], done + n);
+        render_tile(tiles[i]);
       });
     });
     busy += std::chrono::duration<double>(Clock::now() - pass_start).count();
-    done += n;
-    if (done > 1) pass_size = std::min(pass_size * 2, 16);
-    if (opt.checkpoint && !stop && done < opt.spp &&
+    if (done == std::numeric_limits<uint32_t>::max()) done = fewest_samples();  // a resumed pass finished
+    bool finished = true;  // every pixel at the full count: no pass follows (no checkpoint needed)
+    for (std::size_t p : own_pixels) finished = finished && film.samples[p] >= spp;
+    if (opt.checkpoint && !stop && !finished &&
         std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= opt.checkpoint_interval) {
       opt.checkpoint(film);
       last_checkpoint = Clock::now();
@@ -159,6 +228,7 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
   uint64_t counts[3] = {nonfinite.load(), rays.load(), truncated.load()};
   if (group.size() > 1) {
     group.sum_to_root(std::span<double>(film.sum));
+    group.sum_to_root(std::span<double>(film.sum_sq));
     group.sum_to_root(std::span<uint32_t>(film.samples));
     group.sum_to_root(std::span<uint64_t>(counts));
   }
@@ -179,6 +249,13 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
   result.min_spp = *std::min_element(film.samples.begin(), film.samples.end());
   result.max_spp = *std::max_element(film.samples.begin(), film.samples.end());
   for (uint32_t s : film.samples) result.samples += s;
+  result.relative_error.resize(film.pixel_count());
+  relative_error_map(film, sc.film.exposure_scale, result.relative_error);
+  if (adaptive.enabled()) {  // as the passes count them: with their neighbourhood
+    neighbourhood_max(result.relative_error, w, h, nearby_error);
+    for (float e : nearby_error) result.converged_pixels += e <= adaptive.noise_threshold ? 1 : 0;
+  }
+  result.sample_counts = std::move(film.samples);
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "dermis/core/sampler.h"
+#include "dermis/render/adaptive_sampling.h"
 #include "dermis/render/film.h"
 #include "dermis/render/process_group.h"
 #include "dermis/render/render_scene.h"
@@ -35,6 +36,12 @@ struct RenderOptions {
   // Called from worker threads with the number of pixel samples just finished; with a
   // group, also at each pass boundary with the samples the other processes finished.
   std::function<void(int64_t)> progress;
+  // Adaptive sampling (adaptive_sampling.h): `spp` is then the most a pixel takes. The
+  // progress is also told the samples a pixel will not take once it stops early.
+  AdaptiveSampling adaptive;
+  // With adaptive sampling, called at each pass boundary with the pixels whose
+  // neighbourhood is below the threshold, out of all (the whole image, on every process).
+  std::function<void(int64_t converged, int64_t pixels)> adaptive_progress;
   // The processes sharing the render (null: this one alone). The film is summed to
   // rank 0: only rank 0's result holds the image and the totals.
   ProcessGroup* group = nullptr;
@@ -57,6 +64,12 @@ struct RenderResult {
   uint64_t rays = 0;
   uint64_t truncated = 0;
   uint32_t min_spp = 0, max_spp = 0;
+  // Per pixel (rank 0 only): the samples taken and the estimated relative error of the
+  // pixel's value (adaptive_sampling.h: the image's own noise, whether or not the render
+  // was adaptive).
+  std::vector<uint32_t> sample_counts;
+  std::vector<float> relative_error;
+  uint64_t converged_pixels = 0;  // pixels whose 3x3 neighbourhood is at or below the noise threshold (adaptive only)
   double seconds = 0;
   // Seconds each process spent rendering its tiles, waits at pass boundaries excluded
   // (rank 0 only; one entry per process).

@@ -601,6 +601,16 @@ void SceneParser::sampler(const Token& d, TokenStream& ts) {
   if (s_.settings.spp <= 0)
     throw SceneError(pl.find("pixelsamples")->value_loc, fmt::format("pixelsamples must be positive, got {}", s_.settings.spp));
   s_.settings.seed = pl.get_int("seed", s_.settings.seed);
+  // Dermis' adaptive sampling (pbrt-v4 has none): Cycles' noise threshold and minimum.
+  s_.settings.noise_threshold = pl.get_float("noisethreshold", float(s_.settings.noise_threshold));
+  if (!(s_.settings.noise_threshold >= 0) || !std::isfinite(s_.settings.noise_threshold))
+    throw SceneError(pl.find("noisethreshold")->value_loc,
+                     fmt::format("noisethreshold must be 0 (off) or a positive relative error such as 0.01, got {}",
+                                 s_.settings.noise_threshold));
+  s_.settings.min_spp = pl.get_int("minpixelsamples", s_.settings.min_spp);
+  if (s_.settings.min_spp < 0)
+    throw SceneError(pl.find("minpixelsamples")->value_loc,
+                     fmt::format("minpixelsamples must be positive (or 0: the default), got {}", s_.settings.min_spp));
   pl.warn_unused(s_.diagnostics, fmt::format("Sampler \"{}\"", type));
 }
 

@@ -73,6 +73,10 @@ struct RenderSettingsDesc {
   std::string integrator = "volpath";
   int seed = 0;  // pbrt-v4 Sampler "integer seed"
   SamplerKind sampler = SamplerKind::Sobol;  // pbrt-v4 Sampler's name, mapped (docs/scene-format.md)
+  // Adaptive sampling (render/adaptive_sampling.h): Dermis' Sampler "float noisethreshold"
+  // (0: off) and "integer minpixelsamples" (0: the default).
+  double noise_threshold = 0;
+  int min_spp = 0;
 };
 
 struct TextureDesc {
