@@ -169,6 +169,11 @@ TEST_F(Cli, AdaptiveSamplingWritesTheCountAndErrorChannels) {
   CommandResult uniform = run_dermis("render " + scene + " -q --no-png --spp 4 -o " + path("u.exr"));
   ASSERT_EQ(uniform.status, 0) << uniform.output;
   EXPECT_TRUE(exr_channel(path("u.exr"), "samples").empty());
+  ASSERT_EQ(run_dermis("render " + scene + " -q --no-png --spp 4 --error-map -o " + path("m.exr")).status, 0);
+  const std::vector<float> uniform_counts = exr_channel(path("m.exr"), "samples");
+  ASSERT_EQ(uniform_counts.size(), 24u * 16u);
+  EXPECT_EQ(*std::min_element(uniform_counts.begin(), uniform_counts.end()), 4.0f);
+  EXPECT_EQ(exr_channel(path("m.exr"), "error").size(), 24u * 16u);
 
   CommandResult png = run_dermis("render " + scene + " -q --spp 32 --noise-threshold 0.1 -o " + path("p.png"));
   ASSERT_EQ(png.status, 0) << png.output;

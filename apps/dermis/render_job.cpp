@@ -94,14 +94,18 @@ void add_render_options(CLI::App& cmd, RenderArgs& args) {
   cmd.add_option("--time-limit", args.time_limit, "stop after this many seconds, keeping the samples taken")
       ->check(kNonNegative);
   cmd.add_option("--noise-threshold", args.noise_threshold,
-                 "adaptive sampling: pixels stop once the estimated relative error of their value, and of their "
-                 "neighbours', is below this (e.g. 0.01; 0: off); --spp is then the most a pixel takes "
+                 "adaptive sampling: pixels stop once the estimated error of their value (the standard error over the "
+                 "square root of the value, as Cycles: 0.01 is 1% of white), and of their neighbours', is below this "
+                 "(e.g. 0.01; 0: off); --spp is then the most a pixel takes "
                  "(default: the scene's Sampler noisethreshold, else off)")
       ->check(kNonNegative);
   cmd.add_option("--min-spp", args.min_spp,
                  "with --noise-threshold, samples every pixel takes before any stops (default: the scene's Sampler "
                  "minpixelsamples, else max(16, sqrt(spp)) rounded up to a multiple of 16)")
       ->check(kPositive);
+  cmd.add_flag("--error-map", args.error_map,
+               "write each pixel's sample count and estimated error as the .exr's 'samples' and 'error' channels "
+               "(or STEM-maps.exr beside another format), as --noise-threshold does");
   cmd.add_flag("-q,--quiet", args.quiet, "no progress bar or summary");
   cmd.add_option("--points", args.points, "points per `pointcloud` subsurface object (default: chosen from the illumination, or its pointdensity; up to its maxpoints)")
       ->check(kPositive);
@@ -347,9 +351,9 @@ int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& gr
   img.pixels = std::move(r.rgb);
   // Adaptive sampling's maps: channels of the .exr, or beside another format in STEM-maps.exr.
   std::string maps_path;
-  if (opt.adaptive.enabled()) {
+  if (opt.adaptive.enabled() || a.error_map) {
     img.extra_channels.push_back({"samples", std::vector<float>(r.sample_counts.begin(), r.sample_counts.end())});
-    std::vector<float> error = r.relative_error;
+    std::vector<float> error = r.noise_error;
     for (float& e : error)
       if (!std::isfinite(e)) e = -1;  // unknown: fewer than 2 samples
     img.extra_channels.push_back({"error", std::move(error)});

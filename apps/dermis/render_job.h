@@ -26,6 +26,7 @@ struct RenderArgs {
   double time_limit = 0;
   double noise_threshold = -1;  // negative: the scene's Sampler "noisethreshold" (0: off)
   int min_spp = 0;              // 0: the scene's, else the default
+  bool error_map = false;       // write the samples and error channels (implied by adaptive sampling)
   bool quiet = false, no_png = false;
   int64_t points = 0;
   std::string save_pointcloud, load_pointcloud;

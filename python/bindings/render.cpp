@@ -149,8 +149,8 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
   std::copy(r.sample_counts.begin(), r.sample_counts.end(), counts.mutable_data());
   st["sample_counts"] = counts;
   py::array_t<float> rel_error({py::ssize_t(r.height), py::ssize_t(r.width)});
-  std::copy(r.relative_error.begin(), r.relative_error.end(), rel_error.mutable_data());
-  st["relative_error"] = rel_error;
+  std::copy(r.noise_error.begin(), r.noise_error.end(), rel_error.mutable_data());
+  st["noise_error"] = rel_error;
   st["converged_pixels"] = r.converged_pixels;
   if (error) {
     if (!error->matches(PyExc_KeyboardInterrupt)) throw *error;
@@ -194,10 +194,12 @@ progress: a callable progress(done, total) of pixel samples, called on this thre
 stats: also return a dict (image, stats): seconds (wall), cpu_seconds (this process),
   spp, seed, samples, min_spp, max_spp, rays, nonfinite (NaN/inf samples, dropped),
   truncated (paths cut short), interrupted, time_limited, noise_threshold,
-  sample_counts (uint32 array (height, width)), relative_error (float32 array: each
-  pixel's estimated relative error; inf with fewer than 2 samples), converged_pixels.
+  sample_counts (uint32 array (height, width)), noise_error (float32 array: each
+  pixel's estimated error, the standard error over the square root of the value; inf
+  with fewer than 2 samples), converged_pixels.
 noise_threshold: adaptive sampling (default: the scene's Sampler "noisethreshold"; 0: off):
-  pixels stop once their estimated relative error, and their neighbours', is below it;
+  pixels stop once their estimated error (the standard error over the square root of the
+  value, as Cycles: 0.01 is 1% of white), and their neighbours', is below it;
   spp is then the most a pixel takes.
 min_spp: with noise_threshold, the samples every pixel takes first (default: the
   scene's "minpixelsamples", else max(16, sqrt(spp)) rounded up to a multiple of 16).

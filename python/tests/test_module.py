@@ -125,7 +125,7 @@ def test_adaptive_sampling_equals_the_command_line_and_reports_its_maps(dermis_m
     image, stats = dermis_module.render(sphere_scene, seed=7, spp=64, noise_threshold=0.05, stats=True,
                                         progress=lambda done, total: calls.append((done, total)))
     assert np.array_equal(dermis_module.read_image(str(exr)), image)
-    counts, error = stats["sample_counts"], stats["relative_error"]
+    counts, error = stats["sample_counts"], stats["noise_error"]
     assert counts.shape == error.shape == (18, 24)
     assert counts.min() == 16 and counts.max() == 64 and stats["samples"] == counts.sum()
     assert (error[counts < 64] <= 0.05).all()

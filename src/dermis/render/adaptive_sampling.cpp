@@ -13,7 +13,7 @@ int default_min_spp(int spp) {
   return std::min(spp, rounded);
 }
 
-float pixel_relative_error(const Film& film, std::size_t pixel, double output_scale) {
+float pixel_noise_error(const Film& film, std::size_t pixel, double output_scale) {
   const uint32_t n = film.samples[pixel];
   if (n < 2) return std::numeric_limits<float>::infinity();
   double mean_sum = 0, se2_sum = 0;
@@ -27,11 +27,11 @@ float pixel_relative_error(const Film& film, std::size_t pixel, double output_sc
   if (se2_sum <= 0) return 0;
   const double standard_error = std::sqrt(se2_sum / 3) * output_scale;
   const double value = std::max(mean_sum / 3 * output_scale, kErrorValueFloor);
-  return float(standard_error / value);
+  return float(standard_error / std::sqrt(value));
 }
 
-void relative_error_map(const Film& film, double output_scale, std::span<float> error) {
-  for (std::size_t p = 0; p < film.pixel_count(); ++p) error[p] = pixel_relative_error(film, p, output_scale);
+void noise_error_map(const Film& film, double output_scale, std::span<float> error) {
+  for (std::size_t p = 0; p < film.pixel_count(); ++p) error[p] = pixel_noise_error(film, p, output_scale);
 }
 
 void neighbourhood_max(std::span<const float> error, int width, int height, std::span<float> out) {

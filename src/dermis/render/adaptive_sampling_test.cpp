@@ -35,26 +35,28 @@ testing::PixelStatistics statistics_of(const Film& film) {
   return st;
 }
 
-TEST(AdaptiveSampling, RelativeErrorIsTheStandardErrorOverTheValue) {
+TEST(AdaptiveSampling, ErrorIsTheStandardErrorOverTheRootOfTheValue) {
   Film film(4, 1);
   // Pixel 0: samples 1, 3 in every channel: mean 2, variance 2, standard error 1.
   for (int c = 0; c < 3; ++c) film.sum[c] = 4, film.sum_sq[c] = 10;
   film.samples[0] = 2;
-  EXPECT_NEAR(pixel_relative_error(film, 0, 1), 0.5, 1e-7);
-  EXPECT_NEAR(pixel_relative_error(film, 0, 4), 0.5, 1e-7);  // exposure scales both
+  EXPECT_NEAR(pixel_noise_error(film, 0, 1), 1 / std::sqrt(2.0), 1e-7);
+  EXPECT_NEAR(pixel_noise_error(film, 0, 0.5), 0.5, 1e-7);  // at exposure 1/2 the value is 1: relative error
+  EXPECT_NEAR(pixel_noise_error(film, 0, 4), std::sqrt(2.0), 1e-6);  // the error as written
   // Pixel 1: one sample: unknown.
   film.sum[3] = 1, film.sum_sq[3] = 1, film.samples[1] = 1;
-  EXPECT_EQ(pixel_relative_error(film, 1, 1), std::numeric_limits<float>::infinity());
+  EXPECT_EQ(pixel_noise_error(film, 1, 1), std::numeric_limits<float>::infinity());
   // Pixel 2: 8 equal samples (a background): no error, and none for a black pixel (3).
   for (int c = 0; c < 3; ++c) film.sum[6 + c] = 8 * 0.25, film.sum_sq[6 + c] = 8 * 0.0625;
   film.samples[2] = 8, film.samples[3] = 8;
-  EXPECT_EQ(pixel_relative_error(film, 2, 1), 0.0f);
-  EXPECT_EQ(pixel_relative_error(film, 3, 1), 0.0f);
-  // A near-black pixel is measured against the floor: samples 0 and 2e-4 in red only.
+  EXPECT_EQ(pixel_noise_error(film, 2, 1), 0.0f);
+  EXPECT_EQ(pixel_noise_error(film, 3, 1), 0.0f);
+  // A near-black pixel is measured against the floor: samples 0 and 2e-4 in red only
+  // (value 1e-4 / 3).
   film.sum[9] = 2e-4, film.sum_sq[9] = 4e-8;
   film.samples[3] = 2;
   const double se_red = 1e-4, rms = se_red / std::sqrt(3.0);
-  EXPECT_NEAR(pixel_relative_error(film, 3, 1), rms / kErrorValueFloor, 1e-6);
+  EXPECT_NEAR(pixel_noise_error(film, 3, 1), rms / std::sqrt(kErrorValueFloor), 1e-6);
 }
 
 TEST(AdaptiveSampling, NeighbourhoodIsTheThreeByThreeMaximum) {
@@ -98,10 +100,10 @@ RenderOptions adaptive_options(double threshold, int spp, uint64_t seed) {
 TEST(AdaptiveSampling, NoPixelStopsWhileItsNeighbourhoodIsAboveTheThreshold) {
   Diagnostics diag;
   auto sc = build_render_scene(testing::small_scene(), diag);
-  const double threshold = 0.05;
+  const double threshold = 0.01;
   const RenderResult r = render_image(*sc, adaptive_options(threshold, 512, 5));
-  std::vector<float> nearby(r.relative_error.size());
-  neighbourhood_max(r.relative_error, r.width, r.height, nearby);
+  std::vector<float> nearby(r.noise_error.size());
+  neighbourhood_max(r.noise_error, r.width, r.height, nearby);
   int stopped = 0, at_max = 0;
   for (std::size_t p = 0; p < nearby.size(); ++p) {
     if (r.sample_counts[p] < 512) {

@@ -156,7 +156,7 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
     }
     if (!adaptive.enabled()) return false;
     std::fill(error.begin(), error.end(), 0.0f);
-    for (std::size_t p : own_pixels) error[p] = pixel_relative_error(film, p, sc.film.exposure_scale);
+    for (std::size_t p : own_pixels) error[p] = pixel_noise_error(film, p, sc.film.exposure_scale);
     if (group.size() > 1) group.sum_all(std::span<float>(error));  // each pixel from its owner, others add 0
     neighbourhood_max(error, w, h, nearby_error);
     int64_t active = 0, skipped = 0, converged = 0;
@@ -249,10 +249,10 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
   result.min_spp = *std::min_element(film.samples.begin(), film.samples.end());
   result.max_spp = *std::max_element(film.samples.begin(), film.samples.end());
   for (uint32_t s : film.samples) result.samples += s;
-  result.relative_error.resize(film.pixel_count());
-  relative_error_map(film, sc.film.exposure_scale, result.relative_error);
+  result.noise_error.resize(film.pixel_count());
+  noise_error_map(film, sc.film.exposure_scale, result.noise_error);
   if (adaptive.enabled()) {  // as the passes count them: with their neighbourhood
-    neighbourhood_max(result.relative_error, w, h, nearby_error);
+    neighbourhood_max(result.noise_error, w, h, nearby_error);
     for (float e : nearby_error) result.converged_pixels += e <= adaptive.noise_threshold ? 1 : 0;
   }
   result.sample_counts = std::move(film.samples);

@@ -64,11 +64,11 @@ struct RenderResult {
   uint64_t rays = 0;
   uint64_t truncated = 0;
   uint32_t min_spp = 0, max_spp = 0;
-  // Per pixel (rank 0 only): the samples taken and the estimated relative error of the
-  // pixel's value (adaptive_sampling.h: the image's own noise, whether or not the render
-  // was adaptive).
+  // Per pixel (rank 0 only): the samples taken and the estimated error of the pixel's
+  // value (adaptive_sampling.h, pixel_noise_error: the image's own noise, whether or not
+  // the render was adaptive).
   std::vector<uint32_t> sample_counts;
-  std::vector<float> relative_error;
+  std::vector<float> noise_error;
   uint64_t converged_pixels = 0;  // pixels whose 3x3 neighbourhood is at or below the noise threshold (adaptive only)
   double seconds = 0;
   // Seconds each process spent rendering its tiles, waits at pass boundaries excluded
