@@ -174,6 +174,9 @@ TEST_F(Cli, AdaptiveSamplingWritesTheCountAndErrorChannels) {
   ASSERT_EQ(uniform_counts.size(), 24u * 16u);
   EXPECT_EQ(*std::min_element(uniform_counts.begin(), uniform_counts.end()), 4.0f);
   EXPECT_EQ(exr_channel(path("m.exr"), "error").size(), 24u * 16u);
+  const std::vector<float> rays = exr_channel(path("m.exr"), "rays");
+  ASSERT_EQ(rays.size(), 24u * 16u);
+  for (float n : rays) EXPECT_GE(n, 4.0f);  // at least the camera ray of each sample
 
   CommandResult png = run_dermis("render " + scene + " -q --spp 32 --noise-threshold 0.1 -o " + path("p.png"));
   ASSERT_EQ(png.status, 0) << png.output;

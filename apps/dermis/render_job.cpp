@@ -104,7 +104,8 @@ void add_render_options(CLI::App& cmd, RenderArgs& args) {
                  "minpixelsamples, else max(16, sqrt(spp)) rounded up to a multiple of 16)")
       ->check(kPositive);
   cmd.add_flag("--error-map", args.error_map,
-               "write each pixel's sample count and estimated error as the .exr's 'samples' and 'error' channels "
+               "write each pixel's sample count, estimated error and rays traced as the .exr's 'samples', 'error' and "
+               "'rays' channels "
                "(or STEM-maps.exr beside another format), as --noise-threshold does");
   cmd.add_flag("-q,--quiet", args.quiet, "no progress bar or summary");
   cmd.add_option("--points", args.points, "points per `pointcloud` subsurface object (default: chosen from the illumination, or its pointdensity; up to its maxpoints)")
@@ -357,6 +358,7 @@ int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& gr
     for (float& e : error)
       if (!std::isfinite(e)) e = -1;  // unknown: fewer than 2 samples
     img.extra_channels.push_back({"error", std::move(error)});
+    img.extra_channels.push_back({"rays", std::vector<float>(r.pixel_rays.begin(), r.pixel_rays.end())});
     if (ext != ".exr") maps_path = (out_path.parent_path() / (out_path.stem().string() + "-maps.exr")).string();
   }
   try {
@@ -377,7 +379,7 @@ int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& gr
     const double pixels = double(r.sample_counts.size());
     fmt::print(stderr,
                "dermis: adaptive sampling: {:.1f}% of pixels converged (with their neighbours, at or below the noise "
-               "threshold {:g}); {}..{} samples per pixel, {:.1f} on average (the .exr's 'samples' and 'error' "
+               "threshold {:g}); {}..{} samples per pixel, {:.1f} on average (the .exr's 'samples', 'error' and 'rays' "
                "channels)\n",
                100.0 * double(r.converged_pixels) / pixels, opt.adaptive.noise_threshold, r.min_spp, r.max_spp,
                double(r.samples) / pixels);

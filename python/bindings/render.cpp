@@ -152,6 +152,9 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
   std::copy(r.noise_error.begin(), r.noise_error.end(), rel_error.mutable_data());
   st["noise_error"] = rel_error;
   st["converged_pixels"] = r.converged_pixels;
+  py::array_t<uint64_t> pixel_rays({py::ssize_t(r.height), py::ssize_t(r.width)});
+  std::copy(r.pixel_rays.begin(), r.pixel_rays.end(), pixel_rays.mutable_data());
+  st["pixel_rays"] = pixel_rays;
   if (error) {
     if (!error->matches(PyExc_KeyboardInterrupt)) throw *error;
     py::object e = py::reinterpret_borrow<py::object>(g_render_interrupted)(
@@ -196,7 +199,8 @@ stats: also return a dict (image, stats): seconds (wall), cpu_seconds (this proc
   truncated (paths cut short), interrupted, time_limited, noise_threshold,
   sample_counts (uint32 array (height, width)), noise_error (float32 array: each
   pixel's estimated error, the standard error over the square root of the value; inf
-  with fewer than 2 samples), converged_pixels.
+  with fewer than 2 samples), converged_pixels, pixel_rays (uint64 array: the rays each
+  pixel traced).
 noise_threshold: adaptive sampling (default: the scene's Sampler "noisethreshold"; 0: off):
   pixels stop once their estimated error (the standard error over the square root of the
   value, as Cycles: 0.01 is 1% of white), and their neighbours', is below it;

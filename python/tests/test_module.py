@@ -130,6 +130,7 @@ def test_adaptive_sampling_equals_the_command_line_and_reports_its_maps(dermis_m
     assert counts.min() == 16 and counts.max() == 64 and stats["samples"] == counts.sum()
     assert (error[counts < 64] <= 0.05).all()
     assert 0 < stats["converged_pixels"] < 24 * 18
+    assert stats["pixel_rays"].shape == (18, 24) and (stats["pixel_rays"] >= counts).all()
     assert calls[-1] == (24 * 18 * 64, 24 * 18 * 64)
     with pytest.raises(ValueError, match="noise_threshold"):
         dermis_module.render(sphere_scene, noise_threshold=-1)

@@ -16,7 +16,8 @@ namespace {
 
 // File layout (native byte order): magic, version, the key, then width x height x 3
 // doubles (the sums), as many (the sums of squares), width x height uint32 (the sample
-// counts) and as many (the pass's targets). Version 1 had no squares and no targets.
+// counts), as many (the pass's targets) and width x height uint64 (the rays traced).
+// Version 1 had no squares, targets or rays.
 constexpr char kMagic[8] = {'D', 'E', 'R', 'M', 'C', 'K', 'P', 'T'};
 constexpr uint32_t kVersion = 2;
 
@@ -72,6 +73,7 @@ void write_checkpoint(const std::string& path, const CheckpointKey& key, const F
                         film.samples.size() &&
                     std::fwrite(film.target.data(), sizeof(uint32_t), film.target.size(), f.get()) ==
                         film.target.size() &&
+                    std::fwrite(film.rays.data(), sizeof(uint64_t), film.rays.size(), f.get()) == film.rays.size() &&
                     std::fflush(f.get()) == 0;
     if (!ok) throw fail(std::strerror(errno));
   }
@@ -109,7 +111,8 @@ Film read_checkpoint(const std::string& path, const CheckpointKey& expected) {
                   std::fread(film.sum_sq.data(), sizeof(double), film.sum_sq.size(), f.get()) == film.sum_sq.size() &&
                   std::fread(film.samples.data(), sizeof(uint32_t), film.samples.size(), f.get()) ==
                       film.samples.size() &&
-                  std::fread(film.target.data(), sizeof(uint32_t), film.target.size(), f.get()) == film.target.size();
+                  std::fread(film.target.data(), sizeof(uint32_t), film.target.size(), f.get()) == film.target.size() &&
+                  std::fread(film.rays.data(), sizeof(uint64_t), film.rays.size(), f.get()) == film.rays.size();
   unsigned char extra;
   if (!ok || std::fread(&extra, 1, 1, f.get()) != 0) throw fail("it is truncated or has extra bytes");
   for (std::size_t i = 0; i < film.sum.size(); ++i)

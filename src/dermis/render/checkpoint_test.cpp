@@ -29,7 +29,7 @@ TEST(Checkpoint, RoundTripIsExactAndMismatchesAreRefused) {
   Film film(3, 2);
   for (std::size_t i = 0; i < film.sum.size(); ++i) film.sum[i] = 0.1 * double(i) + 1e-17;
   for (std::size_t i = 0; i < film.sum_sq.size(); ++i) film.sum_sq[i] = 0.3 * double(i) + 1e-16;
-  for (std::size_t i = 0; i < film.samples.size(); ++i) film.samples[i] = uint32_t(i + 1), film.target[i] = uint32_t(2 * i);
+  for (std::size_t i = 0; i < film.samples.size(); ++i) film.samples[i] = uint32_t(i + 1), film.target[i] = uint32_t(2 * i), film.rays[i] = 1000 + i;
   const std::string path = temp_path("roundtrip");
   write_checkpoint(path, key, film);
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
@@ -38,6 +38,7 @@ TEST(Checkpoint, RoundTripIsExactAndMismatchesAreRefused) {
   EXPECT_EQ(back.samples, film.samples);
   EXPECT_EQ(back.sum_sq, film.sum_sq);
   EXPECT_EQ(back.target, film.target);
+  EXPECT_EQ(back.rays, film.rays);
 
   CheckpointKey other = key;
   other.scene_hash = fingerprint("scene text!");

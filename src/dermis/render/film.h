@@ -42,9 +42,12 @@ struct Film {
   // stopped in the middle of a pass is resumed by finishing that pass first, so that the
   // result equals a render never stopped even where pixels take different counts.
   std::vector<uint32_t> target;
+  // Rays traced per pixel (closest-hit, shadow, probe and walk rays): the cost of its
+  // samples, a deterministic measure of time (adaptive sampling's order of work).
+  std::vector<uint64_t> rays;
 
   // Bytes of memory per pixel, for refusing a film that cannot be allocated.
-  static constexpr std::size_t kBytesPerPixel = 6 * sizeof(double) + 2 * sizeof(uint32_t);
+  static constexpr std::size_t kBytesPerPixel = 6 * sizeof(double) + 2 * sizeof(uint32_t) + sizeof(uint64_t);
 
   Film(int w, int h)
       : width(w),
@@ -52,7 +55,8 @@ struct Film {
         sum(std::size_t(w) * h * 3, 0.0),
         sum_sq(std::size_t(w) * h * 3, 0.0),
         samples(std::size_t(w) * h, 0),
-        target(std::size_t(w) * h, 0) {}
+        target(std::size_t(w) * h, 0),
+        rays(std::size_t(w) * h, 0) {}
   std::size_t pixel_count() const { return samples.size(); }
   // Linear RGB: the mean of each pixel's samples (0 where none were taken).
   std::vector<float> resolve() const;

@@ -81,6 +81,7 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
         if (up_to <= first_sample) continue;
         const int image_x = x_begin + x, image_y = y_begin + y;
         const std::size_t image_pixel = std::size_t(image_y) * full_w + image_x;
+        const uint64_t rays_before = counters.rays;
         double sum[3], sum_sq[3];
         for (int c = 0; c < 3; ++c) sum[c] = film.sum[3 * pixel + c], sum_sq[c] = film.sum_sq[3 * pixel + c];
         for (uint32_t s = first_sample; s < up_to; ++s) {
@@ -97,6 +98,7 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
         }
         for (int c = 0; c < 3; ++c) film.sum[3 * pixel + c] = sum[c], film.sum_sq[3 * pixel + c] = sum_sq[c];
         film.samples[pixel] = up_to;
+        film.rays[pixel] += counters.rays - rays_before;
         taken += up_to - first_sample;
       }
     nonfinite += bad;
@@ -230,6 +232,7 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
     group.sum_to_root(std::span<double>(film.sum));
     group.sum_to_root(std::span<double>(film.sum_sq));
     group.sum_to_root(std::span<uint32_t>(film.samples));
+    group.sum_to_root(std::span<uint64_t>(film.rays));
     group.sum_to_root(std::span<uint64_t>(counts));
   }
   if (opt.checkpoint) opt.checkpoint(film);  // the state at the end: resumable to more samples
@@ -256,6 +259,7 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
     for (float e : nearby_error) result.converged_pixels += e <= adaptive.noise_threshold ? 1 : 0;
   }
   result.sample_counts = std::move(film.samples);
+  result.pixel_rays = std::move(film.rays);
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }

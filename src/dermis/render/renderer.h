@@ -68,6 +68,7 @@ struct RenderResult {
   // value (adaptive_sampling.h, pixel_noise_error: the image's own noise, whether or not
   // the render was adaptive).
   std::vector<uint32_t> sample_counts;
+  std::vector<uint64_t> pixel_rays;  // rays traced per pixel: where the time went
   std::vector<float> noise_error;
   uint64_t converged_pixels = 0;  // pixels whose 3x3 neighbourhood is at or below the noise threshold (adaptive only)
   double seconds = 0;
