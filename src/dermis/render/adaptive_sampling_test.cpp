@@ -1,8 +1,11 @@
 #include "dermis/render/adaptive_sampling.h"
 
+#include "dermis/core/sampler.h"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -83,6 +86,33 @@ TEST(AdaptiveSampling, PassesKeepCountsInBlocksOfTheSampler) {
   while (n < 400) seen.push_back(n = next_adaptive_count(n, 400));
   const std::vector<uint32_t> want = {32, 48, 64, 80, 96, 112, 128, 160, 192, 224, 256, 320, 384, 400};
   EXPECT_EQ(seen, want);
+}
+
+// Each pass of a pixel takes an aligned block of 2^k samples of its Owen-scrambled Sobol'
+// sequence, so whatever count a pixel stops at, its samples are whole (0,k,2)-nets in the
+// camera's two dimensions: in every block and every split of the square into 2^k equal
+// rectangles (2^j x 2^(k-j)), one sample per rectangle.
+TEST(AdaptiveSampling, EveryPassIsAStratifiedBlockOfThePixelsSequence) {
+  int blocks = 0;
+  for (uint64_t pixel : {3ull, 4242ull}) {
+    uint32_t n = uint32_t(default_min_spp(1024));
+    while (n < 1024) {
+      const uint32_t next = next_adaptive_count(n, 1024), size = next - n;
+      ASSERT_EQ(size & (size - 1), 0u) << "a block of " << size;
+      ASSERT_EQ(n % size, 0u) << "block at " << n << " not aligned";
+      const int k = std::countr_zero(size);
+      std::vector<Vec2> u;
+      for (uint32_t i = n; i < next; ++i) u.push_back(Sampler(SamplerKind::Sobol, 7, pixel, i).get2d());
+      for (int j = 0; j <= k; ++j) {
+        std::vector<int> cells(size, 0);
+        for (const Vec2& p : u) ++cells[std::size_t(int(p.x * float(1 << j)) * (1 << (k - j)) + int(p.y * float(1 << (k - j))))];
+        for (int c : cells) ASSERT_EQ(c, 1) << "pixel " << pixel << " block [" << n << ", " << next << ") split " << j;
+      }
+      ++blocks;
+      n = next;
+    }
+  }
+  EXPECT_EQ(blocks, 2 * 18);  // 32 -> 128 by 16 (6), -> 256 by 32 (4), -> 512 by 64 (4), -> 1024 by 128 (4)
 }
 
 RenderOptions adaptive_options(double threshold, int spp, uint64_t seed) {
