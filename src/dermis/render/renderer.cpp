@@ -129,11 +129,12 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
       film.target[p] = std::min(film.target[p], spp);  // a resume with fewer samples takes none
       pass_pending = pass_pending || film.samples[p] < film.target[p];
     }
-  // The pixels this process owns.
-  std::vector<std::size_t> own_pixels;
-  for (const Tile& t : tiles)
-    for (int y = t.y0; y < t.y1; ++y)
-      for (int x = t.x0; x < t.x1; ++x) own_pixels.push_back(std::size_t(y) * w + x);
+  // f(pixel) for each pixel this process owns.
+  auto for_own_pixels = [&](auto&& f) {
+    for (const Tile& t : tiles)
+      for (int y = t.y0; y < t.y1; ++y)
+        for (int x = t.x0; x < t.x1; ++x) f(std::size_t(y) * w + x);
+  };
   std::vector<float> error, nearby_error;
   if (adaptive.enabled()) error.resize(film.pixel_count()), nearby_error.resize(film.pixel_count());
   int64_t credited = 0;  // samples the progress was told of for pixels that stopped early
@@ -143,7 +144,7 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
   uint32_t done = 0;
   auto fewest_samples = [&] {
     uint32_t fewest = spp;
-    for (std::size_t p : own_pixels) fewest = std::min(fewest, film.samples[p]);
+    for_own_pixels([&](std::size_t p) { fewest = std::min(fewest, film.samples[p]); });
     return fewest;
   };
   if (opt.resume && !pass_pending) done = fewest_samples();
@@ -152,23 +153,23 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
     if (done < min_spp) {
       // Every pixel: passes of 1, 1, 2, 4, ..., 16 (a resumed film: as many as it has).
       const uint32_t n = std::min(std::clamp<uint32_t>(done, 1, 16), min_spp - done);
-      for (std::size_t p : own_pixels) film.target[p] = std::max(film.samples[p], done + n);
+      for_own_pixels([&](std::size_t p) { film.target[p] = std::max(film.samples[p], done + n); });
       done += n;
       return true;
     }
     if (!adaptive.enabled()) return false;
     std::fill(error.begin(), error.end(), 0.0f);
-    for (std::size_t p : own_pixels) error[p] = pixel_noise_error(film, p, sc.film.exposure_scale);
+    for_own_pixels([&](std::size_t p) { error[p] = pixel_noise_error(film, p, sc.film.exposure_scale); });
     if (group.size() > 1) group.sum_all(std::span<float>(error));  // each pixel from its owner, others add 0
     neighbourhood_max(error, w, h, nearby_error);
     int64_t active = 0, skipped = 0, converged = 0;
     for (float e : nearby_error) converged += e <= adaptive.noise_threshold ? 1 : 0;
-    for (std::size_t p : own_pixels) {
+    for_own_pixels([&](std::size_t p) {
       const bool go_on = nearby_error[p] > adaptive.noise_threshold && film.samples[p] < spp;
       film.target[p] = go_on ? next_adaptive_count(film.samples[p], spp) : film.samples[p];
       active += go_on ? 1 : 0;
       if (!go_on) skipped += int64_t(spp) - int64_t(film.samples[p]);
-    }
+    });
     if (skipped > credited) {
       if (opt.progress) opt.progress(skipped - credited);
       pass_samples += skipped - credited;
@@ -207,8 +208,7 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
     });
     busy += std::chrono::duration<double>(Clock::now() - pass_start).count();
     if (done == std::numeric_limits<uint32_t>::max()) done = fewest_samples();  // a resumed pass finished
-    bool finished = true;  // every pixel at the full count: no pass follows (no checkpoint needed)
-    for (std::size_t p : own_pixels) finished = finished && film.samples[p] >= spp;
+    const bool finished = fewest_samples() >= spp;  // no pass follows: no checkpoint needed
     if (opt.checkpoint && !stop && !finished &&
         std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= opt.checkpoint_interval) {
       opt.checkpoint(film);
