@@ -9,6 +9,7 @@ archived or opened offline. Input is the plain dictionary that study.py builds (
 import base64
 import html
 import io
+import math
 
 import numpy as np
 from PIL import Image
@@ -88,23 +89,55 @@ class _Panels:
         return f"<figure>{box}<figcaption>{caption}</figcaption></figure>"
 
 
+def _stats_at(method, budget):
+    """The method's variance and bias^2 at `budget` (study.budget_stats), or None."""
+    for st in method.get("by_budget", []):
+        if st["budget"] == budget and st.get("variance") is not None:
+            return st
+    return None
+
+
+def has_noise_stats(study):
+    """Whether every method has a variance and bias^2 at every budget (K >= 2)."""
+    return bool(study["methods"]) and all(_stats_at(m, b) for m in study["methods"] for b in study["budgets"]
+                                          if _runs_at(m, b))
+
+
+def efficiency_error(st):
+    """(error, stderr, basis) of a method at one budget for the efficiency: its variance
+    if bias^2 is not significant (an unbiased method's MSE is its variance), else its MSE
+    against the exact image, variance + bias^2."""
+    if repeats.significant(st["bias2"], st["bias2_se"]) and st["bias2"] > 0:
+        se = None if st["variance_se"] is None or st["bias2_se"] is None else math.hypot(st["variance_se"],
+                                                                                          st["bias2_se"])
+        return st["variance"] + st["bias2"], se, "MSE"
+    return st["variance"], st["variance_se"], "var."
+
+
 def main_rows(study, has_mask=True):
     """The main table as text: (header, rows), the methods at the main budget with samples,
-    times, errors (mean ± stderr) and efficiency. Also used for Markdown (bench/sss_methods.py)."""
+    times, errors (mean ± stderr), variance, bias^2 and efficiency. Also used for Markdown
+    (bench/sss_methods.py)."""
     T, pixels = study["main_budget"], study["resolution"][0] * study["resolution"][1]
     cost_key = "cpu_seconds" if study["cost"] == "cpu" else "seconds"
+    stats = has_noise_stats(study)
     head = ["method", "spp: mean (min..max)", "wall (s)", "CPU (s)", "RMSE", "relMSE"]
     if has_mask:
         head += ["object RMSE", "object relMSE"]
+    if stats:
+        head += ["variance", "bias²"] + (["object variance", "object bias²"] if has_mask else [])
     base, rows = None, []
     for m in study["methods"]:
         runs = _runs_at(m, T)
         if not runs:
             continue
         cost = repeats.summarize(runs, cost_key)[0]
-        rel, rel_se = repeats.summarize(runs, "relmse")
-        work = rel * cost  # relMSE x time: lower is better, time-independent if unbiased
-        rse = (rel_se / rel) if (rel_se is not None and rel > 0) else None
+        if stats:  # variance (unbiased) or variance + bias^2 (biased) x time
+            err, err_se, basis = efficiency_error(_stats_at(m, T))
+        else:  # relMSE x time: lower is better, time-independent if unbiased
+            (err, err_se), basis = repeats.summarize(runs, "relmse"), "relMSE"
+        work = err * cost
+        rse = (err_se / err) if (err_se is not None and err > 0) else None
         first = base is None
         if first:
             base = (m["name"], work, rse)
@@ -114,10 +147,68 @@ def main_rows(study, has_mask=True):
                  _ms(runs, "rmse"), _ms(runs, "relmse")]
         if has_mask:
             cells += [_ms(runs, "mask_rmse"), _ms(runs, "mask_relmse")]
-        cells.append(repeats.format_mean_stderr(speedup, sp_err, 3) + "×")
+        if stats:
+            st = _stats_at(m, T)
+            for sfx in ("", "_mask") if has_mask else ("",):
+                cells += [repeats.format_mean_stderr(st["variance" + sfx], st["variance_se" + sfx], 3),
+                          repeats.format_bias2(st["bias2" + sfx], st["bias2_se" + sfx])]
+        cells.append(repeats.format_mean_stderr(speedup, sp_err, 3) + "×" + (f" ({basis})" if stats else ""))
         rows.append(cells)
     head.append(f"efficiency vs {base[0] if base else ''}")
     return head, rows
+
+
+def reference_noise_warning(study, limit=0.1):
+    """A warning (text) when the rendered reference's own variance is above `limit` x the
+    smallest variance in the study (whole image or object), else None."""
+    ref = study["reference"]
+    if ref.get("noise_rmse") is None:
+        return None
+    worst = None
+    for sfx, noise in (("", ref["noise_rmse"]), ("_mask", ref.get("noise_mask_rmse"))):
+        found = [(st["variance" + sfx], m["name"], st["budget"]) for m in study["methods"]
+                 for st in m.get("by_budget", []) if st.get("variance" + sfx) is not None and st["variance" + sfx] > 0]
+        if not found or noise is None or not noise == noise:
+            continue
+        smallest = min(found)
+        ratio = noise ** 2 / smallest[0]  # reference variance / smallest method variance
+        if ratio > limit and (worst is None or ratio > worst[0]):
+            worst = (ratio, noise ** 2, smallest, "the object" if sfx else "the whole image")
+    if worst is None:
+        return None
+    ratio, ref_var, (var, name, budget), where = worst
+    return (f"The reference is too noisy: its own variance ({ref_var:.3g}, over {where}) is {100 * ratio:.0f} % of "
+            f"the smallest variance in the study ({var:.3g}, {name} at {budget:g} s), above the {100 * limit:.0f} % "
+            f"this study trusts. bias² subtracts it, but its standard error grows with it and the MSE columns are "
+            f"dominated by it: render the reference about {ratio / limit:.0f}× longer (--reference-time).")
+
+
+def _efficiency_note(study, cost_word):
+    if not has_noise_stats(study):
+        return (f"Efficiency = (relMSE × {cost_word} time) of the first method / that of this method: higher is "
+                "better, 2× means the same relMSE in half the time (for a biased method it holds at this budget "
+                "only; with one repeat there is no variance to use instead).")
+    return (f"Efficiency = (error × {cost_word} time) of the first method / that of this method, where the error is "
+            "the <b>variance</b> of one render (whole image) for a method whose bias² is not significant (var.: "
+            "for an unbiased method the MSE is the variance, and variance × time does not depend on the budget), "
+            "and its MSE against the exact image, variance + bias², for a method with a significant bias² (MSE: it "
+            "holds at this budget only, since the bias does not fall with time). Higher is better: 2× means the "
+            "same error in half the time.")
+
+
+def _noise_bias_note(study):
+    subtracted = all(st.get("bias2_less_reference_variance") for m in study["methods"]
+                     for st in m.get("by_budget", []))
+    return ("Variance = mean over the pixels of the per-pixel variance of the repeats, s² = Σ (X_k − X̄)² / (K − 1) "
+            "(the variance of one render). bias² = mean over the pixels of (X̄ − R)² − s² / K" +
+            (" − Var R" if subtracted else "") + ", an unbiased estimate of the squared bias of the method's "
+            "expectation against the reference's, since E (X̄ − R)² = bias² + Var X / K + Var R" +
+            (" (Var R: the reference's own per-pixel variance, from its two halves)." if subtracted else
+             "; the reference's own variance Var R is unknown (a given reference), so bias² here includes it.") +
+            " Each ± is one standard error from the spread of the per-pixel terms over the pixels (std / √pixels; "
+            "conservative: it includes how the true values vary from pixel to pixel). A bias² of at least "
+            f"{repeats.SIGNIFICANCE:g} standard errors is significant: the method's approximation (its expectation "
+            "differs from the reference method's); below that it is not significant.")
 
 
 def _main_table(study):
@@ -137,6 +228,9 @@ def _budget_table(study):
     corrected = all("mse_corr" in r for m in study["methods"] for r in m["runs"])
     if corrected:
         head += ["MSE − ref. var."] + (["object MSE − ref. var."] if has_mask else [])
+    stats = has_noise_stats(study)
+    if stats:
+        head += ["variance", "bias²"] + (["object variance", "object bias²"] if has_mask else [])
     rows = []
     for m in study["methods"]:
         for b in study["budgets"]:
@@ -149,6 +243,11 @@ def _budget_table(study):
                 cells += [_ms(runs, lambda r: r["mask_rmse"] ** 2), _ms(runs, "mask_relmse")]
             if corrected:
                 cells += [_ms(runs, "mse_corr")] + ([_ms(runs, "mask_mse_corr")] if has_mask else [])
+            if stats:
+                st = _stats_at(m, b)
+                for sfx in ("", "_mask") if has_mask else ("",):
+                    cells += [repeats.format_mean_stderr(st["variance" + sfx], st["variance_se" + sfx]),
+                              esc(repeats.format_bias2(st["bias2" + sfx], st["bias2_se" + sfx]))]
             rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
     return ("<table><tr>" + "".join(f"<th>{h}</th>" for h in head) + "</tr>" + "".join(rows) + "</table>")
 
@@ -175,8 +274,9 @@ def build_html(study):
     resolution (W, H), threads, mask (bool H x W), reference {label, image, details,
     noise_rmse (or None), noise_mask_rmse}, methods [{name, image, error_map, error_scale,
     runs [{budget, repeat, seed, seconds, cpu_seconds, samples, min_spp, max_spp, rmse,
-    relmse, mask_rmse, mask_relmse}]}], command, settings, version, commit, machine
-    {name: value}, date, total_seconds, notes [str]."""
+    relmse, mask_rmse, mask_relmse}], by_budget (optional) [{budget, seconds, cpu_seconds,
+    variance, variance_se, bias2, bias2_se, the same with _mask, bias2_less_reference_variance}]}],
+    command, settings, version, commit, machine {name: value}, date, total_seconds, notes [str]."""
     W, H = study["resolution"]
     T = study["main_budget"]
     pixels = W * H
@@ -222,6 +322,9 @@ def build_html(study):
 
     # Tables.
     w(f"<h2>Errors at {T:g} s</h2>")
+    warning = reference_noise_warning(study)
+    if warning:
+        w(f'<p class="warning"><b>Warning:</b> {esc(warning)}</p>')
     w(_main_table(study))
     noise = ""
     if ref.get("noise_rmse") is not None:
@@ -231,10 +334,11 @@ def build_html(study):
     w(f'<p class="note">Mean ± one standard error over the {study["repeats"]} independent repeats '
       "(standard deviation of the repeats / √K). RMSE and relMSE are over all pixels and channels against the "
       "reference (relMSE = mean of (A − B)² / (B² + 0.01)); <i>object</i> columns are over the pixels of the "
-      f"subsurface objects only (mask below). Efficiency = (relMSE × {cost_word} time) of the first method / "
-      "that of this method: higher is better, 2× means the same relMSE in half the time (for a biased method it "
-      f"holds at this budget only). spp: samples per pixel reached, mean over the repeats (min..max of pixels).{noise}"
-      f"</p><p class=\"note\">Reference details: {esc(ref.get('details', ''))}</p>")
+      f"subsurface objects only (mask below). {_efficiency_note(study, cost_word)} "
+      f"spp: samples per pixel reached, mean over the repeats (min..max of pixels).{noise}</p>")
+    if has_noise_stats(study):
+        w(f'<p class="note">{esc(_noise_bias_note(study))}</p>')
+    w(f"<p class=\"note\">Reference details: {esc(ref.get('details', ''))}</p>")
     for note in study.get("notes", []):
         w(f'<p class="note"><b>Note:</b> {esc(note)}</p>')
 
@@ -251,6 +355,15 @@ def build_html(study):
                   "(estimated from its two halves), since E(A − R)² = Var A + bias² + Var R: the method's own "
                   "error against the exact image, free of the reference's noise (non-positive means are not "
                   "drawn)." if corrected else "") + "</p>")
+    if has_noise_stats(study):
+        w("<h2>Noise and bias against time</h2>")
+        w(f'<p><img class="plot" src="{svg_uri(plots.noise_bias_svg(study))}" alt="variance and bias² plot"></p>')
+        w('<p class="note">Top: the variance of one render (mean over the pixels of the per-pixel variance over '
+          "the repeats) against the mean time, log-log, error bars one standard error; dashed: slope −1 "
+          "(variance ∝ 1/time), which an unbiased or biased Monte Carlo method alike should follow. Bottom: bias² "
+          "of the method's expectation against the reference (linear scale, zero dashed): a method whose bias² "
+          f"stays within {repeats.SIGNIFICANCE:g} standard errors of zero is unbiased as far as the study can tell; "
+          "a bias² that does not fall with time is the method's approximation.</p>")
     w(f"<details><summary>All budgets</summary>{_budget_table(study)}</details>")
 
     # Object mask.

@@ -41,6 +41,7 @@ td:first-child, th:first-child { text-align: left; }
 img.plot { max-width: 100%; background: #fff; border: 1px solid #ccc; }
 pre { background: #fff; border: 1px solid #ccc; padding: 0.6em; white-space: pre-wrap; word-break: break-all; }
 .note { color: #555; font-size: 0.9em; max-width: 70em; }
+.warning { background: #fff1d6; border: 1px solid #d9a441; padding: 0.4em 0.6em; max-width: 70em; }
 #status { color: #777; font-size: 0.8em; }
 """
 

@@ -40,7 +40,7 @@ import numpy as np
 
 import dermis
 
-from . import report
+from . import repeats, report
 
 UNBOUNDED_SPP = 1_000_000  # the sample count of time-limited renders (the time limit stops them)
 REFERENCE_SEEDS = (1_000_001, 1_000_002)
@@ -230,8 +230,9 @@ class Study:
         if a.cpu_time:
             _, st = self.render(scene, seed=0, time_limit=max(0.05, min(a.budgets) / 4))
             cost = [st["cpu_seconds"], st["samples"]]
-        runs, shown = [], None
+        runs, shown, by_budget = [], None, []
         for bi, budget in enumerate(a.budgets):
+            images = []  # the K repeats at this budget, for the variance and bias^2 (then dropped)
             for k in range(a.repeats):
                 seed = a.seed + 1000 * bi + k
                 if a.cpu_time:
@@ -248,14 +249,18 @@ class Study:
                     run["mse_corr"] = run["rmse"] ** 2 - ref["noise_rmse"] ** 2
                     run["mask_mse_corr"] = run["mask_rmse"] ** 2 - ref["noise_mask_rmse"] ** 2
                 runs.append(run)
+                images.append(img)
                 if budget == a.time and k == 0:
                     shown = img
                 log(f"{method.label:>20}  {budget:g} s  #{k + 1}: {st['samples'] / self.pixels:.0f} spp, "
                     f"{st['seconds']:.2f} s wall, {st['cpu_seconds']:.2f} s CPU, RMSE {run['rmse']:.4g}, "
                     f"relMSE {run['relmse']:.4g}")
+            by_budget.append(budget_stats(budget, runs[-a.repeats:], images, ref, mask))
+            log(f"{method.label:>20}  {budget:g} s: variance {_g(by_budget[-1]['variance'])}, "
+                f"bias² {repeats.format_bias2(by_budget[-1]['bias2'], by_budget[-1]['bias2_se'])}")
         emap, scale = dermis.error_map(shown, ref["image"])
         return dict(name=method.label, method=method.method, params=method.params, image=shown, error_map=emap,
-                    error_scale=scale, runs=runs, warmup_seconds=warmup)
+                    error_scale=scale, runs=runs, by_budget=by_budget, warmup_seconds=warmup)
 
     def run(self, log):
         a = self.args
@@ -292,6 +297,24 @@ class Study:
                     command=a.command, settings=settings, version=dermis.__version__, commit=_git_commit(),
                     machine=machine(self.threads), date=datetime.datetime.now().astimezone().strftime(
                         "%Y-%m-%d %H:%M %Z"), total_seconds=time.time() - t0, notes=notes)
+
+
+def _g(x):
+    return "–" if x is None else f"{x:.4g}"
+
+
+def budget_stats(budget, runs, images, ref, mask):
+    """One method at one budget (its K repeats `runs` and their `images`): mean spp and
+    times, and the variance and bias^2 over the image and the mask (repeats.noise_and_bias;
+    the reference's own variance is subtracted from bias^2 when it is known)."""
+    spp = [r["samples"] / images[0].shape[0] / images[0].shape[1] for r in runs]
+    st = dict(budget=budget, repeats=len(runs), spp=sum(spp) / len(spp),
+              spp_harmonic=len(spp) / sum(1 / max(x, 1e-9) for x in spp),  # E s^2 = sigma_1^2 x mean(1 / spp)
+              seconds=sum(r["seconds"] for r in runs) / len(runs),
+              cpu_seconds=sum(r["cpu_seconds"] for r in runs) / len(runs),
+              bias2_less_reference_variance=ref.get("var") is not None)
+    st.update(repeats.noise_and_bias(images, ref["image"], ref.get("var"), mask))
+    return st
 
 
 # ---------------------------------------------------------------------------- provenance
@@ -357,6 +380,7 @@ def save(study, out):
 
     data = plain(study)
     data["mask_pixels"] = int(study["mask"].sum())
+    data["reference_noise_warning"] = report.reference_noise_warning(study)  # None: the reference is quiet enough
     with open(os.path.join(out, "study.json"), "w") as f:
         json.dump(data, f, indent=1)
 

@@ -69,7 +69,7 @@ def test_study_writes_report_and_numbers(wall_study):
     ref = data["reference"]
     assert ref["noise_rmse"] > 0 and "volumetric" in ref["label"]
     text = (wall_study / "index.html").read_text()
-    assert text.count("<img ") == 1 + 2 * 2 + 2 + 3 + 1  # 3 plots: MSE, relMSE, MSE - ref. variance
+    assert text.count("<img ") == 1 + 2 * 2 + 2 + 4 + 1  # 4 plots: MSE, relMSE, MSE - ref. var., noise/bias
     run = data["methods"][0]["runs"][0]
     assert math.isclose(run["mse_corr"], run["rmse"] ** 2 - ref["noise_rmse"] ** 2)
     assert "randomwalk:walksampling=mis" in text and "--reference-time 1" in text
@@ -98,7 +98,9 @@ def test_study_equal_cpu_time_with_given_reference(wall_study, tiny, tmp_path):
     data = json.loads((tmp_path / "study.json").read_text())
     assert data["cost"] == "cpu" and data["reference"]["noise_rmse"] is None
     assert "mse_corr" not in data["methods"][0]["runs"][0]  # a given reference: its noise is unknown
-    assert (tmp_path / "index.html").read_text().count("image/svg+xml") == 2
+    assert (tmp_path / "index.html").read_text().count("image/svg+xml") == 3  # MSE, relMSE, noise/bias
+    st = data["methods"][0]["by_budget"][0]
+    assert st["bias2_less_reference_variance"] is False and st["variance"] > 0  # bias2 holds Var R
     for r in data["methods"][0]["runs"]:
         # The sample count comes from the measured cost per sample: CPU time near the budget.
         assert 0.4 / 3 < r["cpu_seconds"] < 0.4 * 3, r
@@ -171,3 +173,71 @@ def test_study_report_shows_labels(wall_study, tiny, tmp_path):
         ("probe rays", "disk", {}), ("walk", "randomwalk", {"walksampling": "mis"})]
     assert (tmp_path / "probe_rays.exr").is_file() and (tmp_path / "walk.exr").is_file()
     assert "<b>probe rays</b>" in (tmp_path / "index.html").read_text()
+
+
+# The tiny scene with independent samples: a render of N samples per pixel has exactly the
+# variance of one sample / N (no stratification to make it fall faster).
+INDEPENDENT_SCENE = TINY_SCENE.replace('"zsobol"', '"independent"')
+STAT_KEYS = ("variance", "variance_se", "bias2", "bias2_se")
+
+
+@pytest.fixture(scope="module")
+def bias_study(tmp_path_factory):
+    """The reference's own method (unbiased against it) and the same with a quarter of the
+    albedo (reflectance) of the scene (biased), at equal CPU time (the sample count follows
+    the budget), with a deliberately short reference (2 x 1 s of wall time: on a loaded
+    machine it may get a sixth of that in CPU time, which the bias must stand out of)."""
+    path = tmp_path_factory.mktemp("scene") / "tiny-independent.pbrt"
+    path.write_text(INDEPENDENT_SCENE)
+    out = tmp_path_factory.mktemp("bias-study")
+    methods = "same=volumetric,dark=volumetric:reflectance=0.2/0.125/0.075"
+    rc = study.main([str(path), "--methods", methods, "--time", "0.4", "--budgets", "0.1", "--repeats", "3",
+                     "--cpu-time", "--threads", "1", "--reference-time", "2", "--out", str(out)])
+    assert rc == 0
+    return out, json.loads((out / "study.json").read_text())
+
+
+def test_study_writes_variance_and_bias2(bias_study):
+    _, data = bias_study
+    for m in data["methods"]:
+        assert [st["budget"] for st in m["by_budget"]] == [0.1, 0.4]
+        for st in m["by_budget"]:
+            assert st["repeats"] == 3 and st["bias2_less_reference_variance"] is True
+            for key in STAT_KEYS:
+                for sfx in ("", "_mask"):
+                    assert math.isfinite(st[key + sfx]), (key + sfx, st)
+            assert st["variance"] > 0 and st["variance_se"] > 0 and st["bias2_se"] > 0
+
+
+def test_variance_falls_as_one_over_the_samples(bias_study):
+    """variance x spp is the same at both budgets within 4 standard errors (spp: the harmonic
+    mean over the repeats, since the repeats' sample variance estimates sigma_1^2 x mean(1 / spp));
+    the sample counts follow the budgets (equal CPU time), so the variance falls as 1 / time."""
+    _, data = bias_study
+    for m in data["methods"]:
+        lo, hi = m["by_budget"]
+        assert hi["spp"] > 2 * lo["spp"], (lo["spp"], hi["spp"])
+        for sfx in ("", "_mask"):
+            a = lo["variance" + sfx] * lo["spp_harmonic"], lo["variance_se" + sfx] * lo["spp_harmonic"]
+            b = hi["variance" + sfx] * hi["spp_harmonic"], hi["variance_se" + sfx] * hi["spp_harmonic"]
+            assert abs(a[0] - b[0]) < 4 * math.hypot(a[1], b[1]), (m["name"], sfx, a, b)
+
+
+def test_bias2_is_significant_for_a_biased_method_only(bias_study):
+    _, data = bias_study
+    same, wrong = data["methods"]
+    for st in same["by_budget"]:
+        for sfx in ("", "_mask"):
+            assert abs(st["bias2" + sfx]) < 4 * st["bias2_se" + sfx], (sfx, st)
+    for st in wrong["by_budget"]:
+        assert st["bias2_mask"] > 4 * st["bias2_se_mask"], st
+        assert st["bias2"] > 4 * st["bias2_se"], st
+
+
+def test_report_states_bias_and_warns_of_a_short_reference(bias_study):
+    out, data = bias_study
+    text = (out / "index.html").read_text()
+    assert "significant" in text and "the method&#x27;s approximation" in text and "not significant" in text
+    # 2 x 1 s of wall time for the reference against 0.4 CPU s for the methods: far above 10 %.
+    assert data["reference_noise_warning"] and "too noisy" in data["reference_noise_warning"]
+    assert text.index("too noisy") < text.index("<table>")
