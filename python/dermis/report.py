@@ -158,6 +158,25 @@ def main_rows(study, has_mask=True):
     return head, rows
 
 
+def models_statement(study):
+    """What each method solves against the reference's model (study["models"], set by the
+    study; empty for an older study): sentences for the report, and whether any differs."""
+    models = study.get("models")
+    if not models:
+        return "", False
+    parts, differs = [], False
+    if models["reference"]:
+        parts.append(f"Reference: {models['reference_words']}.")
+    for m in models["methods"]:
+        text = f"{m['name']}: {m['words']}" + ("" if m["exact"] else ", approximated by a diffusion profile")
+        if not m["same_as_reference"]:
+            differs = True
+            text += (" — another model than the reference's: its bias² includes the difference between the models, "
+                     "not only the method's error")
+        parts.append(text + ".")
+    return " ".join(parts), differs
+
+
 def reference_noise_warning(study, limit=0.1):
     """A warning (text) when the rendered reference's own variance is above `limit` x the
     smallest variance in the study (whole image or object), else None."""
@@ -325,6 +344,9 @@ def build_html(study):
     warning = reference_noise_warning(study)
     if warning:
         w(f'<p class="warning"><b>Warning:</b> {esc(warning)}</p>')
+    models, differs = models_statement(study)
+    if models:
+        w(f'<p class="{"warning" if differs else "summary"}"><b>Models.</b> {esc(models)}</p>')
     w(_main_table(study))
     noise = ""
     if ref.get("noise_rmse") is not None:

@@ -120,8 +120,10 @@ def parse_args(argv):
                     help="independent renders (seeds) per method and budget, for standard errors (default 3)")
     ref = ap.add_mutually_exclusive_group()
     ref.add_argument("--reference", metavar="IMAGE", help="a converged reference image (EXR) at the study's resolution")
-    ref.add_argument("--reference-method", default="volumetric", metavar="SPEC",
-                     help="the (unbiased) method the reference is rendered with (default volumetric)")
+    ref.add_argument("--reference-method", metavar="SPEC",
+                     help="the (unbiased) method the reference is rendered with (default: the unbiased method of the "
+                          "model the compared methods share: volumetric for a dielectric boundary, "
+                          "randomwalk:boundary=diffuse for the diffuse one; volumetric when they differ)")
     ap.add_argument("--reference-time", type=float, metavar="SEC",
                     help="wall seconds of the rendered reference, in two independent halves (default 10 x the "
                          "largest budget)")
@@ -134,7 +136,8 @@ def parse_args(argv):
     args = ap.parse_args(argv)
     try:
         args.methods = [Method(s) for s in args.methods.split(",") if s.strip()]
-        args.reference_method = Method(args.reference_method)
+        if args.reference_method is not None:
+            args.reference_method = Method(args.reference_method)
     except ValueError as e:
         ap.error(str(e))
     if not args.methods:
@@ -151,6 +154,49 @@ def parse_args(argv):
         args.out = "study-" + os.path.splitext(os.path.basename(args.scene))[0]
     args.command = prog + " " + shlex.join(argv)
     return args
+
+
+# ---------------------------------------------------------------------------- models
+
+# What each method solves, named by the boundary light crosses (docs/materials.md): the
+# random walk's `boundary`, the volumetric path tracer's dielectric, and the diffusion
+# profiles, which stand in for the diffuse boundary's walk (an approximation by design).
+MODEL_WORDS = {
+    "dielectric": "the medium behind a dielectric boundary (Fresnel at every crossing)",
+    "diffuse": "the walk's diffuse boundary (Fresnel in, out through the exit lobe at the first crossing)",
+    "matched": "the medium behind an index-matched boundary",
+}
+# The unbiased method of each model: the reference a study of that model needs.
+UNBIASED_METHOD = {"dielectric": "volumetric", "diffuse": "randomwalk:boundary=diffuse",
+                   "matched": "randomwalk:boundary=matched"}
+
+
+def model_of(method, material_params):
+    """(model, exact) of `method` on a material written with `material_params` (its
+    parameters as the scene writes them): exact is False for a diffusion approximation."""
+    if method.method == "volumetric":
+        return "dielectric", True
+    if method.method == "randomwalk":
+        return str(method.params.get("boundary") or material_params.get("boundary") or "diffuse"), True
+    return "diffuse", False
+
+
+def default_reference_method(methods, material_params):
+    """The unbiased method of the model all `methods` share; volumetric when they differ."""
+    models = {model_of(m, material_params)[0] for m in methods}
+    only = models.pop() if len(models) == 1 else None
+    return Method(UNBIASED_METHOD.get(only, "volumetric"))
+
+
+def models_of(methods, reference_method, material_params):
+    """Each method's model and whether it is the reference's: the report's statement."""
+    ref_model = model_of(reference_method, material_params)[0] if reference_method else None
+    out = []
+    for m in methods:
+        model, exact = model_of(m, material_params)
+        out.append(dict(name=m.label, model=model, words=MODEL_WORDS.get(model, model), exact=exact,
+                        same_as_reference=ref_model is None or model == ref_model))
+    return dict(reference=ref_model, reference_words=MODEL_WORDS.get(ref_model, ref_model), methods=out)
 
 
 # ---------------------------------------------------------------------------- rendering
@@ -267,6 +313,12 @@ class Study:
         t0 = time.time()
         base = self.scene(a.methods[0])
         W, H = base.resolution
+        # The material's parameters as written (its boundary), before any method is applied.
+        original = dermis.load_scene(a.scene)
+        material_params = original.materials[original.subsurface_materials[0]]["parameters"]
+        if not a.reference and a.reference_method is None:
+            a.reference_method = default_reference_method(a.methods, material_params)
+            log(f"reference method: {a.reference_method.label} (the model the methods share, or volumetric)")
         self.pixels = W * H
         mask = np.asarray(dermis.subsurface_mask(base), dtype=bool)
         n = len(a.methods) * a.repeats * sum(a.budgets) / (self.threads if a.cpu_time else 1)
@@ -294,6 +346,7 @@ class Study:
         return dict(title=f"Dermis study: {os.path.basename(a.scene)}", scene=a.scene,
                     cost="cpu" if a.cpu_time else "wall", budgets=a.budgets, main_budget=a.time, repeats=a.repeats,
                     resolution=(W, H), threads=self.threads, mask=mask, reference=ref, methods=methods,
+                    models=models_of(a.methods, None if a.reference else a.reference_method, material_params),
                     command=a.command, settings=settings, version=dermis.__version__, commit=_git_commit(),
                     machine=machine(self.threads), date=datetime.datetime.now().astimezone().strftime(
                         "%Y-%m-%d %H:%M %Z"), total_seconds=time.time() - t0, notes=notes)

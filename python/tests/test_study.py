@@ -67,7 +67,10 @@ def test_study_writes_report_and_numbers(wall_study):
             # Equal wall time: the renderer stops at the first pass boundary past the limit.
             assert 0.8 * r["budget"] <= r["seconds"] <= r["budget"] + 1.0, r
     ref = data["reference"]
-    assert ref["noise_rmse"] > 0 and "volumetric" in ref["label"]
+    # disk and the walk both solve the diffuse boundary's model: the reference is its walk.
+    assert ref["noise_rmse"] > 0 and "randomwalk:boundary=diffuse" in ref["label"]
+    assert data["models"]["reference"] == "diffuse"
+    assert [m["same_as_reference"] for m in data["models"]["methods"]] == [True, True]
     text = (wall_study / "index.html").read_text()
     assert text.count("<img ") == 1 + 2 * 2 + 2 + 4 + 1  # 4 plots: MSE, relMSE, MSE - ref. var., noise/bias
     run = data["methods"][0]["runs"][0]
@@ -241,3 +244,23 @@ def test_report_states_bias_and_warns_of_a_short_reference(bias_study):
     # 2 x 1 s of wall time for the reference against 0.4 CPU s for the methods: far above 10 %.
     assert data["reference_noise_warning"] and "too noisy" in data["reference_noise_warning"]
     assert text.index("too noisy") < text.index("<table>")
+
+
+def test_the_default_reference_solves_the_methods_model():
+    plain = {"reflectance": (0.8, 0.5, 0.3)}
+    walk, disk, vol = study.Method("randomwalk"), study.Method("disk"), study.Method("volumetric")
+    dielectric_walk = study.Method("randomwalk:boundary=dielectric")
+    assert study.model_of(walk, plain) == ("diffuse", True)
+    assert study.model_of(walk, {"boundary": "dielectric"}) == ("dielectric", True)  # the material's
+    assert study.model_of(disk, plain) == ("diffuse", False)
+    assert study.default_reference_method([walk, disk], plain).label == "randomwalk:boundary=diffuse"
+    assert study.default_reference_method([dielectric_walk, vol], plain).label == "volumetric"
+    assert study.default_reference_method([walk, vol], plain).label == "volumetric"  # models differ
+    models = study.models_of([walk, vol], study.Method("volumetric"), plain)
+    assert [m["same_as_reference"] for m in models["methods"]] == [False, True]
+    from dermis import report
+    text, differs = report.models_statement({"models": models})
+    assert differs and "randomwalk: the walk's diffuse boundary" in text and "another model" in text
+    text, differs = report.models_statement({"models": study.models_of([walk, disk], study.Method(
+        "randomwalk:boundary=diffuse"), plain)})
+    assert not differs and "approximated by a diffusion profile" in text
