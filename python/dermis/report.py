@@ -165,10 +165,15 @@ def models_statement(study):
     if not models:
         return "", False
     parts, differs = [], False
-    if models["reference"]:
+    if models.get("per_model"):
+        parts.append("The methods solve different models: each is measured against the reference of its own model "
+                     "(the images show the first).")
+    elif models["reference"]:
         parts.append(f"Reference: {models['reference_words']}.")
     for m in models["methods"]:
         text = f"{m['name']}: {m['words']}" + ("" if m["exact"] else ", approximated by a diffusion profile")
+        if models.get("per_model") and m.get("reference"):
+            text += f", against its model's reference ({m['reference']})"
         if not m["same_as_reference"]:
             differs = True
             text += (" — another model than the reference's: its bias² includes the difference between the models, "

@@ -121,9 +121,9 @@ def parse_args(argv):
     ref = ap.add_mutually_exclusive_group()
     ref.add_argument("--reference", metavar="IMAGE", help="a converged reference image (EXR) at the study's resolution")
     ref.add_argument("--reference-method", metavar="SPEC",
-                     help="the (unbiased) method the reference is rendered with (default: the unbiased method of the "
-                          "model the compared methods share: volumetric for a dielectric boundary, "
-                          "randomwalk:boundary=diffuse for the diffuse one; volumetric when they differ)")
+                     help="the (unbiased) method the reference is rendered with (default: for each model the compared "
+                          "methods solve, its unbiased method: volumetric for a dielectric boundary, "
+                          "randomwalk:boundary=diffuse for the diffuse one; each method against its own model's)")
     ap.add_argument("--reference-time", type=float, metavar="SEC",
                     help="wall seconds of the rendered reference, in two independent halves (default 10 x the "
                          "largest budget)")
@@ -181,22 +181,19 @@ def model_of(method, material_params):
     return "diffuse", False
 
 
-def default_reference_method(methods, material_params):
-    """The unbiased method of the model all `methods` share; volumetric when they differ."""
-    models = {model_of(m, material_params)[0] for m in methods}
-    only = models.pop() if len(models) == 1 else None
-    return Method(UNBIASED_METHOD.get(only, "volumetric"))
-
-
-def models_of(methods, reference_method, material_params):
-    """Each method's model and whether it is the reference's: the report's statement."""
+def models_of(methods, reference_method, material_params, per_model=None):
+    """Each method's model and whether its reference solves it: the report's statement.
+    per_model: {model: reference Method} when each method has its own model's reference."""
     ref_model = model_of(reference_method, material_params)[0] if reference_method else None
     out = []
     for m in methods:
         model, exact = model_of(m, material_params)
+        own = per_model.get(model) if per_model else None
         out.append(dict(name=m.label, model=model, words=MODEL_WORDS.get(model, model), exact=exact,
-                        same_as_reference=ref_model is None or model == ref_model))
-    return dict(reference=ref_model, reference_words=MODEL_WORDS.get(ref_model, ref_model), methods=out)
+                        reference=own.label if own else None,
+                        same_as_reference=own is not None or ref_model is None or model == ref_model))
+    return dict(reference=ref_model, reference_words=MODEL_WORDS.get(ref_model, ref_model), methods=out,
+                per_model=bool(per_model) and len(set(per_model)) > 1)
 
 
 # ---------------------------------------------------------------------------- rendering
@@ -232,14 +229,16 @@ class Study:
         self.render(scene, seed=0, spp=1)
         return time.perf_counter() - t0
 
-    def reference(self, log):
-        """The reference image, its label, details and own noise (when rendered)."""
+    def reference(self, log, method=None):
+        """The reference image, its label, details and own noise (when rendered with
+        `method`, default --reference-method)."""
         a = self.args
+        method = method or a.reference_method
         if a.reference:
             img = dermis.read_image(a.reference)
             return dict(image=img, label=a.reference, details=f"read from {a.reference}", noise_rmse=None,
                         noise_mask_rmse=None)
-        scene = self.scene(a.reference_method)
+        scene = self.scene(method)
         self.warm_up(scene)
         halves, stats = [], []
         for seed in REFERENCE_SEEDS:
@@ -252,10 +251,10 @@ class Study:
         # The halves are independent: E (h1 - h2)^2 = 2 var(h), var(mean of 2) = var(h) / 2.
         ref_var = (halves[0] - halves[1]) ** 2 / 4
         spp = sum(s["samples"] for s in stats) / (ref.shape[0] * ref.shape[1])
-        details = (f"{a.reference_method.label}, two independent halves (seeds {REFERENCE_SEEDS[0]}, "
+        details = (f"{method.label}, two independent halves (seeds {REFERENCE_SEEDS[0]}, "
                    f"{REFERENCE_SEEDS[1]}) of {a.reference_time / 2:g} s wall each: {spp:.0f} spp in all, "
                    f"{sum(s['seconds'] for s in stats):.1f} s wall, {sum(s['cpu_seconds'] for s in stats):.1f} s CPU")
-        return dict(image=ref.astype(np.float32), var=ref_var, label=f"{a.reference_method.label}, {spp:.0f} spp",
+        return dict(image=ref.astype(np.float32), var=ref_var, label=f"{method.label}, {spp:.0f} spp",
                     details=details, stats=stats)
 
     def errors(self, img, ref, mask):
@@ -316,24 +315,32 @@ class Study:
         # The material's parameters as written (its boundary), before any method is applied.
         original = dermis.load_scene(a.scene)
         material_params = original.materials[original.subsurface_materials[0]]["parameters"]
-        if not a.reference and a.reference_method is None:
-            a.reference_method = default_reference_method(a.methods, material_params)
-            log(f"reference method: {a.reference_method.label} (the model the methods share, or volumetric)")
+        # Each method against the reference of its own model: one reference per model the
+        # methods solve unless the user chose one (--reference, --reference-method).
+        models = list(dict.fromkeys(model_of(m, material_params)[0] for m in a.methods))
+        per_model = not a.reference and a.reference_method is None
+        if per_model:
+            reference_methods = {k: Method(UNBIASED_METHOD.get(k, "volumetric")) for k in models}
+            a.reference_method = reference_methods[models[0]]
+            log("reference method(s): " + ", ".join(f"{r.label} ({k})" for k, r in reference_methods.items()))
         self.pixels = W * H
         mask = np.asarray(dermis.subsurface_mask(base), dtype=bool)
         n = len(a.methods) * a.repeats * sum(a.budgets) / (self.threads if a.cpu_time else 1)
-        ref_t = 0 if a.reference else a.reference_time
+        ref_t = 0 if a.reference else a.reference_time * (len(models) if per_model else 1)
         log(f"{W}x{H} pixels, {len(a.methods)} methods x {a.repeats} repeats x budgets "
             f"{','.join(f'{b:g}' for b in a.budgets)} s ({'CPU' if a.cpu_time else 'wall'}): about "
             f"{n + ref_t:.0f} s of rendering (wall)")
-        ref = self.reference(log)
-        if ref["image"].shape[:2] != (H, W):
-            raise ValueError(f"the reference is {ref['image'].shape[1]}x{ref['image'].shape[0]} pixels, the study "
-                             f"renders {W}x{H}: give --res {ref['image'].shape[1]}x{ref['image'].shape[0]}")
-        if "var" in ref:  # the reference's own noise (RMSE of the averaged halves)
-            ref["noise_rmse"] = float(np.sqrt(ref["var"].mean()))
-            ref["noise_mask_rmse"] = float(np.sqrt(ref["var"][mask].mean())) if mask.any() else float("nan")
-        methods = [self.run_method(m, ref, mask, log) for m in a.methods]
+        refs = {k: self.reference(log, reference_methods[k]) for k in models} if per_model else {}
+        ref = refs[models[0]] if per_model else self.reference(log)
+        for r in list(refs.values()) + [ref]:
+            if r["image"].shape[:2] != (H, W):
+                raise ValueError(f"the reference is {r['image'].shape[1]}x{r['image'].shape[0]} pixels, the study "
+                                 f"renders {W}x{H}: give --res {r['image'].shape[1]}x{r['image'].shape[0]}")
+            if "var" in r:  # the reference's own noise (RMSE of the averaged halves)
+                r["noise_rmse"] = float(np.sqrt(r["var"].mean()))
+                r["noise_mask_rmse"] = float(np.sqrt(r["var"][mask].mean())) if mask.any() else float("nan")
+        methods = [self.run_method(m, refs.get(model_of(m, material_params)[0], ref), mask, log)
+                   for m in a.methods]
         notes = [f"{m['name']}: {sum(r['nonfinite'] for r in m['runs'])} non-finite samples (dropped)"
                  for m in methods if any(r["nonfinite"] for r in m["runs"])]
         notes += [f"{m['name']}: {sum(r['truncated'] for r in m['runs'])} paths cut short (truncated)"
@@ -346,7 +353,10 @@ class Study:
         return dict(title=f"Dermis study: {os.path.basename(a.scene)}", scene=a.scene,
                     cost="cpu" if a.cpu_time else "wall", budgets=a.budgets, main_budget=a.time, repeats=a.repeats,
                     resolution=(W, H), threads=self.threads, mask=mask, reference=ref, methods=methods,
-                    models=models_of(a.methods, None if a.reference else a.reference_method, material_params),
+                    models=models_of(a.methods, None if a.reference else a.reference_method, material_params,
+                                     reference_methods if per_model else None),
+                    other_references=[dict(model=k, label=refs[k]["label"], details=refs[k]["details"],
+                                           noise_rmse=refs[k].get("noise_rmse")) for k in models[1:]] if per_model else [],
                     command=a.command, settings=settings, version=dermis.__version__, commit=_git_commit(),
                     machine=machine(self.threads), date=datetime.datetime.now().astimezone().strftime(
                         "%Y-%m-%d %H:%M %Z"), total_seconds=time.time() - t0, notes=notes)

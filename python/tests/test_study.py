@@ -253,9 +253,10 @@ def test_the_default_reference_solves_the_methods_model():
     assert study.model_of(walk, plain) == ("diffuse", True)
     assert study.model_of(walk, {"boundary": "dielectric"}) == ("dielectric", True)  # the material's
     assert study.model_of(disk, plain) == ("diffuse", False)
-    assert study.default_reference_method([walk, disk], plain).label == "randomwalk:boundary=diffuse"
-    assert study.default_reference_method([dielectric_walk, vol], plain).label == "volumetric"
-    assert study.default_reference_method([walk, vol], plain).label == "volumetric"  # models differ
+    assert study.model_of(dielectric_walk, plain) == study.model_of(vol, plain) == ("dielectric", True)
+    assert study.UNBIASED_METHOD["diffuse"] == "randomwalk:boundary=diffuse"
+    assert study.UNBIASED_METHOD["dielectric"] == "volumetric"
+    # One reference for both (the user's choice): the walk's bias^2 holds the model difference.
     models = study.models_of([walk, vol], study.Method("volumetric"), plain)
     assert [m["same_as_reference"] for m in models["methods"]] == [False, True]
     from dermis import report
@@ -264,3 +265,17 @@ def test_the_default_reference_solves_the_methods_model():
     text, differs = report.models_statement({"models": study.models_of([walk, disk], study.Method(
         "randomwalk:boundary=diffuse"), plain)})
     assert not differs and "approximated by a diffusion profile" in text
+
+
+def test_methods_of_different_models_each_get_their_models_reference(tiny, tmp_path):
+    rc = study.main([str(tiny), "--methods", "randomwalk,volumetric", "--time", "0.2", "--budgets", "0.2",
+                     "--repeats", "2", "--reference-time", "0.4", "--threads", "2", "--out", str(tmp_path)])
+    assert rc == 0
+    data = json.loads((tmp_path / "study.json").read_text())
+    models = data["models"]
+    assert models["per_model"] and [m["model"] for m in models["methods"]] == ["diffuse", "dielectric"]
+    assert [m["reference"] for m in models["methods"]] == ["randomwalk:boundary=diffuse", "volumetric"]
+    assert "randomwalk:boundary=diffuse" in data["reference"]["label"]
+    assert [r["model"] for r in data["other_references"]] == ["dielectric"]
+    assert "volumetric" in data["other_references"][0]["label"]
+    assert "each is measured against the reference of its own model" in (tmp_path / "index.html").read_text()
