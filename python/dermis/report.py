@@ -183,21 +183,28 @@ def models_statement(study):
 
 
 def reference_noise_warning(study, limit=0.1):
-    """A warning (text) when the rendered reference's own variance is above `limit` x the
-    smallest variance in the study (whole image or object), else None."""
+    """A warning (text) when a rendered reference's own variance is above `limit` x the
+    smallest variance measured against it (whole image or object), else None. Each method
+    is measured against its own reference (its model's; `reference_noise_rmse` in its
+    entry), else the study's."""
     ref = study["reference"]
-    if ref.get("noise_rmse") is None:
-        return None
     worst = None
-    for sfx, noise in (("", ref["noise_rmse"]), ("_mask", ref.get("noise_mask_rmse"))):
-        found = [(st["variance" + sfx], m["name"], st["budget"]) for m in study["methods"]
-                 for st in m.get("by_budget", []) if st.get("variance" + sfx) is not None and st["variance" + sfx] > 0]
-        if not found or noise is None or not noise == noise:
-            continue
-        smallest = min(found)
-        ratio = noise ** 2 / smallest[0]  # reference variance / smallest method variance
-        if ratio > limit and (worst is None or ratio > worst[0]):
-            worst = (ratio, noise ** 2, smallest, "the object" if sfx else "the whole image")
+    for sfx in ("", "_mask"):
+        for m in study["methods"]:
+            own = "reference_noise_rmse" in m  # the method's own reference (else the study's)
+            if (m["reference_noise_rmse"] if own else ref.get("noise_rmse")) is None:
+                continue  # a given reference: its noise is unknown
+            noise = m.get("reference_noise" + sfx + "_rmse") if own else ref.get("noise" + sfx + "_rmse")
+            if noise is None or not noise == noise:
+                continue
+            for st in m.get("by_budget", []):
+                var = st.get("variance" + sfx)
+                if var is None or var <= 0:
+                    continue
+                ratio = noise ** 2 / var  # reference variance / the method's variance
+                if ratio > limit and (worst is None or ratio > worst[0]):
+                    worst = (ratio, noise ** 2, (var, m["name"], st["budget"]), "the object" if sfx else
+                             "the whole image")
     if worst is None:
         return None
     ratio, ref_var, (var, name, budget), where = worst

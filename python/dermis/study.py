@@ -305,7 +305,8 @@ class Study:
                 f"bias² {repeats.format_bias2(by_budget[-1]['bias2'], by_budget[-1]['bias2_se'])}")
         emap, scale = dermis.error_map(shown, ref["image"])
         return dict(name=method.label, method=method.method, params=method.params, image=shown, error_map=emap,
-                    error_scale=scale, runs=runs, by_budget=by_budget, warmup_seconds=warmup)
+                    error_scale=scale, runs=runs, by_budget=by_budget, warmup_seconds=warmup,
+                    reference_noise_rmse=ref.get("noise_rmse"), reference_noise_mask_rmse=ref.get("noise_mask_rmse"))
 
     def run(self, log):
         a = self.args

@@ -137,6 +137,12 @@ def test_report_warns_of_a_noisy_reference():
     text = report.build_html(data)
     assert text.index("Warning") < text.index("<table>")  # above the table
     assert report.reference_noise_warning(make_synthetic_study(noise_stats=True)) is None
+    # Each method against its own model's reference: a noisy one warns, naming its method.
+    quiet = make_synthetic_study(noise_stats=True)
+    second = quiet["methods"][1]
+    second["reference_noise_rmse"], second["reference_noise_mask_rmse"] = 0.2, None
+    own = report.reference_noise_warning(quiet)
+    assert own and f"{second['name']} at" in own and "over the whole image" in own
     # A given reference (noise unknown): no warning.
     data["reference"]["noise_rmse"] = None
     assert report.reference_noise_warning(data) is None
