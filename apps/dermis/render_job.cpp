@@ -375,6 +375,12 @@ int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& gr
   fmt::print(stderr, "dermis: wrote {}{}{} in {:.3f} s ({:.2f} Mrays/s, {} samples)\n", out,
              ext == ".exr" && !a.no_png ? " and its .png" : "", maps_path.empty() ? "" : " and " + maps_path,
              r.seconds, mrays, r.samples);
+  if (!r.subsurface_choices.empty() && !a.quiet) {
+    fmt::print(stderr, "dermis: subsurface pilot ({:.2f} s of the render; Integrator \"bool subsurfacepilot\" false turns it off):\n",
+               r.pilot_seconds);
+    for (const SubsurfaceChoice& c : r.subsurface_choices)
+      fmt::print(stderr, "  {}\n", c.description);
+  }
   if (opt.adaptive.enabled() && !a.quiet) {
     const double pixels = double(r.sample_counts.size());
     fmt::print(stderr,

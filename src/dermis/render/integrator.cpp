@@ -465,6 +465,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           reflected.reflection_roulette = start.reflection_roulette;
           reflected.first_dimension = Sampler::region(resume, 0x5e1fu);
           reflected.split_budget = &split_budget;
+          reflected.subsurface_strategy = start.subsurface_strategy;
           L += beta * (F / q) * trace_path(sc, reflected_ray, medium, sampler, counters, reflected);
         }
         sampler.set_dimension(resume);
@@ -525,7 +526,11 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
         return light_through_lobe(at, sm.exit_lobe(at, table_at), smp);
       };
-      const SubsurfaceEntry entry{hit, wo, tracer, irradiance, interior_albedo, light_through, exit_light, refracted};
+      const SubsurfaceEntry entry{hit,       wo, tracer, irradiance, interior_albedo, light_through, exit_light,
+                                  refracted, start.subsurface_strategy};
+      const bool first_entry = start.from_camera && start.depth == 0 && depth == 1;
+      if (first_entry && start.subsurface_record && start.subsurface_record->material < 0)
+        start.subsurface_record->material = mat.subsurface;
       SubsurfaceExit ex;
       const bool exited = sample_subsurface_exit(sm, entry, sampler, ex);
       // Several exits, each from a sampler region of its own, their direct light averaged
@@ -535,7 +540,6 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       // on the skin-like sphere two exits halve the variance for 1.2-1.4x the render time.
       // At a later entry, as many as path splitting gives the path's throughput
       // (path_splitting.h): a heavy path's exit light split, not its way on.
-      const bool first_entry = start.from_camera && start.depth == 0 && depth == 1;
       const int exits = !sm.exits_through_lobe() ? 1
                         : first_entry            ? sc.settings.subsurface_samples
                                                  : split_count(beta, sc.settings.split_threshold, split_budget);
@@ -613,6 +617,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           copy.rough_glass_nee = start.rough_glass_nee;
           copy.reflection_emission = start.reflection_emission;
           copy.split_budget = &split_budget;
+          copy.subsurface_strategy = start.subsurface_strategy;
           L += beta_k * trace_path(sc, Ray{p_out, bk->wi}, medium, sampler, counters, copy);
         }
         sampler.restore(resume);
@@ -686,6 +691,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
             rs.reflection_emission = start.reflection_emission;
             rs.reflection_roulette = start.reflection_roulette;
             rs.first_dimension = Sampler::region(resume, 0x5e1fu);
+            rs.subsurface_strategy = start.subsurface_strategy;
             L += beta * reflected->weight * (F / q) * trace_path(sc, reflected_ray, medium, sampler, counters, rs);
           }
           sampler.set_dimension(resume);

@@ -37,6 +37,13 @@ inline constexpr uint32_t kStratifiedExitDimensions = 8;
 // for no measurable gain.
 inline constexpr uint64_t kStratifiedVertices = 6;
 
+// What a camera path's first subsurface entry was, for the render's pilot
+// (render/subsurface_pilot.h): filled by trace_path where PathStart::subsurface_record
+// points.
+struct SubsurfaceEntryRecord {
+  int material = -1;  // RenderScene::subsurface index; -1: the path entered no subsurface object
+};
+
 struct PathStart {
   bool from_camera = true;
   float prev_pdf = 0;
@@ -64,6 +71,11 @@ struct PathStart {
   // it cannot see a bright emitter, Russian roulette on its throughput F (tests turn it
   // off to compare with following it always).
   bool reflection_roulette = true;
+  // The render's pilot (render/subsurface_pilot.h): the subsurface sampling strategy of
+  // every entry (SubsurfaceEntry::strategy; -1: each material's own), and where to record
+  // the camera path's first entry (null: nowhere).
+  int subsurface_strategy = -1;
+  SubsurfaceEntryRecord* subsurface_record = nullptr;
   // The copies that path splitting may still add for this camera sample
   // (render/path_splitting.h), shared by the paths nested in it; null: a budget of its own.
   int* split_budget = nullptr;

@@ -13,6 +13,7 @@
 #include "dermis/render/adaptive_sampling.h"
 #include "dermis/render/film.h"
 #include "dermis/render/integrator.h"
+#include "dermis/render/subsurface_pilot.h"
 
 namespace dermis {
 
@@ -111,6 +112,23 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
   const int threads = opt.threads > 0 ? opt.threads : tbb::this_task_arena::max_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   tbb::task_arena arena(threads);
+
+  // The subsurface materials' strategies, measured before the image (subsurface_pilot.h):
+  // every process of a group, and a resumed render, makes the same choice.
+  if (subsurface_pilot_wanted(sc)) {
+    const auto pilot_start = Clock::now();
+    SubsurfacePilotOptions pilot;
+    pilot.seed = opt.seed;
+    pilot.spp = opt.spp;
+    pilot.bounds = bounds;
+    pilot.full_width = full_w;
+    pilot.cancel = opt.cancel;
+    arena.execute([&] { result.subsurface_choices = run_subsurface_pilot(sc, pilot); });
+    apply_subsurface_choices(sc, result.subsurface_choices);
+    result.pilot_seconds = std::chrono::duration<double>(Clock::now() - pilot_start).count();
+  } else {
+    apply_subsurface_choices(sc, {});
+  }
 
   // The passes. Up to min_spp (every pixel; without adaptive sampling, the whole count),
   // passes of 1, 1, 2, 4, ... samples per pixel (at most 16), so that an interrupt or the

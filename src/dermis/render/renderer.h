@@ -17,6 +17,7 @@
 #include "dermis/render/film.h"
 #include "dermis/render/process_group.h"
 #include "dermis/render/render_scene.h"
+#include "dermis/render/subsurface_pilot.h"
 
 namespace dermis {
 
@@ -75,6 +76,10 @@ struct RenderResult {
   // Seconds each process spent rendering its tiles, waits at pass boundaries excluded
   // (rank 0 only; one entry per process).
   std::vector<double> process_seconds;
+  // What the pilot chose per subsurface material (subsurface_pilot.h; empty without one),
+  // and the seconds it took (within `seconds`).
+  std::vector<SubsurfaceChoice> subsurface_choices;
+  double pilot_seconds = 0;
   bool interrupted = false;   // stopped by `cancel`
   bool time_limited = false;  // stopped by the time limit
 };

@@ -628,6 +628,7 @@ void SceneParser::integrator(const Token& d, TokenStream& ts) {
   s_.settings.max_depth = pl.get_int("maxdepth", s_.settings.max_depth);
   if (s_.settings.max_depth < 0) throw SceneError(pl.find("maxdepth")->value_loc, "maxdepth must not be negative");
   s_.settings.subsurface_samples = pl.get_int("subsurfacesamples", s_.settings.subsurface_samples);
+  s_.settings.subsurface_pilot = pl.get_bool("subsurfacepilot", s_.settings.subsurface_pilot);
   if (s_.settings.subsurface_samples < 1 || s_.settings.subsurface_samples > 64)
     throw SceneError(pl.find("subsurfacesamples")->value_loc,
                      fmt::format("subsurfacesamples must lie in [1, 64], got {}", s_.settings.subsurface_samples));

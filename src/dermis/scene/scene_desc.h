@@ -66,6 +66,9 @@ struct RenderSettingsDesc {
   // Exits sampled at the camera's first subsurface entry, their direct light averaged
   // (Dermis' "integer subsurfacesamples" of the Integrator; render/integrator.cpp).
   int subsurface_samples = 2;
+  // The render's pilot chooses each random-walk material's sampling strategy
+  // (render/subsurface_pilot.h; Dermis' "bool subsurfacepilot" of the Integrator).
+  bool subsurface_pilot = true;
   // Throughput above which a path is split at a subsurface exit (copies of its way on) and
   // at a later subsurface entry (exits averaged); 0: never (Dermis' "float splitthreshold"
   // of the Integrator; render/path_splitting.h).

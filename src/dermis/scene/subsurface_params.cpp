@@ -74,6 +74,8 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"boundary", "string", "diffuse", "random walk: how light leaves (diffuse, dielectric, matched)"},
     {"walksampling", "string", "mis", "random walk: classical, dwivedi or mis"},
     {"backwardguiding", "bool", "false", "random walk: also guide toward the object's far side"},
+    {"guidedshare", "float", "0.5", "random walk (mis): the share of guided flights, in [0, 1] (unset: the render's pilot chooses)"},
+    {"channelpreference", "float", "0.5", "random walk: the exponent k of the channel choice, throughput (1 - albedo)^-k, in [0, 8] (unset: the render's pilot chooses)"},
     {"albedoinversion", "string", "exact", "(reflectance, mfp) to coefficients: exact or fit"},
     {"pointdensity", "float", "1", "point cloud: points per mean free path squared (with the local disk: the most)"},
     {"illuminationerror", "float", "0.02", "point cloud with the local disk: the relative error to which the points must represent the irradiance (0: the density, up to maxpoints)"},
@@ -170,7 +172,7 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
     }
     else if (n == "method") s.method = lookup(kMethods, p, "subsurface method");
     else if (n == "boundary") s.boundary = lookup(kBoundaries, p, "boundary");
-    else if (n == "walksampling") s.walk_sampling = lookup(kWalkSamplings, p, "walk sampling");
+    else if (n == "walksampling") s.walk_sampling = lookup(kWalkSamplings, p, "walk sampling"), s.walk_sampling_given = true;
     else if (n == "epsilon") s.epsilon = read_float(p);
     else if (n == "albedoinversion") {
       if (p.param.strings.size() != 1 || (p.param.strings[0] != "exact" && p.param.strings[0] != "fit"))
@@ -184,6 +186,18 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
       s.illumination_error = e;
     }
     else if (n == "backwardguiding") s.backward_guiding = read_bool(p);
+    else if (n == "guidedshare") {
+      const float v = read_float(p);
+      if (!(v >= 0 && v <= 1)) throw SceneError(p.value_loc, "\"guidedshare\" must be in [0, 1]");
+      s.guided_share = v;
+      s.guided_share_given = true;
+    }
+    else if (n == "channelpreference") {
+      const float v = read_float(p);
+      if (!(v >= 0 && v <= 8)) throw SceneError(p.value_loc, "\"channelpreference\" must be in [0, 8]");
+      s.channel_preference = v;
+      s.channel_preference_given = true;
+    }
     else if (n == "localdisk") s.local_disk = read_bool(p);
     else if (n == "irradiancesamples") {
       const auto& v = p.param.numbers;

@@ -51,6 +51,15 @@ struct SubsurfaceParams {
   Profile profile = Profile::Burley;
   Boundary boundary = Boundary::Diffuse;
   WalkSampling walk_sampling = WalkSampling::Mis;
+  // `walksampling` was given: the render's pilot keeps it (and the default guided share).
+  bool walk_sampling_given = false;
+  // Random walk: the share of guided flights (walksampling mis) and the exponent k of the
+  // channel choice (sss/walk/walk_step.h); given, the render's pilot keeps them
+  // (render/subsurface_pilot.h), else it chooses among the walk's strategies.
+  float guided_share = 0.5f;
+  bool guided_share_given = false;
+  float channel_preference = 0.5f;
+  bool channel_preference_given = false;
   // Random walk: also guide toward the object's far side (sss/walk/random_walk.h).
   bool backward_guiding = false;
   // (reflectance, mfp) -> coefficients: the exact half-space table, or the van de Hulst

@@ -1,6 +1,8 @@
 #include "dermis/render/subsurface/walk_method.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "dermis/core/frame.h"
 #include "dermis/core/warp.h"
@@ -39,25 +41,40 @@ WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture
   medium_per_entry_ = textures_ && (params.textured() || (roughness_.textured() && !inversions_.single() &&
                                                           !inversions_.empty()));
   medium_ = walk_medium(coefficients_from(medium_at(params), inversions_, roughness_.constant().x), params.g);
-  settings_.sampling = walk_sampling(params.walk_sampling);
-  settings_.backward_guiding = params.backward_guiding;
-  step_ = std::make_unique<sss::MixtureWalkStep<3>>(sss::make_walk_step(medium_, settings_));
+  for (std::size_t i = 0; i < kWalkStrategies.size(); ++i) {
+    sss::WalkSettings& s = settings_[i];
+    s.sampling = walk_sampling(params.walk_sampling);
+    s.backward_guiding = params.backward_guiding;
+    s.p_guided = params.walk_sampling_given || params.guided_share_given ? params.guided_share
+                                                                          : kWalkStrategies[i].p_guided;
+    s.channel_preference =
+        params.channel_preference_given ? params.channel_preference : kWalkStrategies[i].channel_preference;
+    steps_.push_back(sss::make_walk_step(medium_, s));
+  }
+}
+
+void WalkMethod::set_strategy(int strategy) {
+  if (strategy < 0 || std::size_t(strategy) >= kWalkStrategies.size())
+    throw std::invalid_argument("walk: no sampling strategy " + std::to_string(strategy));
+  strategy_ = strategy;
 }
 
 bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
-  if (!medium_per_entry_) return walk(entry, *step_, sampler, out);
+  const int strategy = entry.strategy >= 0 ? entry.strategy : strategy_;
+  if (!medium_per_entry_) return walk(entry, strategy, steps_[std::size_t(strategy)], sampler, out);
   // The entry point's own medium.
   const sss::WalkMedium m = walk_medium(coefficients_from(medium_at(params_, textures_, texture_context(entry.hit)),
                                                           inversions_, roughness_.at(entry.hit).x),
                                         params_.g);
   for (int c = 0; c < 3; ++c)
     if (!(m.sigma_t[c] > 0) || !std::isfinite(m.sigma_t[c])) return false;  // a texture without extinction
-  return walk(entry, sss::make_walk_step(m, settings_), sampler, out);
+  return walk(entry, strategy, sss::make_walk_step(m, settings_[std::size_t(strategy)]), sampler, out);
 }
 
 // Entry and exit 1/eta^2 radiance factors cancel and are omitted.
-bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3>& step, Sampler& sampler,
-                      SubsurfaceExit& out) const {
+bool WalkMethod::walk(const SubsurfaceEntry& entry, int strategy, const sss::MixtureWalkStep<3>& step,
+                      Sampler& sampler, SubsurfaceExit& out) const {
+  const sss::WalkSettings& settings = settings_[std::size_t(strategy)];
   using Boundary = SubsurfaceParams::Boundary;
   const SurfaceHit& in = entry.hit;
   Vec3 dir;
@@ -86,11 +103,11 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3
     b.t = length(last.p - o);
     return b;
   };
-  const sss::WalkGuide guide = sss::make_walk_guide(settings_, in.p, in.ng, tracer);
+  const sss::WalkGuide guide = sss::make_walk_guide(settings, in.p, in.ng, tracer);
   RGB weight(1);
   for (int reflections = 0; reflections < kMaxInternalReflections; ++reflections) {
     sss::WalkResult res;
-    if (!sss::random_walk(step, settings_, guide, start, dir, sampler, tracer, res, weight)) {
+    if (!sss::random_walk(step, settings, guide, start, dir, sampler, tracer, res, weight)) {
       out.truncated = res.truncated;
       return false;
     }

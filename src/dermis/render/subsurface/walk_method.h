@@ -10,6 +10,7 @@
 // point the walk meets it (entry and exits); the albedo inversion takes the entry's.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -22,18 +23,41 @@
 
 namespace dermis {
 
+// The walk's sampling strategies, each unbiased (sss/walk/walk_step.h): the share of
+// Dwivedi-guided flights (WalkSettings::p_guided) and the exponent k of the channel choice
+// (WalkSettings::channel_preference). Which one renders a scene fastest at equal noise
+// depends on the scene (docs/results-vs-cycles.md: guiding toward the entry plane wins on
+// thick, dense objects and loses where light crosses a thin or translucent one; k = 1/2
+// wins on skin, k = 0 on a milk-like medium lit by the sky): the render's pilot
+// (render/subsurface_pilot.h) measures them and picks one per material. The first is
+// the default. The others have weights no more heavy-tailed than it (fewer guided flights,
+// the channel weights bounded by the throughput): a short pilot underestimates the variance
+// of a heavy-tailed estimator, so it may only choose ones it cannot flatter (measured:
+// a guided share of 3/4 was predicted 1.3-1.5x faster on the wax sphere of the family and
+// rendered 0.9x). A material whose `walksampling` is given keeps it, whatever the share.
+struct WalkStrategy {
+  float p_guided;
+  float channel_preference;
+};
+inline constexpr std::array<WalkStrategy, 4> kWalkStrategies{{{0.5f, 0.5f}, {0.0f, 0.5f}, {0.5f, 0.0f}, {0.0f, 0.0f}}};
+
 class WalkMethod {
  public:
   // textures: the scene's (outlives the method). Builds the albedo-inversion table the
   // parameters need (seconds the first time in a process; cached on disk).
   WalkMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures);
 
+  // With entry.strategy (an index into kWalkStrategies) >= 0 that strategy, else the
+  // material's own (set_strategy; the default until the pilot chose).
   bool sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const;
+
+  void set_strategy(int strategy);
+  int strategy() const { return strategy_; }
 
   const sss::WalkMedium& medium() const { return medium_; }
 
  private:
-  bool walk(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3>& step, Sampler& sampler,
+  bool walk(const SubsurfaceEntry& entry, int strategy, const sss::MixtureWalkStep<3>& step, Sampler& sampler,
             SubsurfaceExit& out) const;
 
   SubsurfaceParams params_;
@@ -46,8 +70,10 @@ class WalkMethod {
   // textured roughness that the albedo inversion depends on.
   bool medium_per_entry_ = false;
   sss::WalkMedium medium_;  // the constant parameters' medium
-  sss::WalkSettings settings_;
-  std::unique_ptr<sss::MixtureWalkStep<3>> step_;
+  // Per strategy (kWalkStrategies): the settings and the constant medium's step sampler.
+  std::array<sss::WalkSettings, kWalkStrategies.size()> settings_;
+  std::vector<sss::MixtureWalkStep<3>> steps_;
+  int strategy_ = 0;
 };
 
 }  // namespace dermis

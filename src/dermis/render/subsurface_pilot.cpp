@@ -1,0 +1,205 @@
+#include "dermis/render/subsurface_pilot.h"
+
+#include <fmt/format.h>
+#include <oneapi/tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "dermis/core/rng.h"
+#include "dermis/core/sampler.h"
+#include "dermis/render/integrator.h"
+
+namespace dermis {
+
+namespace {
+
+// The pilot takes about this share of the samples the render takes where a subsurface
+// object is in view, within the bounds below.
+constexpr double kPilotShare = 0.05;
+constexpr int64_t kPilotMinSamples = 4096, kPilotMaxSamples = 131072;
+// Pixels probed for a subsurface object in view (one camera ray each), at most.
+constexpr int64_t kPilotProbes = 262144;
+// Samples per pilot pixel: their difference gives the variance of one sample.
+constexpr int kPilotSamples = 2;
+
+// What the pilot's samples of one pixel did, for one strategy.
+struct PilotPixel {
+  std::array<int, kPilotSamples> material{-1, -1};
+  std::array<RGB, kPilotSamples> radiance{};
+  uint64_t rays = 0;
+  bool finite = true;
+};
+
+}  // namespace
+
+int best_strategy(const std::vector<StrategyMeasure>& measures, int64_t min_pixels, double sigmas) {
+  if (measures.empty()) return 0;
+  int best = 0;
+  for (std::size_t v = 0; v < measures.size(); ++v) {
+    if (measures[v].pixels < min_pixels) return 0;
+    if (measures[v].variance_cost() < measures[std::size_t(best)].variance_cost()) best = int(v);
+  }
+  const StrategyMeasure &d = measures[0], &b = measures[std::size_t(best)];
+  if (best == 0 || !(b.variance_cost() > 0)) return best;
+  const double log_gain = std::log(d.variance_cost() / b.variance_cost());
+  return log_gain > sigmas * b.log_ratio_se ? best : 0;
+}
+
+bool subsurface_pilot_wanted(const RenderScene& sc) {
+  if (!sc.settings.subsurface_pilot) return false;
+  for (const auto& m : sc.subsurface)
+    if (m && m->strategy_count() > 1) return true;
+  return false;
+}
+
+std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const SubsurfacePilotOptions& opt) {
+  int strategies = 1;
+  for (const auto& m : sc.subsurface)
+    if (m) strategies = std::max(strategies, m->strategy_count());
+
+  // The pixels whose centre sees a subsurface object (of at most kPilotProbes, evenly
+  // spaced in raster order): the pilot spends its samples there.
+  const int64_t rendered = int64_t(opt.bounds.width()) * opt.bounds.height();
+  const int64_t probes = std::min(rendered, kPilotProbes);
+  if (probes <= 0) return {};
+  std::vector<uint8_t> sees(std::size_t(probes), 0);
+  auto probe_pixel = [&](int64_t i) { return int64_t((double(i) + 0.5) * double(rendered) / double(probes)); };
+  tbb::parallel_for(int64_t(0), probes, [&](int64_t i) {
+    const int64_t index = probe_pixel(i);
+    const Vec2 centre{float(opt.bounds.x0 + index % opt.bounds.width()) + 0.5f,
+                      float(opt.bounds.y0 + index / opt.bounds.width()) + 0.5f};
+    SurfaceHit hit;
+    if (!sc.embree->intersect(sc.camera.generate_ray(centre, Vec2{0.5f, 0.5f}), hit)) return;
+    const int material = sc.shapes[std::size_t(hit.shape)].material;
+    sees[std::size_t(i)] = material >= 0 && sc.materials[std::size_t(material)].subsurface >= 0 ? 1 : 0;
+  });
+  std::vector<int64_t> candidates;
+  for (int64_t i = 0; i < probes; ++i)
+    if (sees[std::size_t(i)]) candidates.push_back(probe_pixel(i));
+  if (candidates.empty()) return {};
+
+  // The pilot's pixels: evenly spaced among those.
+  const double object_pixels = double(candidates.size()) * double(rendered) / double(probes);
+  const int64_t samples = std::clamp<int64_t>(int64_t(kPilotShare * double(opt.spp) * object_pixels),
+                                              kPilotMinSamples, kPilotMaxSamples);
+  const int64_t count =
+      std::clamp<int64_t>(samples / (int64_t(kPilotSamples) * strategies), 1, int64_t(candidates.size()));
+  std::vector<PilotPixel> pixels(std::size_t(count) * std::size_t(strategies));
+  FilterSampler filter(sc.film.filter);
+  const uint64_t pilot_seed = mix64(opt.seed ^ 0x5eb5a11f0ull);  // not the image's numbers
+
+  tbb::parallel_for(int64_t(0), count, [&](int64_t k) {
+    if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) return;
+    const int64_t index = candidates[std::size_t((double(k) + 0.5) * double(candidates.size()) / double(count))];
+    const int x = opt.bounds.x0 + int(index % opt.bounds.width()), y = opt.bounds.y0 + int(index / opt.bounds.width());
+    const uint64_t image_pixel = uint64_t(y) * uint64_t(opt.full_width) + uint64_t(x);
+    for (int v = 0; v < strategies; ++v) {
+      PilotPixel& out = pixels[std::size_t(k) * std::size_t(strategies) + std::size_t(v)];
+      PathCounters counters;
+      for (int s = 0; s < kPilotSamples; ++s) {
+        // The same numbers for every strategy: their differences are measured, not the draws'.
+        Sampler sampler(SamplerKind::Independent, pilot_seed, image_pixel, uint32_t(s));
+        const Vec2 offset = filter.sample(sampler.get2d());
+        const Vec2 film_pos{float(x) + 0.5f + offset.x, float(y) + 0.5f + offset.y};
+        const Ray ray = sc.camera.generate_ray(film_pos, sampler.get2d());
+        SubsurfaceEntryRecord record;
+        PathStart start;
+        start.subsurface_strategy = v;
+        start.subsurface_record = &record;
+        const RGB L = trace_path(sc, ray, sc.camera_medium, sampler, counters, start);
+        out.finite = out.finite && L.is_finite();
+        out.material[std::size_t(s)] = record.material;
+        out.radiance[std::size_t(s)] = L;
+      }
+      out.rays = counters.rays;
+    }
+  });
+  if (opt.cancel && opt.cancel->load()) return {};
+
+  // Per material and strategy, each pilot pixel's variance of one sample (R + G + B;
+  // negative: the pixel does not measure the material), and the sums in pixel order.
+  const std::size_t materials = sc.subsurface.size();
+  auto pixel_variance = [&](int64_t k, int v, std::size_t m) {
+    const PilotPixel& p = pixels[std::size_t(k) * std::size_t(strategies) + std::size_t(v)];
+    if (!p.finite || p.material[0] != int(m) || p.material[1] != int(m)) return -1.0;
+    double variance = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double d = double(p.radiance[0][c]) - double(p.radiance[1][c]);
+      variance += d * d / 2;  // the sample variance of two values
+    }
+    return variance;
+  };
+  std::vector<SubsurfaceChoice> choices;
+  for (std::size_t m = 0; m < materials; ++m) {
+    const SubsurfaceMaterial& sm = *sc.subsurface[m];
+    const int n_strategies = sm.strategy_count();
+    if (n_strategies < 2) continue;
+    std::vector<StrategyMeasure> e(static_cast<std::size_t>(n_strategies));
+    for (int v = 0; v < n_strategies; ++v) {
+      StrategyMeasure& s = e[std::size_t(v)];
+      double sum_rays = 0, sum = 0;
+      // Paired with the default: sums of a, b, a^2, b^2, ab over the pixels both measured.
+      double n = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+      for (int64_t k = 0; k < count; ++k) {
+        const double a = pixel_variance(k, v, m);
+        if (a < 0) continue;
+        ++s.pixels;
+        sum += a;
+        sum_rays += double(pixels[std::size_t(k) * std::size_t(strategies) + std::size_t(v)].rays) / kPilotSamples;
+        const double b = pixel_variance(k, 0, m);
+        if (b < 0) continue;
+        n += 1, sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b;
+      }
+      if (s.pixels == 0) continue;
+      s.variance = sum / double(s.pixels);
+      s.rays = sum_rays / double(s.pixels);
+      if (v > 0 && n > 1 && sa > 0 && sb > 0) {
+        // Delta method: var log(A/B) = (var a / A^2 + var b / B^2 - 2 cov(a, b) / (A B)) / n.
+        const double A = sa / n, B = sb / n;
+        const double var_a = saa / n - A * A, var_b = sbb / n - B * B, cov = sab / n - A * B;
+        s.log_ratio_se = std::sqrt(std::max(0.0, var_a / (A * A) + var_b / (B * B) - 2 * cov / (A * B)) / n);
+      } else if (v > 0) {
+        s.log_ratio_se = std::numeric_limits<double>::infinity();  // not comparable: keep the default
+      }
+    }
+    if (e[0].pixels < kMinPilotPixels) continue;
+    SubsurfaceChoice choice;
+    choice.material = int(m);
+    choice.strategy = best_strategy(e, kMinPilotPixels, kPilotSignificance);
+    const StrategyMeasure& chosen = e[std::size_t(choice.strategy)];
+    choice.pixels = int(chosen.pixels);
+    choice.gain = chosen.variance_cost() > 0 ? e[0].variance_cost() / chosen.variance_cost() : 1;
+    choice.gain_se = choice.gain * chosen.log_ratio_se;
+    choice.description = describe_subsurface_choice(sc, choice);
+    choices.push_back(choice);
+  }
+  return choices;
+}
+
+void apply_subsurface_choices(const RenderScene& sc, const std::vector<SubsurfaceChoice>& choices) {
+  for (const auto& m : sc.subsurface)
+    if (m) m->set_strategy(0);
+  for (const SubsurfaceChoice& c : choices) sc.subsurface[std::size_t(c.material)]->set_strategy(c.strategy);
+}
+
+std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceChoice& c) {
+  const SubsurfaceMaterial& m = *sc.subsurface[std::size_t(c.material)];
+  const WalkStrategy& w = kWalkStrategies[std::size_t(c.strategy)];
+  const SubsurfaceParams& p = m.params;
+  const bool share_given = p.walk_sampling_given || p.guided_share_given;
+  const std::string what = fmt::format(
+      "guided share {:g}{}, channel preference {:g}{}", share_given ? p.guided_share : w.p_guided,
+      share_given ? " (given)" : "", p.channel_preference_given ? p.channel_preference : w.channel_preference,
+      p.channel_preference_given ? " (given)" : "");
+  if (c.strategy == 0)
+    return fmt::format("material {} ({}): {} (the default: no other strategy is significantly faster on {} pilot "
+                       "pixels)",
+                       c.material, to_string(m.params.method), what, c.pixels);
+  return fmt::format("material {} ({}): {}; {:.2f}x the default's efficiency (+- {:.2f}, estimated on {} pilot pixels)",
+                     c.material, to_string(m.params.method), what, c.gain, c.gain_se, c.pixels);
+}
+
+}  // namespace dermis

@@ -1,0 +1,85 @@
+// The render's pilot for its random-walk materials: before the image, a few camera samples
+// measure each material's sampling strategies (the walk's kWalkStrategies: the share of
+// Dwivedi-guided flights and the channel choice), and each material takes the one with
+// the least variance x cost. Every strategy is unbiased, so the choice changes the noise
+// and the time, never the mean.
+//
+// Why: which strategy renders a scene fastest depends on the scene (docs/results-vs-cycles.md,
+// the scene family): guiding toward the entry plane wins on thick, dense objects and loses
+// where light crosses a thin one; k = 1/2 suits skin, k = 0 a milk-like medium under the
+// sky; no single setting wins everywhere. The pilot measures instead of guessing.
+//
+// Measured: per pilot pixel, two samples with the independent sampler (their difference
+// gives the variance of one sample, R + G + B), the same numbers for every strategy;
+// cost counted in rays traced, so that the choice is the same on every machine, thread
+// count and process count. A sample counts toward the material its camera path entered
+// first (pixels whose two samples disagree are left out). Deterministic: the pilot's
+// pixels, samples and sums are fixed, and the same in every process of a group; a resumed
+// render makes the same choice.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dermis/render/film.h"
+#include "dermis/render/render_scene.h"
+
+namespace dermis {
+
+// What the pilot measured of one strategy on one material.
+struct StrategyMeasure {
+  int64_t pixels = 0;     // pilot pixels whose samples both entered the material first
+  double variance = 0;    // of one camera sample, R + G + B
+  double rays = 0;        // per camera sample
+  // The standard error of log(variance / the default's variance), from the pixels both
+  // measured (paired: the strategies share their random numbers up to the walk, so
+  // their estimates' common noise cancels). 0 for the default itself.
+  double log_ratio_se = 0;
+  double variance_cost() const { return variance * rays; }  // the inverse of the efficiency
+};
+
+// The strategy with the least variance x cost, if its estimated gain over the default
+// (0) is significant: log(gain) above `sigmas` x log_ratio_se. The default where any
+// strategy was measured on fewer than min_pixels pixels.
+int best_strategy(const std::vector<StrategyMeasure>& measures, int64_t min_pixels, double sigmas);
+// Of the pilot's choice: a switch needs a gain this many standard errors above 1.
+inline constexpr double kPilotSignificance = 2;
+
+struct SubsurfaceChoice {
+  int material = -1;  // RenderScene::subsurface index
+  int strategy = 0;   // the walk's kWalkStrategies
+  int pixels = 0;     // pilot pixels that measured it
+  double gain = 1;    // estimated efficiency of the choice over the default's (strategy 0)
+  double gain_se = 0;  // its standard error
+  std::string description;  // for the user: describe_subsurface_choice
+};
+
+struct SubsurfacePilotOptions {
+  uint64_t seed = 0;
+  int spp = 16;                    // the render's: the pilot takes about 5% of its samples on subsurface objects
+  PixelBounds bounds{0, 0, 0, 0};  // the pixels rendered (the crop window)
+  int full_width = 0;              // of the image: pixel indices of the sampler
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+// A material's choice needs at least this many pilot pixels (else it keeps the default).
+inline constexpr int64_t kMinPilotPixels = 32;
+
+// Whether a material has strategies to choose from and the scene did not turn the pilot off.
+bool subsurface_pilot_wanted(const RenderScene& scene);
+
+// Measures and chooses (parallel over the pilot's pixels with the calling arena's
+// threads). Empty when cancelled or when no subsurface object is in view.
+std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& scene, const SubsurfacePilotOptions& options);
+
+// Gives each material its choice, the others the default (the scene's SubsurfaceMaterial
+// objects are updated).
+void apply_subsurface_choices(const RenderScene& scene, const std::vector<SubsurfaceChoice>& choices);
+
+// "material 1 (randomwalk): guided share 0, channel preference 0.5; 1.40x the default's
+// efficiency (estimated on 512 pilot pixels)".
+std::string describe_subsurface_choice(const RenderScene& scene, const SubsurfaceChoice& choice);
+
+}  // namespace dermis

@@ -1,0 +1,128 @@
+// The render's subsurface pilot: its decision rule, the strategies it chooses among
+// (each unbiased: the same picture within 4 standard errors), and its determinism.
+#include "dermis/render/subsurface_pilot.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "dermis/render/integrator.h"
+#include "dermis/render/renderer.h"
+#include "dermis/render/scene_preparation.h"
+#include "dermis/scene/parser.h"
+#include "support/lit_sphere_scene.h"
+#include "support/pixel_statistics.h"
+
+namespace dermis {
+namespace {
+
+StrategyMeasure measure(double variance, double rays, double log_ratio_se, int64_t pixels = 100) {
+  StrategyMeasure m;
+  m.pixels = pixels;
+  m.variance = variance;
+  m.rays = rays;
+  m.log_ratio_se = log_ratio_se;
+  return m;
+}
+
+TEST(SubsurfacePilot, ChoosesTheLeastVarianceTimesCostWhenSignificant) {
+  // variance x rays: 10, 8, 12, 5; the last is 2x the default, log 2 = 0.69 > 2 x 0.1.
+  const std::vector<StrategyMeasure> m{measure(1, 10, 0), measure(2, 4, 0.1), measure(1, 12, 0.1),
+                                       measure(0.5, 10, 0.1)};
+  EXPECT_EQ(best_strategy(m, 32, 2), 3);
+  // The same gain within its noise (standard error 0.4: 0.69 < 0.8) keeps the default.
+  std::vector<StrategyMeasure> noisy = m;
+  noisy[3].log_ratio_se = 0.4;
+  EXPECT_EQ(best_strategy(noisy, 32, 2), 0);
+  // So does a strategy measured on too few pixels, and a default that is best.
+  std::vector<StrategyMeasure> few = m;
+  few[1].pixels = 10;
+  EXPECT_EQ(best_strategy(few, 32, 2), 0);
+  EXPECT_EQ(best_strategy({measure(1, 1, 0), measure(1, 2, 0.01)}, 32, 2), 0);
+  // Not comparable (no paired pixels): the default.
+  EXPECT_EQ(best_strategy({measure(1, 10, 0), measure(0.1, 10, std::numeric_limits<double>::infinity())}, 32, 2),
+            0);
+}
+
+const std::string kMilk =
+    R"(Material "subsurface" "rgb reflectance" [0.95 0.9 0.75] "rgb mfp" [0.6 0.4 0.2] "float eta" 1.4)";
+
+std::string milk_sphere(const std::string& extra = "", const std::string& integrator = "") {
+  std::string header = testing::lit_sphere_header(16);
+  if (!integrator.empty()) {
+    const std::string line = "Integrator \"volpath\" \"integer maxdepth\" 100000";
+    header.replace(header.find(line), line.size(), line + " " + integrator);
+  }
+  return header + kMilk + extra + "\nShape \"sphere\"\n";
+}
+
+// Every strategy the pilot may choose renders the same picture as the default (each
+// flight's weight is f / q for the q it was drawn from: sss/walk/walk_step.h): 128
+// independent samples each, region means within 4 standard errors.
+TEST(SubsurfacePilot, EveryWalkStrategyGivesTheSameMean) {
+  Diagnostics diag;
+  auto sc = build_render_scene(parse_scene_string(milk_sphere()), diag);
+  PathStart by_default;
+  by_default.subsurface_strategy = 0;
+  const auto reference = testing::pixel_statistics(*sc, 128, 70, by_default);
+  for (int v = 1; v < int(kWalkStrategies.size()); ++v) {
+    SCOPED_TRACE(v);
+    PathStart start;
+    start.subsurface_strategy = v;
+    testing::expect_same_region_means(reference, testing::pixel_statistics(*sc, 128, 71 + v, start), 4, 4);
+  }
+  // And the parameters that pin a strategy are read as such.
+  testing::expect_same_picture(milk_sphere(" \"float guidedshare\" 0 \"float channelpreference\" 0"),
+                               milk_sphere(" \"float guidedshare\" 1 \"float channelpreference\" 2"), 128, 80);
+}
+
+// The pilot's choice is the same whatever the thread count, it is applied to the
+// material, and the image is the same bit for bit.
+TEST(SubsurfacePilot, ChoosesTheSameWhateverTheThreadCount) {
+  Diagnostics diag;
+  auto sc = build_render_scene(parse_scene_string(milk_sphere()), diag);
+  ASSERT_TRUE(subsurface_pilot_wanted(*sc));
+  RenderOptions o;
+  o.spp = 16;
+  o.seed = 5;
+  o.threads = 1;
+  const RenderResult a = render_image(*sc, o);
+  o.threads = 2;
+  const RenderResult b = render_image(*sc, o);
+  ASSERT_EQ(a.subsurface_choices.size(), 1u);
+  ASSERT_EQ(b.subsurface_choices.size(), 1u);
+  const SubsurfaceChoice &ca = a.subsurface_choices[0], &cb = b.subsurface_choices[0];
+  EXPECT_EQ(ca.material, 0);
+  EXPECT_EQ(ca.strategy, cb.strategy);
+  EXPECT_EQ(ca.pixels, cb.pixels);
+  EXPECT_EQ(ca.gain, cb.gain);
+  EXPECT_GE(ca.pixels, kMinPilotPixels);
+  EXPECT_EQ(sc->subsurface[0]->strategy(), ca.strategy);
+  EXPECT_NE(ca.description.find("material 0 (randomwalk)"), std::string::npos) << ca.description;
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  EXPECT_EQ(0, std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)));
+}
+
+TEST(SubsurfacePilot, TheSceneTurnsItOffOrPinsTheStrategy) {
+  Diagnostics diag;
+  auto off = build_render_scene(parse_scene_string(milk_sphere("", "\"bool subsurfacepilot\" false")), diag);
+  EXPECT_FALSE(off->settings.subsurface_pilot);
+  EXPECT_FALSE(subsurface_pilot_wanted(*off));
+  RenderOptions o;
+  o.spp = 2;
+  EXPECT_TRUE(render_image(*off, o).subsurface_choices.empty());
+  EXPECT_EQ(off->subsurface[0]->strategy(), 0);
+  // Both parameters given: nothing to choose.
+  auto pinned = build_render_scene(
+      parse_scene_string(milk_sphere(" \"float guidedshare\" 0 \"float channelpreference\" 0")), diag);
+  EXPECT_EQ(pinned->subsurface[0]->strategy_count(), 1);
+  EXPECT_FALSE(subsurface_pilot_wanted(*pinned));
+  // Out of range: refused with the parameter's position.
+  EXPECT_THROW(parse_scene_string(milk_sphere(" \"float guidedshare\" 1.5")), SceneError);
+  EXPECT_THROW(parse_scene_string(milk_sphere(" \"float channelpreference\" -1")), SceneError);
+}
+
+}  // namespace
+}  // namespace dermis
