@@ -68,3 +68,24 @@ def test_every_configuration_renders_in_dermis(name, tmp_path):
         assert p.returncode == 0, p.stderr
         assert "warning" not in p.stderr, p.stderr
         assert out.exists()
+
+
+def test_the_held_out_configurations_are_not_in_the_family_and_render(tmp_path):
+    import heldout  # noqa: E402
+    family = {tuple(c) for c in S.FAMILY_CONFIGS}
+    assert not family & {tuple(c) for c in heldout.HELDOUT_CONFIGS}
+    assert not set(heldout.HELDOUT_MATERIALS) & set(S.FAMILY_MATERIALS)
+    texts = heldout.heldout_scenes()
+    assert len(texts) == len(heldout.HELDOUT_CONFIGS)
+    assert {tuple(c) for c in S.FAMILY_CONFIGS} == family  # the family itself is left as it was
+    dermis = os.environ.get("DERMIS")
+    if not dermis:
+        pytest.skip("DERMIS (the dermis binary) not set")
+    for name, text in sorted(texts.items()):
+        path = tmp_path / f"{name}.pbrt"
+        path.write_text(text)
+        out = tmp_path / f"{name}.exr"
+        p = subprocess.run([dermis, "render", str(path), "--res", "16x12", "--spp", "1", "--threads", "1", "-q",
+                            "--no-png", "-o", str(out)], capture_output=True, text=True, timeout=120)
+        assert p.returncode == 0, p.stderr
+        assert out.exists()

@@ -155,6 +155,18 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
   py::array_t<uint64_t> pixel_rays({py::ssize_t(r.height), py::ssize_t(r.width)});
   std::copy(r.pixel_rays.begin(), r.pixel_rays.end(), pixel_rays.mutable_data());
   st["pixel_rays"] = pixel_rays;
+  py::list choices;
+  for (const SubsurfaceChoice& c : r.subsurface_choices) {
+    py::dict d;
+    d["material"] = c.material;
+    d["strategy"] = c.strategy;
+    d["gain"] = c.gain;
+    d["gain_se"] = c.gain_se;
+    d["pixels"] = c.pixels;
+    d["description"] = c.description;
+    choices.append(d);
+  }
+  st["subsurface_choices"] = choices;
   if (error) {
     if (!error->matches(PyExc_KeyboardInterrupt)) throw *error;
     py::object e = py::reinterpret_borrow<py::object>(g_render_interrupted)(
@@ -200,7 +212,9 @@ stats: also return a dict (image, stats): seconds (wall), cpu_seconds (this proc
   sample_counts (uint32 array (height, width)), noise_error (float32 array: each
   pixel's estimated error, the standard error over the square root of the value; inf
   with fewer than 2 samples), converged_pixels, pixel_rays (uint64 array: the rays each
-  pixel traced).
+  pixel traced), subsurface_choices (the render's subsurface pilot, one dict per
+  random-walk material it measured: material, strategy, gain, gain_se, pixels,
+  description; docs/rendering.md "The subsurface pilot").
 noise_threshold: adaptive sampling (default: the scene's Sampler "noisethreshold"; 0: off):
   pixels stop once their estimated error (the standard error over the square root of the
   value, as Cycles: 0.01 is 1% of white), and their neighbours', is below it;

@@ -112,6 +112,10 @@ def test_progress_and_stats(dermis_module, sphere_scene):
     assert stats["samples"] == 24 * 18 * 3 and stats["min_spp"] == stats["max_spp"] == 3
     assert stats["seconds"] > 0 and stats["cpu_seconds"] > 0 and stats["rays"] > 0
     assert not stats["interrupted"] and not stats["time_limited"]
+    # The subsurface pilot measured the walk's strategies on the sphere.
+    (choice,) = stats["subsurface_choices"]
+    assert choice["material"] == 0 and choice["pixels"] >= 32 and choice["gain"] >= 1
+    assert "randomwalk" in choice["description"]
 
 
 def test_adaptive_sampling_equals_the_command_line_and_reports_its_maps(dermis_module, sphere_scene, dermis_binary,
