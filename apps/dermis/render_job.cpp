@@ -376,7 +376,7 @@ int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& gr
              ext == ".exr" && !a.no_png ? " and its .png" : "", maps_path.empty() ? "" : " and " + maps_path,
              r.seconds, mrays, r.samples);
   if (!r.subsurface_choices.empty() && !a.quiet) {
-    fmt::print(stderr, "dermis: subsurface pilot ({:.2f} s of the render; Integrator \"bool subsurfacepilot\" false turns it off):\n",
+    fmt::print(stderr, "dermis: subsurface pilot ({:.3f} s of the render; Integrator \"bool subsurfacepilot\" false turns it off):\n",
                r.pilot_seconds);
     for (const SubsurfaceChoice& c : r.subsurface_choices)
       fmt::print(stderr, "  {}\n", c.description);

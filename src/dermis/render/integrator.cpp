@@ -465,7 +465,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           reflected.reflection_roulette = start.reflection_roulette;
           reflected.first_dimension = Sampler::region(resume, 0x5e1fu);
           reflected.split_budget = &split_budget;
-          reflected.subsurface_strategy = start.subsurface_strategy;
+          reflected.subsurface_strategies = start.subsurface_strategies;
           L += beta * (F / q) * trace_path(sc, reflected_ray, medium, sampler, counters, reflected);
         }
         sampler.set_dimension(resume);
@@ -526,8 +526,9 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
         return light_through_lobe(at, sm.exit_lobe(at, table_at), smp);
       };
-      const SubsurfaceEntry entry{hit,       wo, tracer, irradiance, interior_albedo, light_through, exit_light,
-                                  refracted, start.subsurface_strategy};
+      const int strategy = start.subsurface_strategies ? (*start.subsurface_strategies)[std::size_t(mat.subsurface)] : 0;
+      const SubsurfaceEntry entry{hit,       wo,        tracer, irradiance, interior_albedo, light_through,
+                                  exit_light, refracted, strategy};
       const bool first_entry = start.from_camera && start.depth == 0 && depth == 1;
       if (first_entry && start.subsurface_record && start.subsurface_record->material < 0)
         start.subsurface_record->material = mat.subsurface;
@@ -617,7 +618,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           copy.rough_glass_nee = start.rough_glass_nee;
           copy.reflection_emission = start.reflection_emission;
           copy.split_budget = &split_budget;
-          copy.subsurface_strategy = start.subsurface_strategy;
+          copy.subsurface_strategies = start.subsurface_strategies;
           L += beta_k * trace_path(sc, Ray{p_out, bk->wi}, medium, sampler, counters, copy);
         }
         sampler.restore(resume);
@@ -691,7 +692,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
             rs.reflection_emission = start.reflection_emission;
             rs.reflection_roulette = start.reflection_roulette;
             rs.first_dimension = Sampler::region(resume, 0x5e1fu);
-            rs.subsurface_strategy = start.subsurface_strategy;
+            rs.subsurface_strategies = start.subsurface_strategies;
             L += beta * reflected->weight * (F / q) * trace_path(sc, reflected_ray, medium, sampler, counters, rs);
           }
           sampler.set_dimension(resume);

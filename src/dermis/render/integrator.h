@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "dermis/core/rgb.h"
 #include "dermis/core/sampler.h"
@@ -71,10 +72,11 @@ struct PathStart {
   // it cannot see a bright emitter, Russian roulette on its throughput F (tests turn it
   // off to compare with following it always).
   bool reflection_roulette = true;
-  // The render's pilot (render/subsurface_pilot.h): the subsurface sampling strategy of
-  // every entry (SubsurfaceEntry::strategy; -1: each material's own), and where to record
-  // the camera path's first entry (null: nowhere).
-  int subsurface_strategy = -1;
+  // The sampling strategy of each subsurface material (SubsurfaceEntry::strategy, by
+  // RenderScene::subsurface index; null: every material's default, 0): the render's pilot
+  // chooses them (render/subsurface_pilot.h) and tries each. Where the pilot records the
+  // camera path's first entry (null: nowhere).
+  const std::vector<int>* subsurface_strategies = nullptr;
   SubsurfaceEntryRecord* subsurface_record = nullptr;
   // The copies that path splitting may still add for this camera sample
   // (render/path_splitting.h), shared by the paths nested in it; null: a budget of its own.

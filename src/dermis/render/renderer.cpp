@@ -70,6 +70,11 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
     return opt.time_limit > 0 && std::chrono::duration<double>(Clock::now() - start).count() >= opt.time_limit;
   };
 
+  // The camera paths: each subsurface material with its strategy (the pilot's, below).
+  std::vector<int> strategies;
+  PathStart camera_path;
+  camera_path.subsurface_strategies = &strategies;
+
   // Each pixel of the tile, from the samples it has up to its target, in sample order.
   auto render_tile = [&](const Tile& t) {
     PathCounters counters;
@@ -90,7 +95,7 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
           Vec2 offset = filter.sample(sampler.get2d());  // dimensions 0, 1
           Vec2 film_pos{float(image_x) + 0.5f + offset.x, float(image_y) + 0.5f + offset.y};
           Ray ray = sc.camera.generate_ray(film_pos, sampler.get2d());  // 2, 3: the lens
-          RGB L = trace_path(sc, ray, sc.camera_medium, sampler, counters);
+          RGB L = trace_path(sc, ray, sc.camera_medium, sampler, counters, camera_path);
           if (!L.is_finite()) {
             ++bad;  // never reaches the film: counted as a zero sample and reported
             continue;
@@ -124,11 +129,9 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
     pilot.full_width = full_w;
     pilot.cancel = opt.cancel;
     arena.execute([&] { result.subsurface_choices = run_subsurface_pilot(sc, pilot); });
-    apply_subsurface_choices(sc, result.subsurface_choices);
     result.pilot_seconds = std::chrono::duration<double>(Clock::now() - pilot_start).count();
-  } else {
-    apply_subsurface_choices(sc, {});
   }
+  strategies = subsurface_strategies(sc, result.subsurface_choices);
 
   // The passes. Up to min_spp (every pixel; without adaptive sampling, the whole count),
   // passes of 1, 1, 2, 4, ... samples per pixel (at most 16), so that an interrupt or the

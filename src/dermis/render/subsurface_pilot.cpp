@@ -19,7 +19,7 @@ namespace {
 // The pilot takes about this share of the samples the render takes where a subsurface
 // object is in view, within the bounds below.
 constexpr double kPilotShare = 0.05;
-constexpr int64_t kPilotMinSamples = 4096, kPilotMaxSamples = 131072;
+constexpr int64_t kPilotMinSamples = 1024, kPilotMaxSamples = 131072;
 // Pixels probed for a subsurface object in view (one camera ray each), at most.
 constexpr int64_t kPilotProbes = 262144;
 // Samples per pilot pixel: their difference gives the variance of one sample.
@@ -90,6 +90,8 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
   std::vector<PilotPixel> pixels(std::size_t(count) * std::size_t(strategies));
   FilterSampler filter(sc.film.filter);
   const uint64_t pilot_seed = mix64(opt.seed ^ 0x5eb5a11f0ull);  // not the image's numbers
+  std::vector<std::vector<int>> every_material;  // strategy v for every material
+  for (int v = 0; v < strategies; ++v) every_material.emplace_back(sc.subsurface.size(), v);
 
   tbb::parallel_for(int64_t(0), count, [&](int64_t k) {
     if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) return;
@@ -98,6 +100,7 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
     const uint64_t image_pixel = uint64_t(y) * uint64_t(opt.full_width) + uint64_t(x);
     for (int v = 0; v < strategies; ++v) {
       PilotPixel& out = pixels[std::size_t(k) * std::size_t(strategies) + std::size_t(v)];
+      const std::vector<int>& all_v = every_material[std::size_t(v)];
       PathCounters counters;
       for (int s = 0; s < kPilotSamples; ++s) {
         // The same numbers for every strategy: their differences are measured, not the draws'.
@@ -107,7 +110,7 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
         const Ray ray = sc.camera.generate_ray(film_pos, sampler.get2d());
         SubsurfaceEntryRecord record;
         PathStart start;
-        start.subsurface_strategy = v;
+        start.subsurface_strategies = &all_v;
         start.subsurface_record = &record;
         const RGB L = trace_path(sc, ray, sc.camera_medium, sampler, counters, start);
         out.finite = out.finite && L.is_finite();
@@ -179,10 +182,10 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
   return choices;
 }
 
-void apply_subsurface_choices(const RenderScene& sc, const std::vector<SubsurfaceChoice>& choices) {
-  for (const auto& m : sc.subsurface)
-    if (m) m->set_strategy(0);
-  for (const SubsurfaceChoice& c : choices) sc.subsurface[std::size_t(c.material)]->set_strategy(c.strategy);
+std::vector<int> subsurface_strategies(const RenderScene& sc, const std::vector<SubsurfaceChoice>& choices) {
+  std::vector<int> strategies(sc.subsurface.size(), 0);
+  for (const SubsurfaceChoice& c : choices) strategies[std::size_t(c.material)] = c.strategy;
+  return strategies;
 }
 
 std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceChoice& c) {

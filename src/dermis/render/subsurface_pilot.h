@@ -74,9 +74,9 @@ bool subsurface_pilot_wanted(const RenderScene& scene);
 // threads). Empty when cancelled or when no subsurface object is in view.
 std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& scene, const SubsurfacePilotOptions& options);
 
-// Gives each material its choice, the others the default (the scene's SubsurfaceMaterial
-// objects are updated).
-void apply_subsurface_choices(const RenderScene& scene, const std::vector<SubsurfaceChoice>& choices);
+// The strategy of each material (PathStart::subsurface_strategies): its choice, else the
+// default (0).
+std::vector<int> subsurface_strategies(const RenderScene& scene, const std::vector<SubsurfaceChoice>& choices);
 
 // "material 1 (randomwalk): guided share 0, channel preference 0.5; 1.40x the default's
 // efficiency (estimated on 512 pilot pixels)".

@@ -64,13 +64,12 @@ std::string milk_sphere(const std::string& extra = "", const std::string& integr
 TEST(SubsurfacePilot, EveryWalkStrategyGivesTheSameMean) {
   Diagnostics diag;
   auto sc = build_render_scene(parse_scene_string(milk_sphere()), diag);
-  PathStart by_default;
-  by_default.subsurface_strategy = 0;
-  const auto reference = testing::pixel_statistics(*sc, 128, 70, by_default);
+  const auto reference = testing::pixel_statistics(*sc, 128, 70);  // the default, strategy 0
   for (int v = 1; v < int(kWalkStrategies.size()); ++v) {
     SCOPED_TRACE(v);
+    const std::vector<int> strategies{v};
     PathStart start;
-    start.subsurface_strategy = v;
+    start.subsurface_strategies = &strategies;
     testing::expect_same_region_means(reference, testing::pixel_statistics(*sc, 128, 71 + v, start), 4, 4);
   }
   // And the parameters that pin a strategy are read as such.
@@ -99,7 +98,7 @@ TEST(SubsurfacePilot, ChoosesTheSameWhateverTheThreadCount) {
   EXPECT_EQ(ca.pixels, cb.pixels);
   EXPECT_EQ(ca.gain, cb.gain);
   EXPECT_GE(ca.pixels, kMinPilotPixels);
-  EXPECT_EQ(sc->subsurface[0]->strategy(), ca.strategy);
+  EXPECT_EQ(subsurface_strategies(*sc, a.subsurface_choices), std::vector<int>{ca.strategy});
   EXPECT_NE(ca.description.find("material 0 (randomwalk)"), std::string::npos) << ca.description;
   ASSERT_EQ(a.rgb.size(), b.rgb.size());
   EXPECT_EQ(0, std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)));
@@ -112,8 +111,9 @@ TEST(SubsurfacePilot, TheSceneTurnsItOffOrPinsTheStrategy) {
   EXPECT_FALSE(subsurface_pilot_wanted(*off));
   RenderOptions o;
   o.spp = 2;
-  EXPECT_TRUE(render_image(*off, o).subsurface_choices.empty());
-  EXPECT_EQ(off->subsurface[0]->strategy(), 0);
+  const RenderResult r = render_image(*off, o);
+  EXPECT_TRUE(r.subsurface_choices.empty());
+  EXPECT_EQ(subsurface_strategies(*off, r.subsurface_choices), std::vector<int>{0});
   // Both parameters given: nothing to choose.
   auto pinned = build_render_scene(
       parse_scene_string(milk_sphere(" \"float guidedshare\" 0 \"float channelpreference\" 0")), diag);

@@ -74,9 +74,9 @@ struct SubsurfaceEntry {
   // The direction the path took into the medium when the integrator sampled a rough
   // entry; unset for a smooth one (the method refracts wo itself).
   std::optional<Vec3> refracted = {};
-  // The method's sampling strategy for this entry (the walk's kWalkStrategies), -1: the
-  // material's own. The render's pilot (render/subsurface_pilot.h) tries each.
-  int strategy = -1;
+  // The method's sampling strategy for this entry (the walk's kWalkStrategies; 0 the
+  // default), chosen per material by the render's pilot (render/subsurface_pilot.h).
+  int strategy = 0;
 };
 
 }  // namespace dermis

@@ -42,19 +42,12 @@ struct SubsurfaceMaterial {
   std::optional<RoughExitTable> exit_table;
   // A textured roughness: the tables at alpha nodes, blended at each exit point.
   std::shared_ptr<const RoughExitTables> exit_tables;
-  // The method's sampling strategies (the walk's kWalkStrategies; one for the others),
-  // and the one the material uses (set by the render's pilot).
+  // The method's sampling strategies that differ (SubsurfaceEntry::strategy: the walk's
+  // kWalkStrategies, unless its parameters pin one; one for the other methods).
   int strategy_count() const {
     if (!std::holds_alternative<WalkMethod>(method)) return 1;
     const bool share_given = params.walk_sampling_given || params.guided_share_given;
     return share_given && params.channel_preference_given ? 1 : int(kWalkStrategies.size());
-  }
-  void set_strategy(int strategy) {
-    if (auto* walk = std::get_if<WalkMethod>(&method)) walk->set_strategy(strategy);
-  }
-  int strategy() const {
-    const auto* walk = std::get_if<WalkMethod>(&method);
-    return walk ? walk->strategy() : 0;
   }
 
   // Its exits leave through the exit lobe Sw (SubsurfaceExit::Kind::ThroughLobe): the probe

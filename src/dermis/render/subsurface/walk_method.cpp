@@ -1,8 +1,6 @@
 #include "dermis/render/subsurface/walk_method.h"
 
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 #include "dermis/core/frame.h"
 #include "dermis/core/warp.h"
@@ -53,28 +51,21 @@ WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture
   }
 }
 
-void WalkMethod::set_strategy(int strategy) {
-  if (strategy < 0 || std::size_t(strategy) >= kWalkStrategies.size())
-    throw std::invalid_argument("walk: no sampling strategy " + std::to_string(strategy));
-  strategy_ = strategy;
-}
-
 bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
-  const int strategy = entry.strategy >= 0 ? entry.strategy : strategy_;
-  if (!medium_per_entry_) return walk(entry, strategy, steps_[std::size_t(strategy)], sampler, out);
+  const std::size_t strategy = std::size_t(entry.strategy) < kWalkStrategies.size() ? std::size_t(entry.strategy) : 0;
+  if (!medium_per_entry_) return walk(entry, settings_[strategy], steps_[strategy], sampler, out);
   // The entry point's own medium.
   const sss::WalkMedium m = walk_medium(coefficients_from(medium_at(params_, textures_, texture_context(entry.hit)),
                                                           inversions_, roughness_.at(entry.hit).x),
                                         params_.g);
   for (int c = 0; c < 3; ++c)
     if (!(m.sigma_t[c] > 0) || !std::isfinite(m.sigma_t[c])) return false;  // a texture without extinction
-  return walk(entry, strategy, sss::make_walk_step(m, settings_[std::size_t(strategy)]), sampler, out);
+  return walk(entry, settings_[strategy], sss::make_walk_step(m, settings_[strategy]), sampler, out);
 }
 
 // Entry and exit 1/eta^2 radiance factors cancel and are omitted.
-bool WalkMethod::walk(const SubsurfaceEntry& entry, int strategy, const sss::MixtureWalkStep<3>& step,
-                      Sampler& sampler, SubsurfaceExit& out) const {
-  const sss::WalkSettings& settings = settings_[std::size_t(strategy)];
+bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& settings,
+                      const sss::MixtureWalkStep<3>& step, Sampler& sampler, SubsurfaceExit& out) const {
   using Boundary = SubsurfaceParams::Boundary;
   const SurfaceHit& in = entry.hit;
   Vec3 dir;

@@ -47,18 +47,14 @@ class WalkMethod {
   // parameters need (seconds the first time in a process; cached on disk).
   WalkMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures);
 
-  // With entry.strategy (an index into kWalkStrategies) >= 0 that strategy, else the
-  // material's own (set_strategy; the default until the pilot chose).
+  // With the strategy entry.strategy (an index into kWalkStrategies; 0 the default).
   bool sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const;
-
-  void set_strategy(int strategy);
-  int strategy() const { return strategy_; }
 
   const sss::WalkMedium& medium() const { return medium_; }
 
  private:
-  bool walk(const SubsurfaceEntry& entry, int strategy, const sss::MixtureWalkStep<3>& step, Sampler& sampler,
-            SubsurfaceExit& out) const;
+  bool walk(const SubsurfaceEntry& entry, const sss::WalkSettings& settings, const sss::MixtureWalkStep<3>& step,
+            Sampler& sampler, SubsurfaceExit& out) const;
 
   SubsurfaceParams params_;
   const std::vector<Texture>* textures_;
@@ -73,7 +69,6 @@ class WalkMethod {
   // Per strategy (kWalkStrategies): the settings and the constant medium's step sampler.
   std::array<sss::WalkSettings, kWalkStrategies.size()> settings_;
   std::vector<sss::MixtureWalkStep<3>> steps_;
-  int strategy_ = 0;
 };
 
 }  // namespace dermis
