@@ -237,6 +237,39 @@ TEST_F(Cli, ResumeFromACheckpointIsBitIdentical) {
   EXPECT_NE(garbage.output.find("not a Dermis checkpoint"), std::string::npos) << garbage.output;
 }
 
+// --subsurface gives every subsurface material the parameters: `pbrt-v4` renders the
+// scene as if its material named the photon-beam profile and the disk probes (the same
+// image bit for bit); text that does not parse is refused at its column, status 2, no image.
+TEST_F(Cli, SubsurfaceOptionSetsEveryMaterialsMethod) {
+  const std::string head = R"(
+LookAt 0 0 -4  0 0 0  0 1 0
+Camera "perspective" "float fov" 40
+Film "rgb" "integer xresolution" 16 "integer yresolution" 16
+Sampler "independent" "integer pixelsamples" 2
+WorldBegin
+LightSource "infinite" "rgb L" [0.5 0.5 0.5]
+)";
+  const std::string plain = write("plain.pbrt", head + R"(Material "subsurface" "rgb reflectance" [0.8 0.5 0.3] "rgb mfp" [0.2 0.1 0.05]
+Shape "sphere" "float radius" 1
+)");
+  const std::string named = write("named.pbrt", head + R"(Material "subsurface" "rgb reflectance" [0.8 0.5 0.3] "rgb mfp" [0.2 0.1 0.05] "string method" "disk" "string profile" "photonbeam"
+Shape "sphere" "float radius" 1
+)");
+  ASSERT_EQ(run_dermis("render " + plain + " -q --seed 3 --subsurface pbrt-v4 -o " + path("a.exr")).status, 0);
+  ASSERT_EQ(run_dermis("render " + named + " -q --seed 3 -o " + path("b.exr")).status, 0);
+  ASSERT_EQ(run_dermis("render " + plain + " -q --seed 3 -o " + path("c.exr")).status, 0);
+  const dermis::Image a = dermis::read_image(path("a.exr")), b = dermis::read_image(path("b.exr")),
+                      c = dermis::read_image(path("c.exr"));
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)));
+  EXPECT_NE(0, std::memcmp(a.pixels.data(), c.pixels.data(), a.pixels.size() * sizeof(float)));  // the walk's
+
+  const CommandResult bad = run_dermis("render " + plain + " -q --subsurface '\"string method\" \"nope\"' -o " + path("d.exr"));
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--subsurface:1:"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(path("d.exr")));
+}
+
 TEST_F(Cli, MissingSceneIsAnErrorWithStatus2) {
   CommandResult r = run_dermis("render " + path("nope.pbrt") + " -o " + path("o.exr"));
   EXPECT_EQ(r.status, 2);

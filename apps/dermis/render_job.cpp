@@ -103,6 +103,10 @@ void add_render_options(CLI::App& cmd, RenderArgs& args) {
                  "with --noise-threshold, samples every pixel takes before any stops (default: the scene's Sampler "
                  "minpixelsamples, else max(16, sqrt(spp)) rounded up to a multiple of 16)")
       ->check(kPositive);
+  cmd.add_option("--subsurface", args.subsurface,
+                 "parameters for every subsurface material, as pbrt-v4 parameter text (e.g. '\"string method\" "
+                 "\"disk\"'), or pbrt-v4: its photon-beam-diffusion profile, sampled by disk probes, the picture "
+                 "pbrt-v4 gives the same file (docs/materials.md)");
   cmd.add_flag("--error-map", args.error_map,
                "write each pixel's sample count, estimated error and rays traced as the .exr's 'samples', 'error' and "
                "'rays' channels "
@@ -197,6 +201,13 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
     if (a.noise_threshold >= 0) desc.settings.noise_threshold = a.noise_threshold;
     if (a.min_spp > 0) desc.settings.min_spp = a.min_spp;
     if (!a.sampler.empty()) parse_sampler_kind(a.sampler, desc.settings.sampler);  // checked by CLI11
+    if (!a.subsurface.empty()) {
+      const std::string text = a.subsurface == "pbrt-v4" ? kPbrtV4Subsurface : a.subsurface;
+      for (std::size_t i = 0; i < desc.materials.size(); ++i)
+        if (desc.materials[i].type == MaterialDesc::Type::Subsurface)
+          for (auto& w : set_material_parameters(desc, i, text, "--subsurface"))
+            desc.diagnostics.warnings.push_back(std::move(w));
+    }
     if (root)
       for (const auto& w : desc.diagnostics.warnings) fmt::print(stderr, "{}\n", w);
     Diagnostics build_diag;

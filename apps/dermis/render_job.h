@@ -26,6 +26,9 @@ struct RenderArgs {
   double time_limit = 0;
   double noise_threshold = -1;  // negative: the scene's Sampler "noisethreshold" (0: off)
   int min_spp = 0;              // 0: the scene's, else the default
+  // Parameters given to every `subsurface` material, as pbrt-v4 parameter text, or
+  // "pbrt-v4" (kPbrtV4Subsurface): the file's own method otherwise.
+  std::string subsurface;
   bool error_map = false;       // write the samples and error channels (implied by adaptive sampling)
   bool quiet = false, no_png = false;
   int64_t points = 0;
@@ -34,6 +37,10 @@ struct RenderArgs {
   double checkpoint_interval = 60;
   FileAccessOptions file_access;  // --confine, --allow-path (scene/file_access.h)
 };
+
+// `--subsurface pbrt-v4`: the model pbrt-v4 renders a `subsurface` material with, its
+// tabulated photon-beam-diffusion profile sampled by disk projection (docs/materials.md).
+inline constexpr const char* kPbrtV4Subsurface = "\"string method\" \"disk\" \"string profile\" \"photonbeam\"";
 
 // Adds the options of `render` to a subcommand.
 void add_render_options(CLI::App& cmd, RenderArgs& args);

@@ -72,7 +72,7 @@ SCENES = os.path.join(HERE, "scenes")
 # The order of the table; scenes not listed follow in alphabetical order.
 ORDER = ["diffuse", "arealights", "envmap", "coateddiffuse", "coateddiffuse-grey", "conductor",
          "conductor-grey", "dielectric", "roughdielectric", "medium-interface",
-         "medium-dielectric", "sss-named", "sss-mfp", "sss-sigma", "sss-rough"]
+         "medium-dielectric", "sss-named", "sss-mfp", "sss-mfp-grey", "sss-mfp-scale", "sss-sigma", "sss-rough"]
 BLOCK = 16
 SIGMA_LIMIT = 5.0
 MEAN_LIMIT = 0.02
@@ -158,8 +158,9 @@ def warnings_of(text, renderer):
 
 
 class Renderer:
-    def __init__(self, name, binary, outdir, rerun):
+    def __init__(self, name, binary, outdir, rerun, extra=(), label=None):
         self.name, self.binary, self.outdir, self.rerun = name, binary, outdir, rerun
+        self.extra, self.label = list(extra), label or name  # Dermis: --subsurface TEXT
         self.stamp = binary_stamp(binary)
 
     def command(self, scene, spp, seed, threads, exr):
@@ -167,14 +168,14 @@ class Renderer:
             return [self.binary, "--nthreads", str(threads), "--spp", str(spp), "--seed",
                     str(seed), "--outfile", exr, scene]
         return [self.binary, "render", scene, "--threads", str(threads), "--spp", str(spp),
-                "--seed", str(seed), "--no-png", "-q", "-o", exr]
+                "--seed", str(seed), "--no-png", "-q", "-o", exr] + self.extra
 
     def render(self, scene, sstamp, spp, seed, threads, label=None, outname=None):
         """Renders (or reuses) one image: (image, render time in s, info dict)."""
         base = outname or os.path.splitext(os.path.basename(scene))[0]
         d = os.path.join(self.outdir, base)
         os.makedirs(d, exist_ok=True)
-        stem = os.path.join(d, f"{label or self.name}-spp{spp}-seed{seed}")
+        stem = os.path.join(d, f"{label or self.label}-spp{spp}-seed{seed}")
         exr, meta = stem + ".exr", stem + ".json"
         key = {"scene": sstamp, "binary": self.stamp, "spp": spp, "seed": seed,
                "threads": threads}
@@ -428,7 +429,7 @@ def exact_variant(scene, path):
 
 
 def verdict(r):
-    if r["subsurface"]:
+    if r["subsurface"] and not r.get("same_subsurface_model"):
         return "methods differ (PBD vs Dermis' walk)"
     ok = abs(r["rel"]) <= MEAN_LIMIT and r["blocks"]["over"] == 0
     return "meets targets" if ok else "**outside targets**"
@@ -507,6 +508,9 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "vs-pbrt-v4"))
     ap.add_argument("--quick", action="store_true", help="16 spp, 3 seeds, 128-spp references")
     ap.add_argument("--rerun", action="store_true", help="render again even where renders are kept")
+    ap.add_argument("--subsurface", default="",
+                    help="Dermis renders with `--subsurface TEXT` (e.g. pbrt-v4: pbrt-v4's photon-beam "
+                         "profile; the subsurface scenes are then held to the same targets as the others)")
     ap.add_argument("--no-exact-subsurface", dest="exact_subsurface", action="store_false",
                     help="skip Dermis' volumetric reference of the subsurface scenes")
     args = ap.parse_args()
@@ -538,7 +542,11 @@ def main():
 
     os.makedirs(args.out, exist_ok=True)
     pbrt = Renderer("pbrt", args.pbrt, args.out, args.rerun)
-    dermis = Renderer("dermis", args.dermis, args.out, args.rerun)
+    dermis = Renderer("dermis", args.dermis, args.out, args.rerun,
+                      extra=["--subsurface", args.subsurface] if args.subsurface else [],
+                      label="dermis-" + re.sub(r"[^A-Za-z0-9]+", "_", args.subsurface).strip("_")
+                      if args.subsurface else None)
+    dermis_plain = Renderer("dermis", args.dermis, args.out, args.rerun)  # the volumetric reference
     results = []
     t_start = time.perf_counter()
     for scene in scenes:
@@ -570,6 +578,7 @@ def main():
                 r["dermis"]["mse"] * r["dermis"]["cpu"])
         r.update({"name": name, "scene": os.path.relpath(scene, ROOT),
                   "feature": feature_of(scene), "subsurface": is_subsurface(scene),
+                  "same_subsurface_model": args.subsurface == "pbrt-v4",
                   "warnings": {"pbrt": sorted(set(sum((i["warnings"] for i in infos["pbrt"] + [pinfo]), []))),
                                "dermis": sorted(set(sum((i["warnings"] for i in infos["dermis"] + [dinfo]), [])))},
                   "resolution": list(P.shape[1:3][::-1])})
@@ -577,7 +586,7 @@ def main():
         if r["subsurface"] and args.exact_subsurface:
             vpath = os.path.join(args.out, name, "exact-volumetric.pbrt")
             if exact_variant(scene, vpath):
-                exact, _, _ = dermis.render(vpath, scene_stamp(vpath), args.reference_spp,
+                exact, _, _ = dermis_plain.render(vpath, scene_stamp(vpath), args.reference_spp,
                                                 REFERENCE_SEED, args.reference_threads,
                                                 label="dermis-volumetric", outname=name)
                 r["exact"] = {"scene": vpath, "mean": float(exact.mean()),
@@ -600,7 +609,8 @@ def main():
     settings = {"spp": args.spp, "seeds": args.seeds, "reference_spp": args.reference_spp,
                 "threads": args.threads, "reference_threads": args.reference_threads,
                 "pbrt": os.path.realpath(args.pbrt), "dermis": os.path.realpath(args.dermis),
-                "wall_s": time.perf_counter() - t_start, "block": BLOCK, "floor": args.floor}
+                "wall_s": time.perf_counter() - t_start, "block": BLOCK, "floor": args.floor,
+                "subsurface": args.subsurface}
     md = table(results, args)
     rt, et = region_table(results), exact_table(results)
     if rt:

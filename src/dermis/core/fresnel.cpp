@@ -6,8 +6,8 @@
 
 namespace dermis {
 
-double fresnel_moment1(double eta) {
-  // Below the critical cosine mu_c (only when eta < 1) F = 1: that part is mu_c^2 / 2.
+double fresnel_moment(int i, double eta) {
+  // Below the critical cosine mu_c (only when eta < 1) F = 1: that part is mu_c^(i+1) / (i+1).
   const double mu_c = eta < 1.0 ? std::sqrt(1.0 - eta * eta) : 0.0;
   // On [mu_c, 1], mu = mu_c + (1 - mu_c) s^2, dmu = 2 (1 - mu_c) s ds, makes F(mu)
   // smooth in s (F has a square-root branch point at mu_c).
@@ -16,10 +16,12 @@ double fresnel_moment1(double eta) {
   for (size_t j = 0; j < rule.nodes.size(); ++j) {
     const double s = rule.nodes[j];
     const double mu = mu_c + (1.0 - mu_c) * s * s;
-    sum += rule.weights[j] * fresnel_dielectric(mu, eta) * mu * 2.0 * (1.0 - mu_c) * s;
+    sum += rule.weights[j] * fresnel_dielectric(mu, eta) * std::pow(mu, i) * 2.0 * (1.0 - mu_c) * s;
   }
-  return mu_c * mu_c / 2 + sum;
+  return std::pow(mu_c, i + 1) / (i + 1) + sum;
 }
+
+double fresnel_moment1(double eta) { return fresnel_moment(1, eta); }
 
 double fresnel_diffuse_reflectance(double eta) { return 2 * fresnel_moment1(eta); }
 

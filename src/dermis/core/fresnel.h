@@ -50,6 +50,9 @@ inline float fresnel_dielectric(float cos_i, float eta) { return fresnel_dielect
 // the substitution mu = mu_c + (1 - mu_c) s^2, which removes F's square-root branch point
 // at the critical cosine mu_c = sqrt(1 - eta^2) (eta < 1; below it F = 1 exactly).
 double fresnel_moment1(double eta);
+// The i-th moment FM_i(eta) = int_0^1 F(mu, eta) mu^i dmu (i >= 0; d'Eon & Irving 2011,
+// eq. 7), by the same quadrature; fresnel_moment1(eta) = fresnel_moment(1, eta).
+double fresnel_moment(int i, double eta);
 
 // Hemispherical reflectance of the interface for diffuse (Lambertian) incident light:
 // 2 FM1(eta) = 2 int_0^1 F(mu, eta) mu dmu.

@@ -118,6 +118,24 @@ TEST(FresnelMoment, DiffuseReflectanceIsTwiceTheFirstMoment) {
   }
 }
 
+// The second moment against a fine midpoint sum of its definition, on both sides of the
+// interface (with total internal reflection for eta < 1), and the zeroth moment at
+// eta = 1 (no reflection) and its totally reflected share mu_c for eta < 1.
+TEST(FresnelMoment, SecondMomentMatchesItsDefinition) {
+  for (double eta : {0.6, 1 / 1.33, 1.33, 1.5}) {
+    const int n = 2000000;
+    double midpoint = 0;
+    for (int k = 0; k < n; ++k) {
+      const double mu = (k + 0.5) / n;
+      midpoint += fresnel_dielectric(mu, eta) * mu * mu / n;
+    }
+    EXPECT_NEAR(fresnel_moment(2, eta), midpoint, 1e-7) << eta;
+  }
+  EXPECT_EQ(fresnel_moment(1, 1.4), fresnel_moment1(1.4));
+  EXPECT_NEAR(fresnel_moment(0, 1.0), 0.0, 1e-12);  // F(mu, 1) is rounding
+  EXPECT_GT(fresnel_moment(0, 0.75), std::sqrt(1 - 0.75 * 0.75));
+}
+
 // ---- conductors ----
 
 TEST(FresnelConductor, WithoutAbsorptionIsADielectric) {

@@ -31,7 +31,7 @@ constexpr Named<SubsurfaceParams::Profile> kProfiles[] = {
     {"gaussian", SubsurfaceParams::Profile::Gaussian}, {"skin6", SubsurfaceParams::Profile::Skin6},
     {"cubic", SubsurfaceParams::Profile::Cubic},       {"dipole", SubsurfaceParams::Profile::Dipole},
     {"burley", SubsurfaceParams::Profile::Burley},     {"burley-dmfp", SubsurfaceParams::Profile::BurleyDiffuseMfp},
-    {"tabulated", SubsurfaceParams::Profile::Tabulated},
+    {"tabulated", SubsurfaceParams::Profile::Tabulated}, {"photonbeam", SubsurfaceParams::Profile::PhotonBeam},
 };
 constexpr Named<SubsurfaceParams::Boundary> kBoundaries[] = {
     {"diffuse", SubsurfaceParams::Boundary::Diffuse},
@@ -62,7 +62,7 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"sigma_a", "rgb | texture", "0.0011 0.0024 0.014", "absorption coefficient per scene unit"},
     {"sigma_s", "rgb | texture", "2.55 3.21 3.77", "scattering coefficient per scene unit"},
     {"name", "string", "none", "a measured medium of Jensen et al. 2001, Table 2 (per mm)"},
-    {"scale", "float", "1", "multiplies the coefficients, divides mfp (or a float texture: per entry point)"},
+    {"scale", "float", "1", "multiplies the coefficients and mfp, as pbrt-v4 does (or a float texture: per entry point)"},
     {"eta", "float", "1.33", "index of refraction of the boundary, in [1, 3]"},
     {"g", "float", "0", "Henyey-Greenstein anisotropy, in (-1, 1)"},
     {"roughness", "float", "0", "Trowbridge-Reitz roughness of the boundary (both tangent axes; or a float texture)"},
@@ -291,7 +291,8 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
       if (l[c] <= 0) throw SceneError(mfp->value_loc, "subsurface: \"mfp\" must be positive");
     }
     s.reflectance = a;
-    s.mfp = l / scale;  // pbrt-v4: scale multiplies coefficients, so it divides lengths
+    // pbrt-v4 multiplies mfp by scale too (SubsurfaceMaterial::GetBSSRDF: mfree = scale * mfp).
+    s.mfp = l * scale;
   } else {
     // pbrt-v4's defaults when nothing is given: whole milk, per scene unit.
     RGB sa(0.0011f, 0.0024f, 0.014f), ss(2.55f, 3.21f, 3.77f);

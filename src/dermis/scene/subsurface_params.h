@@ -20,7 +20,7 @@ struct ParsedParam;
 
 struct SubsurfaceParams {
   enum class Method { Volumetric, Disk, DiskSingleAxis, SphereLines, SphereLinesRetry, RandomWalk, PointCloud };
-  enum class Profile { Gaussian, Skin6, Cubic, Dipole, Burley, BurleyDiffuseMfp, Tabulated };
+  enum class Profile { Gaussian, Skin6, Cubic, Dipole, Burley, BurleyDiffuseMfp, Tabulated, PhotonBeam };
   enum class Boundary { Diffuse, Dielectric, Matched };
   enum class WalkSampling { Classical, Dwivedi, Mis };
 
@@ -33,7 +33,7 @@ struct SubsurfaceParams {
   // number per material (e.g. the point spacing of a point cloud).
   int sigma_a_texture = -1, sigma_s_texture = -1, reflectance_texture = -1, mfp_texture = -1;
   // A float texture for `scale` (-1: none): at each entry point it multiplies the
-  // coefficients and divides the lengths (mfp, the Skin6 profile's mm) on top of `scale`
+  // coefficients and mfp (as pbrt-v4) and divides the Skin6 profile's mm, on top of `scale`
   // below, which is then 1.
   int scale_texture = -1;
   float eta = 1.33f;

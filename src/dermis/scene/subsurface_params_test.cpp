@@ -94,10 +94,11 @@ TEST(SubsurfaceParams, PresetNameUsesJensenTableTimesScale) {
   EXPECT_NEAR((*p.sigma_a)[2], 0.24f, 1e-6);
 }
 
-TEST(SubsurfaceParams, ReflectanceAndMfpAreScaledLengths) {
+// pbrt-v4 multiplies mfp by scale as it does the coefficients (materials.h, GetBSSRDF).
+TEST(SubsurfaceParams, ScaleMultipliesMfpAsInPbrtV4) {
   SubsurfaceParams p = params_of("Material \"subsurface\" \"rgb reflectance\" [0.8 0.5 0.2] \"rgb mfp\" [1 2 4] \"float scale\" 2");
   ASSERT_TRUE(p.reflectance && p.mfp);
-  EXPECT_EQ(*p.mfp, RGB(0.5f, 1, 2));
+  EXPECT_EQ(*p.mfp, RGB(2, 4, 8));
 }
 
 TEST(SubsurfaceParams, BadInputIsAnErrorAtItsLocation) {

@@ -125,7 +125,7 @@ std::unique_ptr<sss::AlbedoInversion> shared_table(const sss::AlbedoTableConfig&
 MediumAt medium_at(const SubsurfaceParams& p, const std::vector<Texture>* textures, const TextureContext& at) {
   MediumAt m{p.sigma_a, p.sigma_s, p.reflectance, p.mfp, p.scale};
   if (!textures || !p.textured()) return m;
-  // Lengths are divided by scale, coefficients multiplied (pbrt-v4), as for constants.
+  // Coefficients and mfp are multiplied by scale (pbrt-v4), as for constants.
   auto texture = [&](int index, float factor, float lo, float hi) {
     RGB v = evaluate_texture(*textures, index, at) * factor;
     for (int c = 0; c < 3; ++c) v[c] = std::clamp(std::isfinite(v[c]) ? v[c] : lo, lo, hi);
@@ -133,16 +133,16 @@ MediumAt medium_at(const SubsurfaceParams& p, const std::vector<Texture>* textur
   };
   constexpr float kTiny = 1e-6f, kHuge = 1e30f;
   if (p.reflectance_texture >= 0) m.reflectance = texture(p.reflectance_texture, 1, 0, 1);
-  if (p.mfp_texture >= 0) m.mfp = texture(p.mfp_texture, 1 / p.scale, kTiny, kHuge);
+  if (p.mfp_texture >= 0) m.mfp = texture(p.mfp_texture, p.scale, kTiny, kHuge);
   if (p.sigma_a_texture >= 0) m.sigma_a = texture(p.sigma_a_texture, p.scale, 0, kHuge);
   if (p.sigma_s_texture >= 0) m.sigma_s = texture(p.sigma_s_texture, p.scale, 0, kHuge);
   if (p.scale_texture >= 0) {
-    // On top of the constant scale (1 when textured): coefficients times s, lengths over s.
+    // On top of the constant scale (1 when textured): coefficients and mfp times s.
     const float s = texture(p.scale_texture, 1, kTiny, kHuge)[0];
     m.scale *= s;
     if (m.sigma_a) *m.sigma_a = *m.sigma_a * s;
     if (m.sigma_s) *m.sigma_s = *m.sigma_s * s;
-    if (m.mfp) *m.mfp = *m.mfp / s;
+    if (m.mfp) *m.mfp = *m.mfp * s;
   }
   return m;
 }

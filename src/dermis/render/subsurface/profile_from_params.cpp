@@ -1,15 +1,62 @@
 #include "dermis/render/subsurface/profile_from_params.h"
 
 #include <cmath>
+#include <algorithm>
+#include <map>
 #include <memory>
+#include <mutex>
+#include <utility>
+
+#include "dermis/sss/profiles/photon_beam_diffusion.h"
 
 
 namespace dermis {
 
+namespace {
+
+// The photon-beam-diffusion table of one (g, eta), made once per process (about a second
+// on two cores) and shared by every material with these parameters.
+std::shared_ptr<const sss::ProfileTable> photon_beam_table(float g, float eta) {
+  static std::mutex mutex;
+  static std::map<std::pair<float, float>, std::shared_ptr<const sss::ProfileTable>> tables;
+  const std::lock_guard lock(mutex);
+  auto& table = tables[{g, eta}];
+  if (!table)
+    table = std::make_shared<const sss::ProfileTable>(sss::photon_beam_family(g, eta), sss::photon_beam_table_options());
+  return table;
+}
+
+// pbrt-v4's parameterisation of the photon-beam table: per channel the single-scattering
+// albedo rho and the mean free path 1 / sigma_t, from the coefficients or from
+// (reflectance, mfp), the reflectance inverted through the table's effective albedo
+// rho_eff(rho) (PBR 3rd ed. sec. 15.5.6, SubsurfaceFromDiffuse) and mfp = 1 / sigma_t.
+sss::ProfileRGB photon_beam_profile(const MediumAt& at, const std::shared_ptr<const sss::ProfileTable>& table) {
+  RGB rho, l;
+  const double lo = table->albedos().front(), hi = table->albedos().back();
+  for (int c = 0; c < 3; ++c) {
+    double rho_c, l_c;
+    if (at.sigma_a) {
+      const double sigma_t = double((*at.sigma_a)[c]) + (*at.sigma_s)[c];
+      rho_c = sigma_t > 0 ? (*at.sigma_s)[c] / sigma_t : 0;
+      l_c = sigma_t > 0 ? 1 / sigma_t : 1e30;
+    } else {
+      rho_c = table->albedo_for_energy((*at.reflectance)[c]);
+      l_c = (*at.mfp)[c];
+    }
+    rho[c] = float(std::clamp(rho_c, lo, hi));  // outside the table's nodes: its first or last
+    l[c] = float(l_c);
+  }
+  return sss::make_tabulated_rgb(table, rho, l);
+}
+
+}  // namespace
+
 std::shared_ptr<const sss::ProfileTable> profile_table(const SubsurfaceParams& p) {
   // The Cycles page's table: the (A, r/l) reparameterised dipole, at this eta.
-  if (p.profile != SubsurfaceParams::Profile::Tabulated) return nullptr;
-  return std::make_shared<const sss::ProfileTable>(sss::dipole_family(p.eta));
+  if (p.profile == SubsurfaceParams::Profile::Tabulated)
+    return std::make_shared<const sss::ProfileTable>(sss::dipole_family(p.eta));
+  if (p.profile == SubsurfaceParams::Profile::PhotonBeam) return photon_beam_table(p.g, p.eta);
+  return nullptr;
 }
 
 sss::ProfileRGB make_profile(const SubsurfaceParams& p, const MediumAt& at,
@@ -43,6 +90,8 @@ sss::ProfileRGB make_profile(const SubsurfaceParams& p, const MediumAt& at,
       return sss::make_skin_rgb(1.0 / at.scale, at.reflectance ? *at.reflectance : RGB(1.0f));
     case Profile::Tabulated:
       return sss::make_tabulated_rgb(table, A, l);
+    case Profile::PhotonBeam:
+      return photon_beam_profile(at, table);
   }
   return sss::make_burley_rgb(A, l);
 }

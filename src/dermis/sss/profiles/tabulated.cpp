@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <tbb/parallel_for.h>
+
 #include "dermis/sss/profiles/gaussian.h"
 #include "dermis/sss/profiles/quadrature.h"
 
@@ -89,7 +91,9 @@ ProfileTable::ProfileTable(const ProfileFamily& family, ProfileTableOptions opti
   source_energy_.resize(nodes);
   log_shape_.resize(std::size_t(nodes) * n_);
   cdf_.resize(std::size_t(nodes) * (n_ + 1));
-  for (int j = 0; j < nodes; ++j) {
+  // The nodes are independent (each writes its own rows): built in parallel, the same
+  // table whatever the thread count.
+  tbb::parallel_for(0, nodes, [&](int j) {
     const RadialFunction f = family(albedos_[j]);
     const SourceSummary s = summarise(f);
     const double scale = s.median;
@@ -107,7 +111,7 @@ ProfileTable::ProfileTable(const ProfileFamily& family, ProfileTableOptions opti
       const double value = scale * scale * f(x_[k] * scale) / energy_[j];
       log_shape_[std::size_t(j) * n_ + (k - 1)] = value > 0 ? std::max(std::log(value), kLogFloor) : kLogFloor;
     }
-  }
+  });
 }
 
 ProfileTable::Lookup ProfileTable::lookup(double albedo) const {
@@ -137,6 +141,17 @@ ProfileTable::Lookup ProfileTable::lookup(double albedo) const {
   q.scale = std::exp(log_scale);
   q.energy = energy;
   return q;
+}
+
+double ProfileTable::albedo_for_energy(double energy) const {
+  double lo = albedos_.front(), hi = albedos_.back();
+  if (!(energy > lookup(lo).energy)) return lo;
+  if (!(energy < lookup(hi).energy)) return hi;
+  for (int it = 0; it < 100 && hi - lo > 1e-15; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (lookup(mid).energy < energy ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
 int ProfileTable::cell_of(double x) const {

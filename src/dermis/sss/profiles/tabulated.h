@@ -67,6 +67,11 @@ class ProfileTable {
   // Radius inside which the sampled distribution keeps the given fraction.
   double r_max(const Lookup& q, double energy_fraction) const;
 
+  // The albedo A whose interpolated table energy (lookup(A).energy) is `energy`, by
+  // bisection (the energy rises with A): a surface albedo inverted to the family's
+  // parameter. Clamped to the first or last node outside their energies.
+  double albedo_for_energy(double energy) const;
+
   const std::vector<double>& albedos() const { return albedos_; }
   // Energy the table keeps at node j, divided by the source's energy over [0, inf).
   double kept_fraction(int node) const { return energy_[node] / source_energy_[node]; }
