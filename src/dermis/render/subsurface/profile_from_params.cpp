@@ -14,8 +14,8 @@ namespace dermis {
 
 namespace {
 
-// The photon-beam-diffusion table of one (g, eta), made once per process (about a second
-// on two cores) and shared by every material with these parameters.
+// The photon-beam-diffusion table of one (g, eta), made once per process (about 1.4 s
+// of CPU) and shared by every material with these parameters.
 std::shared_ptr<const sss::ProfileTable> photon_beam_table(float g, float eta) {
   static std::mutex mutex;
   static std::map<std::pair<float, float>, std::shared_ptr<const sss::ProfileTable>> tables;

@@ -144,12 +144,31 @@ ProfileTable::Lookup ProfileTable::lookup(double albedo) const {
 }
 
 double ProfileTable::albedo_for_energy(double energy) const {
-  double lo = albedos_.front(), hi = albedos_.back();
-  if (!(energy > lookup(lo).energy)) return lo;
-  if (!(energy < lookup(hi).energy)) return hi;
-  for (int it = 0; it < 100 && hi - lo > 1e-15; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (lookup(mid).energy < energy ? lo : hi) = mid;
+  if (!(energy > energy_.front())) return albedos_.front();
+  if (!(energy < energy_.back())) return albedos_.back();
+  // The node interval first (the node energies are the interpolant's values there), then
+  // the Illinois variant of regula falsi inside it (a few lookups per inversion: it runs
+  // at every entry point of a textured material).
+  const int j = int(std::upper_bound(energy_.begin(), energy_.end(), energy) - energy_.begin()) - 1;
+  double lo = albedos_[std::max(j, 0)], hi = albedos_[std::min(j + 1, int(albedos_.size()) - 1)];
+  double f_lo = energy_[std::max(j, 0)] - energy, f_hi = energy_[std::min(j + 1, int(albedos_.size()) - 1)] - energy;
+  const double tolerance = 1e-13 * (hi - lo);
+  int side = 0;
+  for (int it = 0; it < 60 && hi - lo > tolerance; ++it) {
+    double mid = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
+    const double f = lookup(mid).energy - energy;
+    if (f == 0) return mid;
+    if (f < 0) {
+      lo = mid, f_lo = f;
+      if (side == -1) f_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = mid, f_hi = f;
+      if (side == 1) f_lo *= 0.5;
+      side = 1;
+    }
+    if (std::abs(f) < 1e-14 * energy) return mid;
   }
   return 0.5 * (lo + hi);
 }
@@ -219,13 +238,19 @@ double ProfileTable::pdf_radius(const Lookup& q, double r) const {
 
 double ProfileTable::r_max(const Lookup& q, double energy_fraction) const {
   GaussianProfile::check_fraction(energy_fraction);
-  double lo = 0, hi = x_max_;
-  for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    const double f = (1 - q.t) * node_cdf(q.node, mid) + q.t * node_cdf(q.node + 1, mid);
-    (f < energy_fraction ? lo : hi) = mid;
+  // The mixture's CDF is piecewise linear on the radial nodes (so are both nodes'): the
+  // first node where it reaches the fraction, then the line through the cell before it.
+  const double* a = &cdf_[std::size_t(q.node) * (n_ + 1)];
+  const double* b = a + (n_ + 1);
+  auto mixed = [&](int k) { return (1 - q.t) * a[k] + q.t * b[k]; };
+  int lo = 0, hi = n_;  // mixed(hi) = 1 >= the fraction
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    (mixed(mid) < energy_fraction ? lo : hi) = mid;
   }
-  return hi * q.scale;
+  if (mixed(lo) >= energy_fraction) return 0;
+  const double f0 = mixed(lo), f1 = mixed(hi);
+  return (x_[lo] + (energy_fraction - f0) / (f1 - f0) * (x_[hi] - x_[lo])) * q.scale;
 }
 
 void ProfileTable::truncate(Lookup& q, double energy_fraction) const {

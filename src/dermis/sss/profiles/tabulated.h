@@ -69,7 +69,8 @@ class ProfileTable {
 
   // The albedo A whose interpolated table energy (lookup(A).energy) is `energy`, by
   // bisection (the energy rises with A): a surface albedo inverted to the family's
-  // parameter. Clamped to the first or last node outside their energies.
+  // parameter. Clamped to the first or last node outside their energies (the node
+  // energies must rise with A).
   double albedo_for_energy(double energy) const;
 
   const std::vector<double>& albedos() const { return albedos_; }
