@@ -39,9 +39,10 @@ DERMIS_SAMPLERS = ["sobol", "independent"]
 
 
 def sampler_variant(scene, path, sampler):
-    """The scene with its Sampler directive replaced (file names made absolute)."""
+    """The scene with its Sampler directive replaced, parameters and all (the renderers get
+    the count from --spp; pbrt-v4's stratified sampler refuses "pixelsamples")."""
     text = open(scene).read()
-    text, n = re.subn(r'Sampler\s+"\w+"', f'Sampler "{sampler}"', text)
+    text, n = re.subn(r'Sampler\s+"\w+"[^\n]*', f'Sampler "{sampler}"', text)
     if n != 1:
         raise SystemExit(f"{scene}: expected one Sampler directive, found {n}")
     text = compare.absolute_filenames(text, os.path.dirname(scene))
