@@ -14,7 +14,7 @@ namespace dermis {
 
 namespace {
 
-// The photon-beam-diffusion table of one (g, eta), made once per process (about 1.4 s
+// The photon-beam-diffusion table of one (g, eta), made once per process (about 1.8 s
 // of CPU) and shared by every material with these parameters.
 std::shared_ptr<const sss::ProfileTable> photon_beam_table(float g, float eta) {
   static std::mutex mutex;

@@ -120,7 +120,7 @@ ProfileTableOptions photon_beam_table_options() {
   const double lo = std::log(1e-3 / (1 - 1e-3)), hi = std::log((1 - 1e-5) / 1e-5);
   o.albedos.resize(kNodes);
   for (int i = 0; i < kNodes; ++i) o.albedos[i] = 1 / (1 + std::exp(-(lo + (hi - lo) * i / (kNodes - 1))));
-  o.radial_nodes = 128;
+  o.radial_nodes = 256;
   return o;
 }
 

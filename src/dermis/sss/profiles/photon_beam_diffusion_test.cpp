@@ -6,6 +6,8 @@
 #include <memory>
 
 #include "dermis/core/vec.h"
+#include "dermis/sss/profiles/profile.h"
+#include "dermis/sss/profiles/profile_test_support.h"
 #include "dermis/sss/profiles/quadrature.h"
 
 namespace dermis::sss {
@@ -95,6 +97,18 @@ TEST(PhotonBeamDiffusion, TabulatedFamily) {
     }
     EXPECT_NEAR(table->albedo_for_energy(tab.albedo()), rho, 1e-6 + 1e-4 * (1 - rho)) << rho;
   }
+}
+
+// The photon-beam profile as the renderer samples it (a TabulatedProfile at a mean free
+// path of 0.3): it integrates to its albedo, its radial pdf to one, and its sampler
+// follows its pdf (chi-square; profile_test_support.h), between nodes, near rho = 1 and
+// at a low albedo, with g and eta that are not the defaults.
+TEST(PhotonBeamDiffusion, TabulatedProfileIsConsistentAndSamplesItsPdf) {
+  const auto table = std::make_shared<const ProfileTable>(photon_beam_family(0.3, 1.4), photon_beam_table_options());
+  uint64_t seed = 71;
+  for (double rho : {0.1, 0.77, 0.9993})
+    testing::expect_consistent_profile(RadialProfile(TabulatedProfile(table, rho, 0.3)),
+                                       "photonbeam rho " + std::to_string(rho), seed++);
 }
 
 }  // namespace
