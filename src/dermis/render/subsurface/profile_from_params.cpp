@@ -37,8 +37,10 @@ sss::ProfileRGB photon_beam_profile(const MediumAt& at, const std::shared_ptr<co
     double rho_c, l_c;
     if (at.sigma_a) {
       const double sigma_t = double((*at.sigma_a)[c]) + (*at.sigma_s)[c];
+      // A textured medium may be empty at a point: the table's least albedo there, at a
+      // finite length (the parser refuses sigma_t = 0 for constants).
       rho_c = sigma_t > 0 ? (*at.sigma_s)[c] / sigma_t : 0;
-      l_c = sigma_t > 0 ? 1 / sigma_t : 1e30;
+      l_c = sigma_t > 0 ? 1 / sigma_t : 1;
     } else {
       rho_c = table->albedo_for_energy((*at.reflectance)[c]);
       l_c = (*at.mfp)[c];
