@@ -98,13 +98,43 @@ WalkResult walk(const CoatedLayer& c, Vec3 wo, Vec3 wi, Estimate mode, float u_l
   auto to_interface = [&](float z, Vec3 v) {
     return mode == Estimate::Value || scattering ? slab_transmittance(c.thickness - z, v) : 1.0f;
   };
-  // Connection through the rough interface along the walk's next direction v (a
-  // one-sample estimate over v of the interface's lobe from -v into wi); the walk's
-  // weight `beta` already includes the scattering into v.
-  auto connect_rough = [&](RGB beta, float z, Vec3 v) {
+  // Connections to wi through a rough interface, in a value by two strategies weighted by
+  // the power heuristic (Veach 1997, sec. 9.2; as pbrt-v4's LayeredBxDF::f), because a
+  // nearly smooth interface's lobe is a narrow spike that the vertex's own sampling finds
+  // only rarely (fireflies at alpha 0.01):
+  //  (a) along the walk's next direction v, sampled by the vertex (connect_rough);
+  //  (b) along v_nee, sampled once per walk by the interface from wi into the slab
+  //      (connect_nee, at every vertex: unbiased at each, as pbrt-v4 does).
+  // A density keeps the one strategy (a): only the integrator's MIS weights see it.
+  std::optional<Vec3> v_nee;  // (b): pointing up, the direction the walk would leave along
+  float pdf_nee = 0;          // its density from wi (lobe choice included)
+  RGB value_nee{0};           // f_top(-v_nee, wi) |cos wi| / pdf_nee
+  const bool two_strategies = mode == Estimate::Value && !top_smooth;
+  if (two_strategies) {
+    const float ul = rng.uniform();
+    const Vec2 un{rng.uniform(), rng.uniform()};
+    if (const auto s = bsdf_sample(top, wi, ul, un); s && s->transmission && s->wi.z < 0 && s->pdf > 0) {
+      v_nee = -s->wi;
+      pdf_nee = s->pdf;
+      value_nee = bsdf_eval(top, s->wi, wi) * (1 / pdf_nee);
+    }
+  }
+  auto power = [](float a, float b) { return a * a / (a * a + b * b); };
+  // (a): the walk's weight `beta` already includes the scattering into v, sampled with
+  // density pdf_v (infinite for a specular event, which (b) cannot produce).
+  auto connect_rough = [&](RGB beta, float z, Vec3 v, float pdf_v, bool specular_v) {
     if (top_smooth || v.z <= 0) return;
-    if (mode == Estimate::Value) out.sum += beta * to_interface(z, v) * bsdf_eval(top, -v, wi);
+    if (mode == Estimate::Value) {
+      const float weight = two_strategies && !specular_v ? power(pdf_v, bsdf_pdf(top, wi, -v)) : 1.0f;
+      out.sum += beta * to_interface(z, v) * bsdf_eval(top, -v, wi) * weight;
+    }
     if (mode == Estimate::Density) out.sum += RGB(to_interface(z, v) * bsdf_pdf(top, -v, wi));
+  };
+  // (b) at a vertex that scatters with value f_v (phase function, or f |cos|) and
+  // samples with density pdf_v into v_nee.
+  auto connect_nee = [&](RGB beta, float z, RGB f_v, float pdf_v) {
+    if (!v_nee) return;
+    out.sum += beta * f_v * value_nee * (to_interface(z, *v_nee) * power(pdf_nee, pdf_v));
   };
 
   // Entering.
@@ -132,13 +162,17 @@ WalkResult walk(const CoatedLayer& c, Vec3 wo, Vec3 wi, Estimate mode, float u_l
         if (v_exit)  // through the smooth interface: the phase function into v_exit
           out.sum += (mode == Estimate::Value ? beta : RGB(1)) * henyey_greenstein(dot(w, *v_exit), c.g) *
                      to_interface(z, *v_exit) * (mode == Estimate::Value ? exit_value : exit_density);
+        if (v_nee) {
+          const float p = henyey_greenstein(dot(w, *v_nee), c.g);
+          connect_nee(beta, z, RGB(p), p);
+        }
         const Vec2 up{rng.uniform(), rng.uniform()};
         const float cos_theta = sample_henyey_greenstein_cos(up.x, c.g);
         const float sin_theta = std::sqrt(std::max(0.0f, 1 - cos_theta * cos_theta));
         const float phi = 2 * kPi * up.y;
         w = Frame(w).to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
         if (w.z == 0) return out;
-        connect_rough(beta, z, w);
+        connect_rough(beta, z, w, henyey_greenstein(cos_theta, c.g), false);
         continue;
       }
     } else {
@@ -153,13 +187,14 @@ WalkResult walk(const CoatedLayer& c, Vec3 wo, Vec3 wi, Estimate mode, float u_l
         if (mode == Estimate::Density)
           out.sum += RGB(bsdf_pdf(base, -w, *v_exit) * to_interface(0, *v_exit) * exit_density);
       }
+      if (v_nee) connect_nee(beta, 0, bsdf_eval(base, -w, *v_nee), bsdf_pdf(base, -w, *v_nee));
       const float ub = rng.uniform();
       const auto b = bsdf_sample(base, -w, ub, {rng.uniform(), rng.uniform()});
       if (!b) return out;
       beta *= b->weight;
       specular = specular && b->specular;
       w = b->wi;
-      connect_rough(beta, 0, w);
+      connect_rough(beta, 0, w, b->pdf, b->specular);
       continue;
     }
     // At the interface, from inside: leave, or reflect back into the slab.

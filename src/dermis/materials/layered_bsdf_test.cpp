@@ -97,7 +97,9 @@ TEST(CoatedDiffuse, EvalIntegratesToOneMinusSpecular) {
   EXPECT_NEAR(m.mean() + F, 1.0, 4 * m.stderr_());
 }
 
-// The cases of (c): rough interface, rough conductor base, a scattering coating.
+// The cases of (c): rough interface, rough conductor base, a scattering coating, and a
+// nearly smooth rough interface (alpha 0.05) over a scattering coating and a diffuse base,
+// where eval connects through the interface by two strategies (layered_bsdf.cpp).
 std::vector<CoatedLayer> stacks() {
   std::vector<CoatedLayer> out;
   CoatedLayer rough_diffuse;
@@ -119,6 +121,14 @@ std::vector<CoatedLayer> stacks() {
   gold.base_alpha_x = 0.25f, gold.base_alpha_y = 0.15f;
   gold.interface_alpha_x = gold.interface_alpha_y = 0.2f;
   out.push_back(gold);
+  CoatedLayer glossy_scattering;
+  glossy_scattering.interface_alpha_x = glossy_scattering.interface_alpha_y = 0.05f;
+  glossy_scattering.base_reflectance = RGB(0.7f);
+  glossy_scattering.thickness = 0.3f;
+  glossy_scattering.albedo = RGB(0.9f);
+  glossy_scattering.g = -0.3f;
+  glossy_scattering.max_depth = 30;
+  out.push_back(glossy_scattering);
   return out;
 }
 
