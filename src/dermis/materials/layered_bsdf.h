@@ -16,8 +16,9 @@
 //    tracing);
 //  - coated_eval: f(wo, wi) |cos wi| by the same walk with next-event estimation: at
 //    every scattering inside the slab the walk is connected to the exit direction wi
-//    (through the smooth interface along the one refracted direction, or through the
-//    rough one along the direction the walk samples next), Guo et al. 2018, sec. 5;
+//    (through the smooth interface along the one refracted direction; through the rough
+//    one by two strategies with the power heuristic, the direction the walk samples next
+//    and one the interface samples from wi, as pbrt-v4's LayeredBxDF), Guo et al. 2018, sec. 5;
 //  - coated_pdf: the density with which coated_sample returns wi, estimated by the same
 //    walk and connections with sampling probabilities in place of BSDF values.
 // Each is unbiased for its quantity, and each call draws from its own stream. Why the
