@@ -15,8 +15,9 @@ struct ImportedMesh {
   std::vector<std::string> notes;  // non-fatal remarks (dropped points/lines, dropped normals...)
 };
 
-// Loads every mesh of the file with aiImportFile(path, aiProcess_Triangulate |
-// aiProcess_JoinIdenticalVertices) -- no normals are generated: they are kept only when
+// Loads every mesh of the file with aiImportFile(path, aiProcess_Triangulate) and merges
+// vertices identical in every attribute kept (as aiProcess_JoinIdenticalVertices, exactly) --
+// no normals are generated: they are kept only when
 // every mesh of the file has them -- applies the node transforms of the file's hierarchy,
 // and merges everything into one mesh. Face winding is kept as written (Assimp's
 // triangulation fans polygons from their first vertex in order). Throws

@@ -246,5 +246,37 @@ TEST(ShapeObj, AssimpKeepsWindingAndMergesMeshes) {
   EXPECT_EQ(got, want);
 }
 
+// Assimp's OBJ reader writes a vertex per face corner; the import merges those identical in
+// position, normal and uv (the file's own sharing) and keeps those that differ in any.
+TEST(ShapeObj, CornersWithTheSameAttributesShareAVertex) {
+  test::TempDir dir;
+  // Two triangles sharing an edge (v1, v3) with the same uv and normal there, and a third
+  // that meets v1 with another uv: v1 appears as two vertices, v3 as one.
+  dir.write("m.obj",
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\nvn 0 0 1\n"
+            "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\nf 4/4/1 2/2/1 1/5/1\n");
+  SceneDesc s = parse_world("Shape \"objmesh\" \"string filename\" \"m.obj\"\n", dir.path());
+  ASSERT_EQ(s.shapes.size(), 1u);
+  const TriangleMeshDesc& m = s.shapes[0].mesh;
+  ASSERT_EQ(m.indices.size(), 9u);
+  EXPECT_EQ(m.positions.size(), 5u);  // the four (v, vt) pairs of the first two faces and (v1, vt5)
+  ASSERT_EQ(m.normals.size(), m.positions.size());
+  ASSERT_EQ(m.uvs.size(), m.positions.size());
+  // The shared edge is one pair of vertex indices in both triangles.
+  EXPECT_EQ(m.indices[0], m.indices[3]);
+  EXPECT_EQ(m.indices[2], m.indices[4]);
+  // Corner for corner, every attribute is the file's.
+  const Vec3 p[] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 0}};
+  const Vec2 uv[] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}, {0, 1}, {1, 0}, {0.5f, 0.5f}};
+  for (int k = 0; k < 9; ++k) {
+    const uint32_t i = m.indices[std::size_t(k)];
+    EXPECT_EQ(m.positions[i], p[k]) << "corner " << k;
+    EXPECT_EQ(m.uvs[i].x, uv[k].x) << "corner " << k;
+    EXPECT_EQ(m.uvs[i].y, uv[k].y) << "corner " << k;
+    EXPECT_EQ(m.normals[i], Vec3(0, 0, 1)) << "corner " << k;
+  }
+  EXPECT_NE(m.indices[0], m.indices[8]);  // v1 with another uv is a vertex of its own
+}
+
 }  // namespace
 }  // namespace dermis
