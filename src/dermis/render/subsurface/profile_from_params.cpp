@@ -7,22 +7,34 @@
 #include <mutex>
 #include <utility>
 
+#include <fmt/format.h>
+
+#include "dermis/core/cache_dir.h"
 #include "dermis/sss/profiles/photon_beam_diffusion.h"
+#include "dermis/sss/profiles/profile_table_io.h"
 
 
 namespace dermis {
 
 namespace {
 
-// The photon-beam-diffusion table of one (g, eta), made once per process (about 1.8 s
-// of CPU) and shared by every material with these parameters.
+// The photon-beam-diffusion table of one (g, eta), shared by every material with these
+// parameters: built once per machine (about 1.8 s of CPU) and cached on disk
+// (core/cache_dir.h, sss/profiles/profile_table_io.h), read in milliseconds after that.
 std::shared_ptr<const sss::ProfileTable> photon_beam_table(float g, float eta) {
   static std::mutex mutex;
   static std::map<std::pair<float, float>, std::shared_ptr<const sss::ProfileTable>> tables;
   const std::lock_guard lock(mutex);
   auto& table = tables[{g, eta}];
-  if (!table)
-    table = std::make_shared<const sss::ProfileTable>(sss::photon_beam_family(g, eta), sss::photon_beam_table_options());
+  if (!table) {
+    const sss::ProfileTableOptions options = sss::photon_beam_table_options();
+    const std::string key = fmt::format("photonbeam-v{}-g{:.9g}-eta{:.9g}-a{}-r{}-x{:.9g}-{:.9g}.table",
+                                        sss::kPhotonBeamTableVersion, g, eta, options.albedos.size(),
+                                        options.radial_nodes, options.x_min, options.x_max);
+    table = sss::cached_profile_table(default_cache_dir(), key, [&] {
+      return sss::ProfileTable(sss::photon_beam_family(g, eta), options);
+    });
+  }
   return table;
 }
 

@@ -48,6 +48,11 @@ class PhotonBeamDiffusion {
 // `TabulatedProfile(table, rho, 1 / sigma_t)` is then the profile of the medium
 // (sigma_a, sigma_s) and `table.lookup(rho).energy` its effective albedo rho_eff.
 ProfileFamily photon_beam_family(double g, double eta);
+// The version of the tabulated model: part of the name of the table cached on disk
+// (profile_table_io.h). Raise it whenever a change of this file's code changes the
+// table's numbers, or the old file would still be read.
+inline constexpr int kPhotonBeamTableVersion = 1;
+
 // The table's options: single-scattering albedos uniform in logit over [1e-3, 1 - 1e-5].
 ProfileTableOptions photon_beam_table_options();
 

@@ -16,7 +16,9 @@
 
 #include <cmath>
 #include <functional>
+#include <iosfwd>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace dermis::sss {
@@ -79,6 +81,10 @@ class ProfileTable {
   double median_radius(int node) const { return std::exp(log_scale_[node]); }
 
  private:
+  friend bool write_profile_table(std::ostream& out, const std::string& key, const ProfileTable& table);
+  friend std::shared_ptr<const ProfileTable> read_profile_table(std::istream& in, const std::string& key);
+  ProfileTable() = default;  // read_profile_table fills it
+
   double node_cdf(int node, double x) const;  // CDF of node j's piecewise-constant density in x
   int cell_of(double x) const;                // radial cell k with x in [x_k, x_{k+1})
   double interpolate_log_shape(int node, int k, double w) const;

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "dermis/core/cache_dir.h"
 #include "dermis/core/microfacet.h"
 #include "dermis/sss/halfspace/halfspace.h"
 
@@ -21,12 +22,6 @@ namespace {
 
 // 2: tables of rough boundaries (their alphas in the file name) exist.
 constexpr int kCacheVersion = 2;
-
-std::string default_cache_dir() {
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/dermis";
-  if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.cache/dermis";
-  return {};
-}
 
 // Weighted pool-adjacent-violators: the non-increasing sequence closest to y in the
 // weighted least-squares sense (Barlow et al. 1972, Statistical Inference under Order
