@@ -93,7 +93,7 @@ inline void textured_alpha(const std::vector<Texture>& textures, const int textu
 
 inline BSDF bsdf_at(const Material& m, const std::vector<Texture>& textures, const SurfaceHit& hit) {
   BSDF b;
-  b.n = hit.ng;
+  b.n = hit.ns;  // the shading normal (geometry/shading_normal.h)
   switch (m.type) {
     case Material::Type::Coated:
       b.type = BSDF::Type::Coated;

@@ -7,6 +7,7 @@
 
 #include "dermis/core/frame.h"
 #include "dermis/core/warp.h"
+#include "dermis/geometry/shading_normal.h"
 #include "dermis/materials/bsdf.h"
 #include "dermis/materials/free_flight.h"
 #include "dermis/materials/fresnel.h"
@@ -401,6 +402,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     }
     if (depth++ >= max_depth) break;
     Vec3 wo = -ray.d;
+    hit.ns = shading_normal_seen_from(hit, wo);  // geometry/shading_normal.h
 
     if (mat.type == Material::Type::Subsurface) {
       // The boundary is a smooth dielectric: reflection is sampled by Fresnel,
@@ -416,7 +418,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       }
       std::optional<Vec3> refracted;
       const BSDF boundary = sm.entry_boundary(hit);
-      float F = fresnel_dielectric(cos_o, sm.entry_eta);
+      float F = fresnel_dielectric(dot(wo, hit.ns), sm.entry_eta);
       if (boundary.is_rough()) {
         // A rough boundary: the rough dielectric sampled. Reflection continues the path,
         // its emission MIS-weighted against light sampling of the reflection lobe here
@@ -427,13 +429,13 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         const Vec3 p_out = offset_ray_origin(hit.p, hit.ng, hit.ng);
         if (entry_nee) {
           L += beta * estimate_direct(sc, p_out, hit.ng, medium, sampler, counters, [&](Vec3 wi) {
-                 if (dot(wi, hit.ng) <= 0) return std::pair{RGB(0), 0.0f};
+                 if (dot(wi, hit.ng) <= 0 || !shading_side_agrees(hit, wi)) return std::pair{RGB(0), 0.0f};
                  return std::pair{bsdf_eval(boundary, wo, wi), bsdf_pdf(boundary, wo, wi)};
                });
         }
         const float u_lobe = sampler.get1d();
         const auto bs = bsdf_sample(boundary, wo, u_lobe, sampler.get2d());
-        if (!bs) break;
+        if (!bs || !shading_side_agrees(hit, bs->wi)) break;
         if (!bs->transmission) {
           beta *= bs->weight;
           specular = !entry_nee;  // without light sampling here: emission counts in full
@@ -454,10 +456,11 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         // of samples that reflect: on the skin-like sphere it made half the image's error.
         // Where the reflection cannot see a bright emitter it goes on with probability
         // about F (reflection_survival): it costs a ray for a few per cent of dim light.
-        const Vec3 wi = reflect(wo, hit.ng);
+        const Vec3 wi = reflect(wo, hit.ns);
         const Ray reflected_ray{offset_ray_origin(hit.p, hit.ng, wi), wi};
         const uint64_t resume = sampler.dimension();
-        if (const float q = F > 0 ? reflection_survival(reflected_ray, F) : 0.0f; q > 0) {
+        const bool reflects = F > 0 && shading_side_agrees(hit, wi);  // else into the surface: no light
+        if (const float q = reflects ? reflection_survival(reflected_ray, F) : 0.0f; q > 0) {
           PathStart reflected;  // after a specular bounce: emission counts in full
           reflected.depth = depth;
           reflected.rough_glass_nee = start.rough_glass_nee;
@@ -481,11 +484,13 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         // a gain where Le exceeds about twice what enters, a loss for a sky that the
         // transmitted light matches.
         const bool reflect_path = sampler.get1d() < F;
-        const Vec3 wi = reflect(wo, hit.ng);
+        const Vec3 wi = reflect(wo, hit.ns);
         const Ray reflected{offset_ray_origin(hit.p, hit.ng, wi), wi};
-        const bool counted = start.reflection_emission && medium < 0 && F > 0 &&
+        const bool reflects = shading_side_agrees(hit, wi);  // else into the surface: no light
+        const bool counted = start.reflection_emission && medium < 0 && F > 0 && reflects &&
                              add_bright_emission_seen(sc, reflected, beta * F, counters, L);
         if (reflect_path) {
+          if (!reflects) break;
           specular = true;
           prev_pdf = F;
           prev_p = hit.p;
@@ -511,7 +516,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       auto light_through = [&](Vec3 p, Vec3 n, const BSDF& b, Vec3 wo_in, Sampler& smp) {
         if (!start.rough_glass_nee) return RGB(0);
         return estimate_direct(sc, offset_ray_origin(p, n, n), n, medium, smp, counters, [&](Vec3 wi) {
-          if (dot(wi, n) <= 0) return std::pair{RGB(0), 0.0f};
+          if (!shading_side_agrees(n, b.n, wi) || dot(wi, n) <= 0) return std::pair{RGB(0), 0.0f};
           return std::pair{bsdf_eval(b, wo_in, wi), bsdf_pdf(b, wo_in, wi)};
         });
       };
@@ -519,7 +524,10 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       auto light_through_lobe = [&](const SurfaceHit& at, const BSDF& sw, Sampler& smp) {
         return estimate_direct(
             sc, offset_ray_origin(at.p, at.ng, at.ng), at.ng, medium, smp, counters,
-            [&](Vec3 wi) { return std::pair{bsdf_eval(sw, at.ng, wi), bsdf_pdf(sw, at.ng, wi)}; },
+            [&](Vec3 wi) {
+              if (!shading_side_agrees(at, wi)) return std::pair{RGB(0), 0.0f};
+              return std::pair{bsdf_eval(sw, at.ns, wi), bsdf_pdf(sw, at.ns, wi)};
+            },
             /*sky_gives_way=*/true);
       };
       auto exit_light = [&](const SurfaceHit& at, Sampler& smp) {
@@ -603,8 +611,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         for (int k = 1; k < copies; ++k) {
           sampler.set_dimension(Sampler::region(here, 0x5b117u + uint32_t(k)), kStratifiedExitDimensions);
           const float u_lobe_k = sampler.get1d();
-          const auto bk = bsdf_sample(sw, ex.hit.ng, u_lobe_k, sampler.get2d());
-          if (!bk) continue;
+          const auto bk = bsdf_sample(sw, ex.hit.ns, u_lobe_k, sampler.get2d());
+          if (!bk || !shading_side_agrees(ex.hit, bk->wi)) continue;
           const RGB beta_k = beta * bk->weight;
           if (!beta_k.is_finite() || beta_k.is_black()) continue;
           PathStart copy;
@@ -624,8 +632,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         sampler.restore(resume);
       }
       const float u_exit_lobe = sampler.get1d();
-      auto bs = bsdf_sample(sw, ex.hit.ng, u_exit_lobe, sampler.get2d());
-      if (!bs) break;
+      auto bs = bsdf_sample(sw, ex.hit.ns, u_exit_lobe, sampler.get2d());
+      if (!bs || !shading_side_agrees(ex.hit, bs->wi)) break;
       beta *= bs->weight;
       specular = false;
       prev_pdf = bs->pdf;
@@ -660,13 +668,14 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     if (nee) {
       L += beta * estimate_direct(sc, p_out, surface_n, medium, sampler, counters, [&](Vec3 wi) {
              if (two_sided_nee && dot(wi, surface_n) <= 0) return std::pair{RGB(0), 0.0f};
+             if (!shading_side_agrees(hit, wi)) return std::pair{RGB(0), 0.0f};
              return std::pair{bsdf_eval(bsdf, wo, wi), bsdf_pdf(bsdf, wo, wi)};
            });
     }
     if (two_sided_nee) {
       const int medium_behind = medium_after_crossing(s, -wo, hit.ng, medium);
       L += beta * estimate_direct(sc, p_back, -surface_n, medium_behind, sampler, counters, [&](Vec3 wi) {
-             if (dot(wi, surface_n) >= 0) return std::pair{RGB(0), 0.0f};
+             if (dot(wi, surface_n) >= 0 || !shading_side_agrees(hit, wi)) return std::pair{RGB(0), 0.0f};
              return std::pair{bsdf_eval(bsdf, wo, wi), bsdf_pdf(bsdf, wo, wi)};
            });
     }
@@ -683,9 +692,11 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       if (F > 0 && F < 1) {
         auto reflected = bsdf_sample(bsdf, wo, 0.0f, u_dir);
         if (reflected && !reflected->transmission) {
+          const bool reflects = shading_side_agrees(hit, reflected->wi);  // else into the surface: no light
           const uint64_t resume = sampler.dimension();
           const Ray reflected_ray{offset_ray_origin(hit.p, hit.ng, reflected->wi), reflected->wi};
-          if (const float q = reflection_survival(reflected_ray, F * reflected->weight.max()); q > 0) {
+          if (const float q = reflects ? reflection_survival(reflected_ray, F * reflected->weight.max()) : 0.0f;
+              q > 0) {
             PathStart rs;
             rs.depth = depth;
             rs.rough_glass_nee = start.rough_glass_nee;
@@ -709,13 +720,13 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         medium < 0) {
       const float F = fresnel_dielectric(dot(wo, bsdf.n), bsdf.eta);
       const auto reflected = F > 0 ? bsdf_sample(bsdf, wo, 0.0f, u_dir) : std::nullopt;
-      if (reflected && !reflected->transmission)
+      if (reflected && !reflected->transmission && shading_side_agrees(hit, reflected->wi))
         reflection_counted =
             add_bright_emission_seen(sc, Ray{offset_ray_origin(hit.p, hit.ng, reflected->wi), reflected->wi},
                                      beta * reflected->weight * F, counters, L);
     }
     auto bs = bsdf_sample(bsdf, wo, u_lobe, u_dir);
-    if (!bs) break;
+    if (!bs || !shading_side_agrees(hit, bs->wi)) break;
     emission_counted = reflection_counted && !bs->transmission;
     beta *= bs->weight;
     eta_scale *= bs->eta_scale;

@@ -59,13 +59,14 @@ struct SubsurfaceMaterial {
            (params.method == M::RandomWalk && params.boundary == SubsurfaceParams::Boundary::Diffuse);
   }
 
-  // The exit lobe Sw at an exit point (its outward normal hit.ng; bsdf.h). A textured
+  // The exit lobe Sw at an exit point, about its shading normal hit.ns (on the outward
+  // side, as hit.ng; bsdf.h, geometry/shading_normal.h). A textured
   // roughness blends the table of the point's alpha into `scratch`, which the lobe
   // points to (it must outlive the lobe's use).
   BSDF exit_lobe(const SurfaceHit& hit, RoughExitTable& scratch) const {
     BSDF b;
     b.type = BSDF::Type::SubsurfaceExit;
-    b.n = hit.ng;
+    b.n = hit.ns;
     b.eta = exit_eta;
     b.sw_norm = sw_norm;
     b.exit_table = exit_table ? &*exit_table : nullptr;
@@ -80,11 +81,11 @@ struct SubsurfaceMaterial {
     return b;
   }
 
-  // The entry as a BSDF: a smooth or rough dielectric about the entry's normal.
+  // The entry as a BSDF: a smooth or rough dielectric about the entry's shading normal.
   BSDF entry_boundary(const SurfaceHit& hit) const {
     BSDF b;
     b.type = BSDF::Type::Dielectric;
-    b.n = hit.ng;
+    b.n = hit.ns;
     b.eta = entry_eta;
     const BoundaryAlphas a = roughness.at(hit);
     b.alpha_x = a.x;

@@ -4,6 +4,7 @@
 
 #include "dermis/core/frame.h"
 #include "dermis/core/warp.h"
+#include "dermis/geometry/shading_normal.h"
 #include "dermis/materials/bsdf.h"
 #include "dermis/materials/fresnel.h"
 #include "dermis/core/microfacet.h"
@@ -74,8 +75,10 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
   } else if (boundary_ == Boundary::Matched) {
     dir = -entry.wo;
   } else {
-    auto t = refract(entry.wo, in.ng, eta_);
-    if (!t) return false;
+    // About the shading normal; a refraction that would leave the surface again is no
+    // light (geometry/shading_normal.h).
+    auto t = refract(entry.wo, in.ns, eta_);
+    if (!t || !shading_side_agrees(in, *t)) return false;
     dir = *t;
   }
   Vec3 start = in.p, start_n = in.ng;
@@ -118,13 +121,17 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
     }
     out.hit = last;  // the exit's own shape and surface coordinates (a textured roughness there)
     out.hit.p = res.exit_p;
-    out.hit.ng = out.hit.ns = res.exit_n;
+    out.hit.ng = res.exit_n;  // out.hit.ns: the exit's shading normal, on the same side
     out.weight = weight;
     if (boundary_ == Boundary::Diffuse) {
       out.kind = SubsurfaceExit::Kind::ThroughLobe;
       return true;
     }
     const Vec3 d = res.exit_dir_in_medium;
+    // The boundary scatters about the shading normal, or the geometric one where the walk
+    // meets the back of the shading hemisphere; a direction on the wrong geometric side of
+    // it is no light (geometry/shading_normal.h).
+    const Vec3 ns = shading_normal_seen_from(out.hit, -d);
     out.kind = SubsurfaceExit::Kind::Along;
     if (boundary_ == Boundary::Matched) {
       out.direction = d;
@@ -139,7 +146,7 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
       // eta_scale = 1/eta^2.
       BSDF b;
       b.type = BSDF::Type::Dielectric;
-      b.n = res.exit_n;
+      b.n = ns;
       b.eta = eta_;
       b.alpha_x = alpha.x;
       b.alpha_y = alpha.y;
@@ -147,6 +154,7 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
       const float u_lobe = sampler.uniform(), u1 = sampler.uniform(), u2 = sampler.uniform();
       const auto bs = bsdf_sample(b, -d, u_lobe, {u1, u2});
       if (!bs) return false;  // a microfacet sample lost below the surface
+      if (!shading_side_agrees(res.exit_n, ns, bs->wi)) return false;
       weight *= bs->weight * bs->eta_scale;
       if (!weight.is_finite() || weight.is_black()) return false;
       if (bs->transmission) {
@@ -160,15 +168,17 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
       start_n = res.exit_n;
       continue;
     }
-    const float F = fresnel_dielectric(dot(-d, res.exit_n), eta_);
+    const float F = fresnel_dielectric(dot(-d, ns), eta_);
     if (sampler.uniform() >= F) {
-      auto t = refract(-d, res.exit_n, eta_);
+      auto t = refract(-d, ns, eta_);
       if (!t) return false;  // F = 1 under total internal reflection: not reached
+      if (!shading_side_agrees(res.exit_n, ns, *t)) return false;
       out.direction = *t;
       return true;
     }
     // Internal reflection: the walk goes on from the boundary.
-    dir = d - res.exit_n * (2 * dot(d, res.exit_n));
+    dir = d - ns * (2 * dot(d, ns));
+    if (!shading_side_agrees(res.exit_n, ns, dir)) return false;
     start = res.exit_p;
     start_n = res.exit_n;
   }
