@@ -193,5 +193,52 @@ TEST(ShadingNormals, SubsurfaceExitLobeFollowsTheInterpolatedNormal) {
       << "expected ratio " << ratio << ", got " << mean_red(smooth) / mean_red(flat);
 }
 
+// A clear absorbing slab (the random walk with its `dielectric` boundary; sigma_s = 0, so
+// a walk is one straight flight) seen from straight above, a uniform emitter far below it.
+// Its bottom face is flat, with vertex normals tilted by 45 degrees: the walk leaves it
+// refracted about them, so the light found below carries the Fresnel transmittance of a
+// 45-degree incidence from inside (that of the refracted angle from outside, by
+// reciprocity), where the slab without those normals transmits at normal incidence. The
+// ratio of the two images is T(45 deg inside) / T(0) up to paths reflected twice inside
+// (F_top F_bottom e^-2, below 1e-4 of the image); 4 standard errors of the image means.
+TEST(ShadingNormals, WalkLeavesThroughTheInterpolatedNormal) {
+  const double eta = 1.33, tilt = 45;
+  // The slab [-10, 10]^2 x [-1, 0], each face with vertices of its own and its normals.
+  auto slab = [](const std::string& bottom_normal) {
+    const std::string top = "-10 -10 0 10 -10 0 10 10 0 -10 10 0", bottom = "-10 -10 -1 -10 10 -1 10 10 -1 10 -10 -1";
+    const std::string sides = "-10 -10 -1 10 -10 -1 10 -10 0 -10 -10 0  10 -10 -1 10 10 -1 10 10 0 10 -10 0  "
+                              "10 10 -1 -10 10 -1 -10 10 0 10 10 0  -10 10 -1 -10 -10 -1 -10 -10 0 -10 10 0";
+    std::string normals = "0 0 1 0 0 1 0 0 1 0 0 1 ";
+    for (int i = 0; i < 4; ++i) normals += bottom_normal + " ";
+    for (const char* n : {"0 -1 0", "1 0 0", "0 1 0", "-1 0 0"})
+      for (int i = 0; i < 4; ++i) normals += std::string(n) + " ";
+    std::string indices;
+    for (int f = 0; f < 6; ++f)
+      indices += fmt::format("{0} {1} {2} {0} {2} {3} ", 4 * f, 4 * f + 1, 4 * f + 2, 4 * f + 3);
+    return "Shape \"trianglemesh\" \"point3 P\" [" + top + " " + bottom + " " + sides + "] \"normal N\" [" + normals +
+           "] \"integer indices\" [" + indices + "]\n";
+  };
+  const std::string head =
+      camera("0 0 50") +
+      "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2] \"bool twosided\" true\n"
+      "Shape \"trianglemesh\" \"point3 P\" [-100 -100 -30 100 -100 -30 100 100 -30 -100 100 -30] "
+      "\"integer indices\" [0 1 2 0 2 3]\nAttributeEnd\n"
+      "Material \"subsurface\" \"rgb sigma_a\" [1 1 1] \"rgb sigma_s\" [0 0 0] \"float eta\" 1.33 "
+      "\"string boundary\" \"dielectric\"\n";
+  const std::string down_tilted = fmt::format("{} 0 {}", std::sin(tilt * kDeg), -std::cos(tilt * kDeg));
+  const auto smooth = testing::pixel_statistics(*scene_from(head + slab(down_tilted)), 3000, 13);
+  const auto flat = testing::pixel_statistics(*scene_from(head + slab("0 0 -1")), 3000, 14);
+  const double sin_out = eta * std::sin(tilt * kDeg);  // the refracted angle's sine, outside
+  const double ratio = fresnel_transmittance(std::sqrt(1 - sin_out * sin_out), eta) / fresnel_transmittance(1, eta);
+  double var_smooth = 0, var_flat = 0;
+  for (std::size_t p = 0; p < smooth.mean.size(); ++p)
+    var_smooth += sqr(double(smooth.stderr_[p][0])), var_flat += sqr(double(flat.stderr_[p][0]));
+  const double n = double(smooth.mean.size());
+  const double sigma = std::sqrt(var_smooth + sqr(ratio) * var_flat) / n;
+  ASSERT_GT(mean_red(flat), 0.05);
+  EXPECT_NEAR(mean_red(smooth), ratio * mean_red(flat), 4 * sigma)
+      << "expected ratio " << ratio << ", got " << mean_red(smooth) / mean_red(flat);
+}
+
 }  // namespace
 }  // namespace dermis
