@@ -72,6 +72,11 @@ struct PathStart {
   // it cannot see a bright emitter, Russian roulette on its throughput F (tests turn it
   // off to compare with following it always).
   bool reflection_roulette = true;
+  // Russian roulette at the path's first vertex (its first surface hit, once that
+  // surface's emission is counted, or its first scattering event in a medium) on this
+  // throughput (roulette_survival's argument; 0: none): the reflection above, where a sky
+  // can be seen, so that the sky met by its first ray counts in full.
+  float first_vertex_roulette = 0;
   // The sampling strategy of each subsurface material (SubsurfaceEntry::strategy, by
   // RenderScene::subsurface index; null: every material's default, 0): the render's pilot
   // chooses them (render/subsurface_pilot.h) and tries each. Where the pilot records the
