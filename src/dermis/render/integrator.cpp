@@ -271,8 +271,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
   // for the price of that ray; with no sky, before the ray is traced, since nothing it
   // meets directly can then be bright. Rouletted before the ray, a dark object's
   // reflection of a uniform sky, most of what it shows, was met by one sample in 1/F:
-  // on bench/vs_cycles' f08 (the bust, sky only, dark) the variance fell to 0.42x
-  // (walk) and 0.51x (disk) for 4 % more time when the sky is met by every sample.
+  // on bench/vs_cycles' f08 (the bust, sky only, dark) the variance fell to 0.42x (walk)
+  // and 0.53x (disk) when the sky is met by every sample (docs/rendering.md).
   // Returns the probability the reflected path is traced with, 0 when it is not; the
   // decision's number comes from a region of its own.
   auto reflection_survival = [&](const Ray& reflected_ray, float weight, PathStart& reflected) -> float {
