@@ -292,8 +292,9 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
   auto first_vertex_survives = [&]() {
     if (!first_vertex) return true;
     first_vertex = false;
+    if (!(start.first_vertex_roulette > 0)) return true;
     const float q = roulette_survival(start.first_vertex_roulette, kSurfaceRouletteThreshold);
-    if (!(start.first_vertex_roulette > 0) || q >= 1) return true;
+    if (q >= 1) return true;
     const Sampler::Position resume = sampler.position();
     sampler.set_dimension(Sampler::region(start.first_dimension, 0x5e1eu));
     const bool survives = sampler.get1d() < q;
@@ -481,8 +482,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         // weighted F and 1 - F (unbiased: one sample of each term of F L_r + (1 - F) L_t).
         // Chosen by Fresnel, a sharp highlight of a small light rests on the few per cent
         // of samples that reflect: on the skin-like sphere it made half the image's error.
-        // Where the reflection cannot see a bright emitter it goes on with probability
-        // about F (reflection_survival): it costs a ray for a few per cent of dim light.
+        // Where the reflection cannot see a bright emitter it is rouletted on its weight F
+        // (reflection_survival): what lies beyond a sky's is a few per cent of dim light.
         const Vec3 wi = reflect(wo, hit.ns);
         const Ray reflected_ray{offset_ray_origin(hit.p, hit.ng, wi), wi};
         const uint64_t resume = sampler.dimension();
