@@ -159,6 +159,17 @@ TEST(ShadingNormals, SubsurfaceEntryReflectsAboutTheInterpolatedNormal) {
   expect_image(flat, 0, 0, "flat subsurface quad");
 }
 
+// The image mean (red) of a is `ratio` times that of b, within 4 standard errors of
+// mean(a) - ratio mean(b).
+void expect_mean_ratio(const testing::PixelStatistics& a, const testing::PixelStatistics& b, double ratio) {
+  double var_a = 0, var_b = 0;
+  for (std::size_t p = 0; p < a.mean.size(); ++p)
+    var_a += sqr(double(a.stderr_[p][0])), var_b += sqr(double(b.stderr_[p][0]));
+  const double sigma = std::sqrt(var_a + sqr(ratio) * var_b) / double(a.mean.size());
+  EXPECT_NEAR(mean_red(a), ratio * mean_red(b), 4 * sigma)
+      << "expected ratio " << ratio << ", got " << mean_red(a) / mean_red(b);
+}
+
 // 1 - Fresnel reflectance of a smooth dielectric of relative index eta at incidence cos_i
 // from outside (the textbook unpolarised formula; Born & Wolf, sec. 1.5.2).
 double fresnel_transmittance(double cos_i, double eta) {
@@ -183,14 +194,8 @@ TEST(ShadingNormals, SubsurfaceExitLobeFollowsTheInterpolatedNormal) {
   const auto flat = testing::pixel_statistics(*scene_from(head + quad(0, "")), 4000, 10);
   const double c = std::cos(tilt * kDeg);
   const double ratio = sqr(fresnel_transmittance(c, eta)) * c / sqr(fresnel_transmittance(1, eta));
-  double var_smooth = 0, var_flat = 0;
-  for (std::size_t p = 0; p < smooth.mean.size(); ++p)
-    var_smooth += sqr(double(smooth.stderr_[p][0])), var_flat += sqr(double(flat.stderr_[p][0]));
-  const double n = double(smooth.mean.size());
-  const double sigma = std::sqrt(var_smooth + sqr(ratio) * var_flat) / n;
   ASSERT_GT(mean_red(flat), 0.01);
-  EXPECT_NEAR(mean_red(smooth), ratio * mean_red(flat), 4 * sigma)
-      << "expected ratio " << ratio << ", got " << mean_red(smooth) / mean_red(flat);
+  expect_mean_ratio(smooth, flat, ratio);
 }
 
 // A clear absorbing slab (the random walk with its `dielectric` boundary; sigma_s = 0, so
@@ -230,14 +235,8 @@ TEST(ShadingNormals, WalkLeavesThroughTheInterpolatedNormal) {
   const auto flat = testing::pixel_statistics(*scene_from(head + slab("0 0 -1")), 3000, 14);
   const double sin_out = eta * std::sin(tilt * kDeg);  // the refracted angle's sine, outside
   const double ratio = fresnel_transmittance(std::sqrt(1 - sin_out * sin_out), eta) / fresnel_transmittance(1, eta);
-  double var_smooth = 0, var_flat = 0;
-  for (std::size_t p = 0; p < smooth.mean.size(); ++p)
-    var_smooth += sqr(double(smooth.stderr_[p][0])), var_flat += sqr(double(flat.stderr_[p][0]));
-  const double n = double(smooth.mean.size());
-  const double sigma = std::sqrt(var_smooth + sqr(ratio) * var_flat) / n;
   ASSERT_GT(mean_red(flat), 0.05);
-  EXPECT_NEAR(mean_red(smooth), ratio * mean_red(flat), 4 * sigma)
-      << "expected ratio " << ratio << ", got " << mean_red(smooth) / mean_red(flat);
+  expect_mean_ratio(smooth, flat, ratio);
 }
 
 }  // namespace
