@@ -116,8 +116,8 @@ TEST(SubsurfaceRandomWalk, SplittingTheEntryKeepsTheMean) {
 }
 
 // Several exits at the camera's first entry (Integrator "subsurfacesamples"), their direct
-// light averaged, against one: the same picture within 4 sigma, for the walk's exit lobe and
-// for probes (disk, Burley).
+// light averaged and each going on with 1/n of its weight, against one: the same picture
+// within 4 sigma, for the walk's exit lobe and for probes (disk, Burley).
 TEST(SubsurfaceRandomWalk, SeveralExitsAtTheFirstEntryKeepTheMean) {
   for (const char* method : {"\"string method\" \"randomwalk\"",
                              "\"string method\" \"disk\" \"string profile\" \"burley\""}) {
