@@ -561,6 +561,31 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
         return light_through_lobe(at, sm.exit_lobe(at, table_at), smp);
       };
+      // A nested way on from the exit point `at` through its lobe (a path splitting's copy,
+      // or another exit's way on): the lobe sampled from the sampler's current dimension,
+      // the path from first_dimension; adds beta x weight / divisor x its radiance to L.
+      auto go_on_from_exit = [&](const SurfaceHit& at, const BSDF& lobe, const RGB& weight, float divisor,
+                                 uint64_t first_dimension) {
+        const float u_lobe = sampler.get1d();
+        const auto b = bsdf_sample(lobe, at.ns, u_lobe, sampler.get2d());
+        if (!b || !shading_side_agrees(at, b->wi)) return;
+        const RGB beta_k = beta * weight * b->weight / divisor;
+        if (!beta_k.is_finite() || beta_k.is_black()) return;
+        const Vec3 p_out_k = offset_ray_origin(at.p, at.ng, at.ng);
+        PathStart way_on;
+        way_on.from_camera = false;
+        way_on.prev_pdf = b->pdf;
+        way_on.prev_p = p_out_k;
+        way_on.prev_n = at.ng;
+        way_on.prev_sky_gives_way = true;
+        way_on.depth = depth;
+        way_on.first_dimension = first_dimension;
+        way_on.rough_glass_nee = start.rough_glass_nee;
+        way_on.reflection_emission = start.reflection_emission;
+        way_on.split_budget = &split_budget;
+        way_on.subsurface_strategies = start.subsurface_strategies;
+        L += beta_k * trace_path(sc, Ray{p_out_k, b->wi}, medium, sampler, counters, way_on);
+      };
       const int strategy = start.subsurface_strategies ? (*start.subsurface_strategies)[std::size_t(mat.subsurface)] : 0;
       const SubsurfaceEntry entry{hit,       wo,        tracer, irradiance, interior_albedo, light_through,
                                   exit_light, refracted, strategy};
@@ -604,26 +629,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           sum += exit_estimate(other, found);
           if (!continue_all || !found || other.kind != SubsurfaceExit::Kind::ThroughLobe) continue;
           sampler.set_dimension(Sampler::region(after_exit, 0x5c0e0u + uint32_t(k)), kStratifiedExitDimensions);
-          const BSDF sw_k = sm.exit_lobe(other.hit, table_at);
-          const float u_lobe_k = sampler.get1d();
-          const auto bk = bsdf_sample(sw_k, other.hit.ns, u_lobe_k, sampler.get2d());
-          if (!bk || !shading_side_agrees(other.hit, bk->wi)) continue;
-          const RGB beta_k = beta * other.weight * bk->weight / float(exits);
-          if (!beta_k.is_finite() || beta_k.is_black()) continue;
-          const Vec3 p_out_k = offset_ray_origin(other.hit.p, other.hit.ng, other.hit.ng);
-          PathStart way_on;
-          way_on.from_camera = false;
-          way_on.prev_pdf = bk->pdf;
-          way_on.prev_p = p_out_k;
-          way_on.prev_n = other.hit.ng;
-          way_on.prev_sky_gives_way = true;
-          way_on.depth = depth;
-          way_on.first_dimension = Sampler::region(after_exit, 0x5c0f0u + uint32_t(k));
-          way_on.rough_glass_nee = start.rough_glass_nee;
-          way_on.reflection_emission = start.reflection_emission;
-          way_on.split_budget = &split_budget;
-          way_on.subsurface_strategies = start.subsurface_strategies;
-          L += beta_k * trace_path(sc, Ray{p_out_k, bk->wi}, medium, sampler, counters, way_on);
+          go_on_from_exit(other.hit, sm.exit_lobe(other.hit, table_at), other.weight, float(exits),
+                          Sampler::region(after_exit, 0x5c0f0u + uint32_t(k)));
         }
         ex.gathered = sum / float(exits);
         ex.exit_light_gathered = true;
@@ -669,24 +676,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         const uint64_t here = resume.dimension;
         for (int k = 1; k < copies; ++k) {
           sampler.set_dimension(Sampler::region(here, 0x5b117u + uint32_t(k)), kStratifiedExitDimensions);
-          const float u_lobe_k = sampler.get1d();
-          const auto bk = bsdf_sample(sw, ex.hit.ns, u_lobe_k, sampler.get2d());
-          if (!bk || !shading_side_agrees(ex.hit, bk->wi)) continue;
-          const RGB beta_k = beta * bk->weight;
-          if (!beta_k.is_finite() || beta_k.is_black()) continue;
-          PathStart copy;
-          copy.from_camera = false;
-          copy.prev_pdf = bk->pdf;
-          copy.prev_p = p_out;
-          copy.prev_n = ex.hit.ng;
-          copy.prev_sky_gives_way = true;
-          copy.depth = depth;
-          copy.first_dimension = Sampler::region(here, 0x5b127u + uint32_t(k));
-          copy.rough_glass_nee = start.rough_glass_nee;
-          copy.reflection_emission = start.reflection_emission;
-          copy.split_budget = &split_budget;
-          copy.subsurface_strategies = start.subsurface_strategies;
-          L += beta_k * trace_path(sc, Ray{p_out, bk->wi}, medium, sampler, counters, copy);
+          go_on_from_exit(ex.hit, sw, RGB(1), 1.0f, Sampler::region(here, 0x5b127u + uint32_t(k)));
         }
         sampler.restore(resume);
       }
