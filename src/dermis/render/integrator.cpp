@@ -619,7 +619,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         // the first alone going on with its whole weight, the light its lobe finds by MIS
         // (about half of a uniform sky's) rested on one walk of the n. On the family of
         // bench/vs_cycles: variance 0.80x on the milk sphere under the sky alone (f02),
-        // 0.70-0.85x on the bust, for 4-8 % more time (docs/rendering.md).
+        // 0.70-0.85x on the bust, for 4-9 % more time (docs/rendering.md).
         const bool continue_all = first_entry;
         RGB sum = exit_estimate(ex, exited);
         for (int k = 1; k < exits; ++k) {
