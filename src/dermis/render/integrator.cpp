@@ -587,9 +587,13 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         L += beta_k * trace_path(sc, Ray{p_out_k, b->wi}, medium, sampler, counters, way_on);
       };
       const int strategy = start.subsurface_strategies ? (*start.subsurface_strategies)[std::size_t(mat.subsurface)] : 0;
-      const SubsurfaceEntry entry{hit,       wo,        tracer, irradiance, interior_albedo, light_through,
-                                  exit_light, refracted, strategy};
       const bool first_entry = start.from_camera && start.depth == 0 && depth == 1;
+      // The camera's first entry averages several exits (below); the method may ask for
+      // more than the scene's subsurfacesamples (a walk with one colour channel per exit).
+      const int first_entry_exits =
+          first_entry && sm.exits_through_lobe() ? sm.first_entry_exits(strategy, sc.settings.subsurface_samples) : 0;
+      SubsurfaceEntry entry{hit,        wo,        tracer,   irradiance, interior_albedo, light_through,
+                            exit_light, refracted, strategy, first_entry_exits > 0 ? 0 : -1};
       if (first_entry && start.subsurface_record && start.subsurface_record->material < 0)
         start.subsurface_record->material = mat.subsurface;
       SubsurfaceExit ex;
@@ -603,7 +607,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       // At a later entry, as many as path splitting gives the path's throughput
       // (path_splitting.h): a heavy path's exit light split, not its way on.
       const int exits = !sm.exits_through_lobe() ? 1
-                        : first_entry            ? sc.settings.subsurface_samples
+                        : first_entry            ? first_entry_exits
                                                  : split_count(beta, sc.settings.split_threshold, split_budget);
       if (exits > 1) {
         RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
@@ -625,6 +629,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         for (int k = 1; k < exits; ++k) {
           sampler.set_dimension(Sampler::region(after_exit, 0x5a3e0u + uint32_t(k)), kStratifiedExitDimensions);
           SubsurfaceExit other;
+          if (entry.exit_index >= 0) entry.exit_index = k;
           const bool found = sample_subsurface_exit(sm, entry, sampler, other);
           sum += exit_estimate(other, found);
           if (!continue_all || !found || other.kind != SubsurfaceExit::Kind::ThroughLobe) continue;

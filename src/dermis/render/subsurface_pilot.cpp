@@ -194,9 +194,11 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
   const SubsurfaceParams& p = m.params;
   const bool share_given = p.walk_sampling_given || p.guided_share_given;
   const std::string what = fmt::format(
-      "guided share {:g}{}, channel preference {:g}{}", share_given ? p.guided_share : w.p_guided,
-      share_given ? " (given)" : "", p.channel_preference_given ? p.channel_preference : w.channel_preference,
-      p.channel_preference_given ? " (given)" : "");
+      "guided share {:g}{}, {}", share_given ? p.guided_share : w.p_guided, share_given ? " (given)" : "",
+      w.channel_per_walk ? "one colour channel per walk at the camera's first entry"
+                         : fmt::format("channel preference {:g}{}",
+                                       p.channel_preference_given ? p.channel_preference : w.channel_preference,
+                                       p.channel_preference_given ? " (given)" : ""));
   if (c.strategy == 0)
     return fmt::format("material {} ({}): {} (the default: no other strategy is significantly faster on {} pilot "
                        "pixels)",

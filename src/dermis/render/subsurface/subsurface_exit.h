@@ -77,6 +77,9 @@ struct SubsurfaceEntry {
   // The method's sampling strategy for this entry (the walk's kWalkStrategies; 0 the
   // default), chosen per material by the render's pilot (render/subsurface_pilot.h).
   int strategy = 0;
+  // At the camera's first entry, which of its exits this is (0 .. first_entry_exits - 1:
+  // SubsurfaceMaterial::first_entry_exits); -1 at any other entry.
+  int exit_index = -1;
 };
 
 }  // namespace dermis

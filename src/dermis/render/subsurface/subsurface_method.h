@@ -47,7 +47,19 @@ struct SubsurfaceMaterial {
   int strategy_count() const {
     if (!std::holds_alternative<WalkMethod>(method)) return 1;
     const bool share_given = params.walk_sampling_given || params.guided_share_given;
-    return share_given && params.channel_preference_given ? 1 : int(kWalkStrategies.size());
+    if (share_given && params.channel_preference_given) return 1;
+    return int(kWalkStrategies.size()) - (exits_through_lobe() ? 0 : kChannelPerWalkStrategies);
+  }
+
+  // How many exits the camera's first entry averages (SubsurfaceEntry::exit_index), for
+  // `requested` (the scene's subsurfacesamples) and the entry's strategy: a walk that
+  // gives each its own colour channel takes a multiple of three (WalkStrategy::
+  // channel_per_walk).
+  int first_entry_exits(int strategy, int requested) const {
+    if (std::holds_alternative<WalkMethod>(method) && strategy >= 0 &&
+        strategy < int(kWalkStrategies.size()) && kWalkStrategies[std::size_t(strategy)].channel_per_walk)
+      return (requested + kChannelWalks - 1) / kChannelWalks * kChannelWalks;
+    return requested;
   }
 
   // Its exits leave through the exit lobe Sw (SubsurfaceExit::Kind::ThroughLobe): the probe

@@ -54,19 +54,39 @@ WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture
 
 bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
   const std::size_t strategy = std::size_t(entry.strategy) < kWalkStrategies.size() ? std::size_t(entry.strategy) : 0;
-  if (!medium_per_entry_) return walk(entry, settings_[strategy], steps_[strategy], sampler, out);
-  // The entry point's own medium.
-  const sss::WalkMedium m = walk_medium(coefficients_from(medium_at(params_, textures_, texture_context(entry.hit)),
-                                                          inversions_, roughness_.at(entry.hit).x),
-                                        params_.g);
-  for (int c = 0; c < 3; ++c)
-    if (!(m.sigma_t[c] > 0) || !std::isfinite(m.sigma_t[c])) return false;  // a texture without extinction
-  return walk(entry, settings_[strategy], sss::make_walk_step(m, settings_[strategy]), sampler, out);
+  // One colour channel per walk (WalkStrategy::channel_per_walk): walk k carries channel
+  // k mod 3 alone, and as the integrator averages the entry's 3m exits, each channel's m
+  // walks count kChannelWalks times: their mean is the channel's estimate.
+  const int channel =
+      kWalkStrategies[strategy].channel_per_walk && entry.exit_index >= 0 ? entry.exit_index % kChannelWalks : -1;
+  RGB initial(1);
+  if (channel >= 0) {
+    initial = RGB(0);
+    initial[channel] = 1;
+  }
+  bool exited = false;
+  if (!medium_per_entry_) {
+    exited = walk(entry, settings_[strategy], steps_[strategy], initial, sampler, out);
+  } else {
+    // The entry point's own medium.
+    const sss::WalkMedium m = walk_medium(coefficients_from(medium_at(params_, textures_, texture_context(entry.hit)),
+                                                            inversions_, roughness_.at(entry.hit).x),
+                                          params_.g);
+    for (int c = 0; c < 3; ++c)
+      if (!(m.sigma_t[c] > 0) || !std::isfinite(m.sigma_t[c])) return false;  // a texture without extinction
+    exited = walk(entry, settings_[strategy], sss::make_walk_step(m, settings_[strategy]), initial, sampler, out);
+  }
+  if (channel >= 0) {
+    out.weight *= float(kChannelWalks);
+    out.gathered *= float(kChannelWalks);
+  }
+  return exited;
 }
 
 // Entry and exit 1/eta^2 radiance factors cancel and are omitted.
 bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& settings,
-                      const sss::MixtureWalkStep<3>& step, Sampler& sampler, SubsurfaceExit& out) const {
+                      const sss::MixtureWalkStep<3>& step, const RGB& initial, Sampler& sampler,
+                      SubsurfaceExit& out) const {
   using Boundary = SubsurfaceParams::Boundary;
   const SurfaceHit& in = entry.hit;
   Vec3 dir;
@@ -98,7 +118,7 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
     return b;
   };
   const sss::WalkGuide guide = sss::make_walk_guide(settings, in.p, in.ng, tracer);
-  RGB weight(1);
+  RGB weight = initial;  // a channel that starts at 0 stays 0 (random_walk.h: its flights are never drawn)
   for (int reflections = 0; reflections < kMaxInternalReflections; ++reflections) {
     sss::WalkResult res;
     if (!sss::random_walk(step, settings, guide, start, dir, sampler, tracer, res, weight)) {

@@ -35,11 +35,30 @@ namespace dermis {
 // of a heavy-tailed estimator, so it may only choose ones it cannot flatter (measured:
 // a guided share of 3/4 was predicted 1.3-1.5x faster on the wax sphere of the family and
 // rendered 0.9x). A material whose `walksampling` is given keeps it, whatever the share.
+// The last two give each of the camera's first entry's walks one colour channel
+// (channel_per_walk below); their weights are each channel's own, no heavier.
 struct WalkStrategy {
   float p_guided;
   float channel_preference;
+  // At the camera's first entry (with the diffuse boundary, whose several exits the
+  // integrator averages: SubsurfaceMaterial::first_entry_exits), walk k carries colour
+  // channel k mod 3 alone, every flight drawn in that channel: three walks per entry, so
+  // that each channel has its own walk in every sample. One walk shared by channels whose
+  // extinction differs has weights f_k / q that spread with the walk's length and
+  // free paths (on the family's milk sphere under the sky, 30x the variance of the same
+  // sphere with grey extinction); a walk drawn in its own channel has the weight of a
+  // grey medium's, the albedo to the power of its collisions. Where the channels' walks
+  // are alike, or the noise is in finding the light (a backlit thin part), sharing wins:
+  // the pilot measures which.
+  bool channel_per_walk = false;
 };
-inline constexpr std::array<WalkStrategy, 4> kWalkStrategies{{{0.5f, 0.5f}, {0.0f, 0.5f}, {0.5f, 0.0f}, {0.0f, 0.0f}}};
+inline constexpr std::array<WalkStrategy, 6> kWalkStrategies{
+    {{0.5f, 0.5f}, {0.0f, 0.5f}, {0.5f, 0.0f}, {0.0f, 0.0f}, {0.5f, 0.0f, true}, {0.0f, 0.0f, true}}};
+// The strategies before these apply to every walk; these only where the entry's exits
+// are averaged (a walk through the dielectric or matched boundary has one exit).
+inline constexpr int kChannelPerWalkStrategies = 2;
+// Walks per channel-per-walk entry: one per colour channel.
+inline constexpr int kChannelWalks = 3;
 
 class WalkMethod {
  public:
@@ -53,8 +72,9 @@ class WalkMethod {
   const sss::WalkMedium& medium() const { return medium_; }
 
  private:
+  // initial: the throughput the walk starts with (1, or one channel's).
   bool walk(const SubsurfaceEntry& entry, const sss::WalkSettings& settings, const sss::MixtureWalkStep<3>& step,
-            Sampler& sampler, SubsurfaceExit& out) const;
+            const RGB& initial, Sampler& sampler, SubsurfaceExit& out) const;
 
   SubsurfaceParams params_;
   const std::vector<Texture>* textures_;
