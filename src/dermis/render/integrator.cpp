@@ -601,7 +601,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       // Several exits, each from a sampler region of its own, their direct light averaged
       // (each exit's estimate is unbiased, so is their mean); the path goes on from the
       // first (at the camera's first entry from each, below). At the camera's first entry
-      // `subsurfacesamples` of them: the entry's cost
+      // first_entry_exits of them (subsurfacesamples, or more: above): the entry's cost
       // (the camera ray, the reflection split off, the path after the exit) is paid once;
       // on the skin-like sphere two exits halve the variance for 1.2-1.4x the render time.
       // At a later entry, as many as path splitting gives the path's throughput
