@@ -237,7 +237,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
                const PathStart& start) {
   RGB L(0), beta(1);
   float eta_scale = 1;
-  bool specular = start.from_camera;  // the last scattering was specular (or the camera): no MIS on emission
+  bool specular = start.from_camera || start.prev_specular;  // the last scattering was specular (or the camera): no MIS on emission
   float prev_pdf = start.prev_pdf;    // solid-angle pdf of the last scattering direction
   // The last scattering event's next-event point and normal (integrator.h PathStart).
   Vec3 prev_p = start.from_camera ? ray.o : start.prev_p;
@@ -586,12 +586,35 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         way_on.subsurface_strategies = start.subsurface_strategies;
         L += beta_k * trace_path(sc, Ray{p_out_k, b->wi}, medium, sampler, counters, way_on);
       };
+      // A nested way on along an Along exit's direction e.direction (another exit's, at the
+      // camera's first entry), as the path itself goes on below; adds beta x e.weight /
+      // divisor x its radiance to L.
+      auto go_on_along = [&](const SubsurfaceExit& e, float divisor, uint64_t first_dimension) {
+        const RGB beta_k = beta * e.weight / divisor;
+        if (!beta_k.is_finite() || beta_k.is_black()) return;
+        const bool weighed = e.direction_pdf > 0 && start.rough_glass_nee;
+        PathStart way_on;
+        way_on.from_camera = false;
+        way_on.prev_specular = !weighed;
+        way_on.prev_pdf = e.direction_pdf;
+        way_on.prev_p = weighed ? offset_ray_origin(e.hit.p, e.hit.ng, e.hit.ng) : e.hit.p;
+        way_on.prev_n = e.hit.ng;
+        way_on.prev_sky_gives_way = false;  // light_through's samples
+        way_on.depth = depth;
+        way_on.first_dimension = first_dimension;
+        way_on.rough_glass_nee = start.rough_glass_nee;
+        way_on.reflection_emission = start.reflection_emission;
+        way_on.split_budget = &split_budget;
+        way_on.subsurface_strategies = start.subsurface_strategies;
+        L += beta_k * trace_path(sc, Ray{offset_ray_origin(e.hit.p, e.hit.ng, e.direction), e.direction}, medium,
+                                 sampler, counters, way_on);
+      };
       const int strategy = start.subsurface_strategies ? (*start.subsurface_strategies)[std::size_t(mat.subsurface)] : 0;
       const bool first_entry = start.from_camera && start.depth == 0 && depth == 1;
-      // The camera's first entry averages several exits (below); the method may ask for
-      // more than the scene's subsurfacesamples (a walk with one colour channel per exit).
-      const int first_entry_exits =
-          first_entry && sm.exits_through_lobe() ? sm.first_entry_exits(strategy, sc.settings.subsurface_samples) : 0;
+      // The camera's first entry averages several exits (below): the scene's
+      // subsurfacesamples through the exit lobe, or more (a walk with one colour channel
+      // per exit, whatever its boundary).
+      const int first_entry_exits = first_entry ? sm.first_entry_exits(strategy, sc.settings.subsurface_samples) : 0;
       SubsurfaceEntry entry{hit,        wo,        tracer,   irradiance, interior_albedo, light_through,
                             exit_light, refracted, strategy, first_entry_exits > 0 ? 0 : -1};
       if (first_entry && start.subsurface_record && start.subsurface_record->material < 0)
@@ -606,14 +629,14 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       // on the skin-like sphere two exits halve the variance for 1.2-1.4x the render time.
       // At a later entry, as many as path splitting gives the path's throughput
       // (path_splitting.h): a heavy path's exit light split, not its way on.
-      const int exits = !sm.exits_through_lobe() ? 1
-                        : first_entry            ? first_entry_exits
-                                                 : split_count(beta, sc.settings.split_threshold, split_budget);
+      const int exits = first_entry                ? first_entry_exits
+                        : !sm.exits_through_lobe() ? 1
+                                                   : split_count(beta, sc.settings.split_threshold, split_budget);
       if (exits > 1) {
         RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
         auto exit_estimate = [&](const SubsurfaceExit& e, bool found) {
           RGB est = e.gathered;
-          if (found && !e.exit_light_gathered)
+          if (found && e.kind == SubsurfaceExit::Kind::ThroughLobe && !e.exit_light_gathered)
             est += e.weight * light_through_lobe(e.hit, sm.exit_lobe(e.hit, table_at), sampler);
           return est;
         };
@@ -632,7 +655,12 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           if (entry.exit_index >= 0) entry.exit_index = k;
           const bool found = sample_subsurface_exit(sm, entry, sampler, other);
           sum += exit_estimate(other, found);
-          if (!continue_all || !found || other.kind != SubsurfaceExit::Kind::ThroughLobe) continue;
+          if (!continue_all || !found) continue;
+          if (other.kind == SubsurfaceExit::Kind::Along) {
+            go_on_along(other, float(exits), Sampler::region(after_exit, 0x5c0f0u + uint32_t(k)));
+            continue;
+          }
+          if (other.kind != SubsurfaceExit::Kind::ThroughLobe) continue;
           sampler.set_dimension(Sampler::region(after_exit, 0x5c0e0u + uint32_t(k)), kStratifiedExitDimensions);
           go_on_from_exit(other.hit, sm.exit_lobe(other.hit, table_at), other.weight, float(exits),
                           Sampler::region(after_exit, 0x5c0f0u + uint32_t(k)));

@@ -53,6 +53,9 @@ struct PathStart {
   // Whether an outweighed uniform sky gave way there (LightSelection's sky_gives_way: at
   // subsurface exits).
   bool prev_sky_gives_way = false;
+  // The path starts after a specular event (not from the camera: a smooth boundary's
+  // exit): the emission it meets first counts in full, as after the camera.
+  bool prev_specular = false;
   int depth = 0;  // scattering events already taken
   uint64_t first_dimension = kCameraDimensions;  // of vertex 0's block
   // A camera path follows both reflection and transmission at its first smooth

@@ -47,15 +47,15 @@ struct SubsurfaceMaterial {
   int strategy_count() const {
     if (!std::holds_alternative<WalkMethod>(method)) return 1;
     const bool share_given = params.walk_sampling_given || params.guided_share_given;
-    if (share_given && params.channel_preference_given) return 1;
-    return int(kWalkStrategies.size()) - (exits_through_lobe() ? 0 : kChannelPerWalkStrategies);
+    return share_given && params.channel_preference_given ? 1 : int(kWalkStrategies.size());
   }
 
-  // How many exits the camera's first entry averages (SubsurfaceEntry::exit_index), for
-  // `requested` (the scene's subsurfacesamples) and the entry's strategy: a walk that
-  // gives each its own colour channel takes a multiple of three (WalkStrategy::
-  // channel_per_walk).
-  int first_entry_exits(int strategy, int requested) const {
+  // How many exits the camera's first entry averages (SubsurfaceEntry::exit_index), each
+  // going on with its share of the path: the scene's `subsurfacesamples` where the exits
+  // leave through the exit lobe, else one; a walk that gives each its own colour channel
+  // takes a multiple of three (WalkStrategy::channel_per_walk).
+  int first_entry_exits(int strategy, int subsurface_samples) const {
+    const int requested = exits_through_lobe() ? subsurface_samples : 1;
     if (std::holds_alternative<WalkMethod>(method) && strategy >= 0 &&
         strategy < int(kWalkStrategies.size()) && kWalkStrategies[std::size_t(strategy)].channel_per_walk)
       return (requested + kChannelWalks - 1) / kChannelWalks * kChannelWalks;

@@ -40,8 +40,8 @@ namespace dermis {
 struct WalkStrategy {
   float p_guided;
   float channel_preference;
-  // At the camera's first entry (with the diffuse boundary, whose several exits the
-  // integrator averages: SubsurfaceMaterial::first_entry_exits), walk k carries colour
+  // At the camera's first entry (whose several exits the integrator averages, each going
+  // on with its share: SubsurfaceMaterial::first_entry_exits), walk k carries colour
   // channel k mod 3 alone, every flight drawn in that channel: three walks per entry, so
   // that each channel has its own walk in every sample. One walk shared by channels whose
   // extinction differs has weights f_k / q that spread with the walk's length and
@@ -54,9 +54,6 @@ struct WalkStrategy {
 };
 inline constexpr std::array<WalkStrategy, 6> kWalkStrategies{
     {{0.5f, 0.5f}, {0.0f, 0.5f}, {0.5f, 0.0f}, {0.0f, 0.0f}, {0.5f, 0.0f, true}, {0.0f, 0.0f, true}}};
-// The strategies before these apply to every walk; these only where the entry's exits
-// are averaged (a walk through the dielectric or matched boundary has one exit).
-inline constexpr int kChannelPerWalkStrategies = 2;
 // Walks per channel-per-walk entry: one per colour channel.
 inline constexpr int kChannelWalks = 3;
 
