@@ -188,6 +188,11 @@ std::vector<int> subsurface_strategies(const RenderScene& sc, const std::vector<
   return strategies;
 }
 
+namespace {
+// A gain whose standard error exceeds this share of it is described as rough.
+constexpr double kRoughGainShare = 0.5;
+}  // namespace
+
 std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceChoice& c) {
   const SubsurfaceMaterial& m = *sc.subsurface[std::size_t(c.material)];
   const WalkStrategy& w = kWalkStrategies[std::size_t(c.strategy)];
@@ -203,8 +208,13 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
     return fmt::format("material {} ({}): {} (the default: no other strategy is significantly faster on {} pilot "
                        "pixels)",
                        c.material, to_string(m.params.method), what, c.pixels);
-  return fmt::format("material {} ({}): {}; {:.2f}x the default's efficiency (+- {:.2f}, estimated on {} pilot pixels)",
-                     c.material, to_string(m.params.method), what, c.gain, c.gain_se, c.pixels);
+  // A standard error above half the gain: the default's pilot samples held a few very
+  // large values (a heavy-tailed estimator); the choice stands (its gain is significant),
+  // the figure is rough.
+  const bool rough = c.gain_se > kRoughGainShare * c.gain;
+  return fmt::format("material {} ({}): {}; {:.2f}x the default's efficiency (+- {:.2f}, estimated on {} pilot pixels{})",
+                     c.material, to_string(m.params.method), what, c.gain, c.gain_se, c.pixels,
+                     rough ? "; a rough figure: the default's samples there are heavy-tailed" : "");
 }
 
 }  // namespace dermis

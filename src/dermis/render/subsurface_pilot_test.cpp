@@ -108,6 +108,31 @@ TEST(SubsurfacePilot, ChoosesTheSameWhateverTheThreadCount) {
   EXPECT_EQ(0, std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)));
 }
 
+// The choice as the user reads it: the strategy, the gain and its standard error; a gain
+// whose standard error exceeds half of it (a heavy-tailed default: the medium in glass of
+// the family once printed 152783x +- 152746) is called rough.
+TEST(SubsurfacePilot, DescribesTheChoiceAndARoughGain) {
+  Diagnostics diag;
+  auto sc = build_render_scene(parse_scene_string(milk_sphere()), diag);
+  SubsurfaceChoice c;
+  c.material = 0;
+  c.strategy = 3;
+  c.pixels = 200;
+  c.gain = 1.5;
+  c.gain_se = 0.2;
+  const std::string plain = describe_subsurface_choice(*sc, c);
+  EXPECT_NE(plain.find("guided share 0, channel preference 0; 1.50x the default's efficiency (+- 0.20"),
+            std::string::npos)
+      << plain;
+  EXPECT_EQ(plain.find("rough"), std::string::npos) << plain;
+  c.gain = 1000;
+  c.gain_se = 900;
+  const std::string rough = describe_subsurface_choice(*sc, c);
+  EXPECT_NE(rough.find("a rough figure"), std::string::npos) << rough;
+  c.strategy = 0;
+  EXPECT_NE(describe_subsurface_choice(*sc, c).find("the default: no other strategy"), std::string::npos);
+}
+
 TEST(SubsurfacePilot, TheSceneTurnsItOffOrPinsTheStrategy) {
   Diagnostics diag;
   auto off = build_render_scene(parse_scene_string(milk_sphere("", "\"bool subsurfacepilot\" false")), diag);
