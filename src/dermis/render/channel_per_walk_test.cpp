@@ -49,6 +49,42 @@ testing::PixelStatistics render_with(const RenderScene& sc, int strategy, int sp
   return testing::pixel_statistics(sc, spp, seed, start);
 }
 
+// Per pixel of the sphere (brighter than the sky in red), the variance of one sample
+// (R + G + B) from the standard errors of spp samples, for renders a and b; their means
+// over the pixels and those means' standard errors (pixels are independent: from their
+// spread).
+struct Variances {
+  double a, a_se, b, b_se;
+};
+Variances sphere_variances(const testing::PixelStatistics& a, const testing::PixelStatistics& b, int spp) {
+  std::vector<double> va, vb;
+  for (std::size_t p = 0; p < a.mean.size(); ++p) {
+    if (!(a.mean[p][0] > 0.7f * 0.6f)) continue;  // the sky itself: 0.6 in red; the sphere brighter
+    double x = 0, y = 0;
+    for (int c = 0; c < 3; ++c) {
+      x += spp * double(a.stderr_[p][c]) * a.stderr_[p][c];
+      y += spp * double(b.stderr_[p][c]) * b.stderr_[p][c];
+    }
+    va.push_back(x), vb.push_back(y);
+  }
+  EXPECT_GE(va.size(), 40u);
+  auto mean_and_se = [](const std::vector<double>& v) {
+    double s = 0, s2 = 0;
+    for (double x : v) s += x, s2 += x * x;
+    const double n = double(v.size()), m = s / n;
+    return std::pair{m, std::sqrt(std::max(0.0, s2 / n - m * m) / n)};
+  };
+  const auto [ma, sa] = mean_and_se(va);
+  const auto [mb, sb] = mean_and_se(vb);
+  return {ma, sa, mb, sb};
+}
+
+// Variance b below `share` of variance a by more than 4 standard errors.
+void expect_less_noise(const Variances& v, double share) {
+  EXPECT_GT(share * v.a - v.b, 4 * std::sqrt(share * share * v.a_se * v.a_se + v.b_se * v.b_se))
+      << v.b << " vs " << share << " x " << v.a;
+}
+
 // The exits it asks for: a multiple of three of what the entry would take (the scene's
 // subsurfacesamples through the diffuse boundary's exit lobe, one through the others),
 // only for these strategies.
@@ -98,32 +134,36 @@ TEST(ChannelPerWalk, SamePictureLessNoiseWhereTheExtinctionDiffersByChannel) {
     const auto shared = render_with(*sc, strategy_index(false, p_guided), 256, 11);
     const auto per_walk = render_with(*sc, strategy_index(true, p_guided), 256, 12);
     testing::expect_same_region_means(shared, per_walk, 3, 3);
-    // Per pixel of the sphere, the variance of one sample (R + G + B) from the standard
-    // errors; pixels are independent, so the sums' standard errors come from their spread.
-    std::vector<double> a, b;
-    for (std::size_t p = 0; p < shared.mean.size(); ++p) {
-      if (!(shared.mean[p][0] > 0.7f * 0.6f)) continue;  // the sky itself: 0.6 in red; the sphere brighter
-      double va = 0, vb = 0;
-      for (int c = 0; c < 3; ++c) {
-        va += 256.0 * shared.stderr_[p][c] * shared.stderr_[p][c];
-        vb += 256.0 * per_walk.stderr_[p][c] * per_walk.stderr_[p][c];
-      }
-      a.push_back(va), b.push_back(vb);
-    }
-    ASSERT_GE(a.size(), 40u);
-    auto mean_and_se = [](const std::vector<double>& v) {
-      double s = 0, s2 = 0;
-      for (double x : v) s += x, s2 += x * x;
-      const double n = double(v.size()), m = s / n;
-      return std::pair{m, std::sqrt(std::max(0.0, s2 / n - m * m) / n)};
-    };
-    const auto [ma, sa] = mean_and_se(a);
-    const auto [mb, sb] = mean_and_se(b);
+    const Variances v = sphere_variances(shared, per_walk, 256);
     std::printf("%s boundary, guided share %.1f: variance per sample %.4g (shared) vs %.4g (one channel per walk): "
                 "%.3gx\n",
-                k.boundary, double(p_guided), ma, mb, mb / ma);
-    EXPECT_GT(k.more_walks * ma - mb, 4 * std::sqrt(k.more_walks * k.more_walks * sa * sa + sb * sb));
+                k.boundary, double(p_guided), v.a, v.b, v.b / v.a);
+    expect_less_noise(v, k.more_walks);
   }
+}
+
+// The material's "bool channelperwalk" pins it (with the guided share, nothing is left
+// for the pilot to choose); false keeps the shared walks in every strategy.
+TEST(ChannelPerWalk, TheMaterialParameterPinsIt) {
+  Diagnostics diag;
+  auto pinned = build_render_scene(
+      parse_scene_string(sky_sphere(R"( "bool channelperwalk" true "float guidedshare" 0)")), diag);
+  const SubsurfaceMaterial& m = *pinned->subsurface[0];
+  EXPECT_EQ(m.strategy_count(), 1);
+  EXPECT_FALSE(subsurface_pilot_wanted(*pinned));
+  EXPECT_TRUE(m.channel_per_walk(0));
+  EXPECT_EQ(m.first_entry_exits(0, 2), 3);
+  auto off = build_render_scene(parse_scene_string(sky_sphere(R"( "bool channelperwalk" false)")), diag);
+  for (int v = 0; v < off->subsurface[0]->strategy_count(); ++v) EXPECT_FALSE(off->subsurface[0]->channel_per_walk(v));
+  EXPECT_THROW(parse_scene_string(sky_sphere(R"( "bool channelperwalk" 1)")), SceneError);
+  // Pinned, with the pilot's strategies out of the way (strategy 0 is the material's own):
+  // the same picture as the shared classical walk, and less noise.
+  auto shared = build_render_scene(
+      parse_scene_string(sky_sphere(R"( "float guidedshare" 0 "float channelpreference" 0)")), diag);
+  const auto a = render_with(*shared, 0, 256, 21);
+  const auto b = render_with(*pinned, 0, 256, 22);
+  testing::expect_same_region_means(a, b, 3, 3);
+  expect_less_noise(sphere_variances(a, b, 256), 2.0 / 3.0);  // 3 shared walks would give 2/3
 }
 
 // On that sphere the pilot measures the difference and chooses one channel per walk.

@@ -200,7 +200,9 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
   const bool share_given = p.walk_sampling_given || p.guided_share_given;
   const std::string what = fmt::format(
       "guided share {:g}{}, {}", share_given ? p.guided_share : w.p_guided, share_given ? " (given)" : "",
-      w.channel_per_walk ? "one colour channel per walk at the camera's first entry"
+      m.channel_per_walk(c.strategy)
+          ? fmt::format("one colour channel per walk at the camera's first entry{}",
+                        p.channel_per_walk_given ? " (given)" : "")
                          : fmt::format("channel preference {:g}{}",
                                        p.channel_preference_given ? p.channel_preference : w.channel_preference,
                                        p.channel_preference_given ? " (given)" : ""));

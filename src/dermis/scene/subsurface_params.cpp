@@ -76,6 +76,7 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"backwardguiding", "bool", "false", "random walk: also guide toward the object's far side"},
     {"guidedshare", "float", "0.5", "random walk (mis): the share of guided flights, in [0, 1] (unset: the render's pilot chooses)"},
     {"channelpreference", "float", "0.5", "random walk: the exponent k of the channel choice, throughput (1 - albedo)^-k, in [0, 8] (unset: the render's pilot chooses)"},
+    {"channelperwalk", "bool", "false", "random walk: the camera's first entry takes 3 walks, each carrying one colour channel (unset: the render's pilot chooses)"},
     {"albedoinversion", "string", "exact", "(reflectance, mfp) to coefficients: exact or fit"},
     {"pointdensity", "float", "1", "point cloud: points per mean free path squared (with the local disk: the most)"},
     {"illuminationerror", "float", "0.02", "point cloud with the local disk: the relative error to which the points must represent the irradiance (0: the density, up to maxpoints)"},
@@ -197,6 +198,10 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
       if (!(v >= 0 && v <= 8)) throw SceneError(p.value_loc, "\"channelpreference\" must be in [0, 8]");
       s.channel_preference = v;
       s.channel_preference_given = true;
+    }
+    else if (n == "channelperwalk") {
+      s.channel_per_walk = read_bool(p);
+      s.channel_per_walk_given = true;
     }
     else if (n == "localdisk") s.local_disk = read_bool(p);
     else if (n == "irradiancesamples") {

@@ -60,6 +60,11 @@ struct SubsurfaceParams {
   bool guided_share_given = false;
   float channel_preference = 0.5f;
   bool channel_preference_given = false;
+  // Random walk: each of the camera's first entry's walks carries one colour channel
+  // (render/subsurface/walk_method.h, WalkStrategy::channel_per_walk); given, the pilot
+  // keeps it.
+  bool channel_per_walk = false;
+  bool channel_per_walk_given = false;
   // Random walk: also guide toward the object's far side (sss/walk/random_walk.h).
   bool backward_guiding = false;
   // (reflectance, mfp) -> coefficients: the exact half-space table, or the van de Hulst

@@ -47,7 +47,16 @@ struct SubsurfaceMaterial {
   int strategy_count() const {
     if (!std::holds_alternative<WalkMethod>(method)) return 1;
     const bool share_given = params.walk_sampling_given || params.guided_share_given;
-    return share_given && params.channel_preference_given ? 1 : int(kWalkStrategies.size());
+    // One channel per walk has no channel preference to choose.
+    const bool channels_given =
+        params.channel_preference_given || (params.channel_per_walk_given && params.channel_per_walk);
+    return share_given && channels_given ? 1 : int(kWalkStrategies.size());
+  }
+
+  // The walk's strategy gives each of the camera's first entry's walks one colour channel.
+  bool channel_per_walk(int strategy) const {
+    const WalkMethod* walk = std::get_if<WalkMethod>(&method);
+    return walk && walk->channel_per_walk(strategy);
   }
 
   // How many exits the camera's first entry averages (SubsurfaceEntry::exit_index), each
@@ -56,9 +65,7 @@ struct SubsurfaceMaterial {
   // takes a multiple of three (WalkStrategy::channel_per_walk).
   int first_entry_exits(int strategy, int subsurface_samples) const {
     const int requested = exits_through_lobe() ? subsurface_samples : 1;
-    if (std::holds_alternative<WalkMethod>(method) && strategy >= 0 &&
-        strategy < int(kWalkStrategies.size()) && kWalkStrategies[std::size_t(strategy)].channel_per_walk)
-      return (requested + kChannelWalks - 1) / kChannelWalks * kChannelWalks;
+    if (channel_per_walk(strategy)) return (requested + kChannelWalks - 1) / kChannelWalks * kChannelWalks;
     return requested;
   }
 

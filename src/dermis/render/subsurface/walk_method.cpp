@@ -49,6 +49,7 @@ WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture
     s.channel_preference =
         params.channel_preference_given ? params.channel_preference : kWalkStrategies[i].channel_preference;
     steps_.push_back(sss::make_walk_step(medium_, s));
+    channel_per_walk_[i] = params.channel_per_walk_given ? params.channel_per_walk : kWalkStrategies[i].channel_per_walk;
   }
 }
 
@@ -58,7 +59,7 @@ bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Sub
   // k mod 3 alone, and as the integrator averages the entry's 3m exits, each channel's m
   // walks count kChannelWalks times: their mean is the channel's estimate.
   const int channel =
-      kWalkStrategies[strategy].channel_per_walk && entry.exit_index >= 0 ? entry.exit_index % kChannelWalks : -1;
+      channel_per_walk_[strategy] && entry.exit_index >= 0 ? entry.exit_index % kChannelWalks : -1;
   RGB initial(1);
   if (channel >= 0) {
     initial = RGB(0);

@@ -67,6 +67,11 @@ class WalkMethod {
   bool sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const;
 
   const sss::WalkMedium& medium() const { return medium_; }
+  // Whether the strategy's walks carry one colour channel each at the camera's first
+  // entry (WalkStrategy::channel_per_walk, or the material's `channelperwalk`).
+  bool channel_per_walk(int strategy) const {
+    return strategy >= 0 && strategy < int(kWalkStrategies.size()) && channel_per_walk_[std::size_t(strategy)];
+  }
 
  private:
   // initial: the throughput the walk starts with (1, or one channel's).
@@ -85,6 +90,7 @@ class WalkMethod {
   sss::WalkMedium medium_;  // the constant parameters' medium
   // Per strategy (kWalkStrategies): the settings and the constant medium's step sampler.
   std::array<sss::WalkSettings, kWalkStrategies.size()> settings_;
+  std::array<bool, kWalkStrategies.size()> channel_per_walk_{};
   std::vector<sss::MixtureWalkStep<3>> steps_;
 };
 
