@@ -561,6 +561,19 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
         return light_through_lobe(at, sm.exit_lobe(at, table_at), smp);
       };
+      // A nested path from an exit, as this path would go on from there: its settings, the
+      // vertex after it (prev_*) the caller's.
+      auto nested_way_on = [&](uint64_t first_dimension) {
+        PathStart way_on;
+        way_on.from_camera = false;
+        way_on.depth = depth;
+        way_on.first_dimension = first_dimension;
+        way_on.rough_glass_nee = start.rough_glass_nee;
+        way_on.reflection_emission = start.reflection_emission;
+        way_on.split_budget = &split_budget;
+        way_on.subsurface_strategies = start.subsurface_strategies;
+        return way_on;
+      };
       // A nested way on from the exit point `at` through its lobe (a path splitting's copy,
       // or another exit's way on): the lobe sampled from the sampler's current dimension,
       // the path from first_dimension; adds beta x weight / divisor x its radiance to L.
@@ -572,18 +585,11 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         const RGB beta_k = beta * weight * b->weight / divisor;
         if (!beta_k.is_finite() || beta_k.is_black()) return;
         const Vec3 p_out_k = offset_ray_origin(at.p, at.ng, at.ng);
-        PathStart way_on;
-        way_on.from_camera = false;
+        PathStart way_on = nested_way_on(first_dimension);
         way_on.prev_pdf = b->pdf;
         way_on.prev_p = p_out_k;
         way_on.prev_n = at.ng;
         way_on.prev_sky_gives_way = true;
-        way_on.depth = depth;
-        way_on.first_dimension = first_dimension;
-        way_on.rough_glass_nee = start.rough_glass_nee;
-        way_on.reflection_emission = start.reflection_emission;
-        way_on.split_budget = &split_budget;
-        way_on.subsurface_strategies = start.subsurface_strategies;
         L += beta_k * trace_path(sc, Ray{p_out_k, b->wi}, medium, sampler, counters, way_on);
       };
       // A nested way on along an Along exit's direction e.direction (another exit's, at the
@@ -593,19 +599,12 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         const RGB beta_k = beta * e.weight / divisor;
         if (!beta_k.is_finite() || beta_k.is_black()) return;
         const bool weighed = e.direction_pdf > 0 && start.rough_glass_nee;
-        PathStart way_on;
-        way_on.from_camera = false;
+        PathStart way_on = nested_way_on(first_dimension);
         way_on.prev_specular = !weighed;
         way_on.prev_pdf = e.direction_pdf;
         way_on.prev_p = weighed ? offset_ray_origin(e.hit.p, e.hit.ng, e.hit.ng) : e.hit.p;
         way_on.prev_n = e.hit.ng;
         way_on.prev_sky_gives_way = false;  // light_through's samples
-        way_on.depth = depth;
-        way_on.first_dimension = first_dimension;
-        way_on.rough_glass_nee = start.rough_glass_nee;
-        way_on.reflection_emission = start.reflection_emission;
-        way_on.split_budget = &split_budget;
-        way_on.subsurface_strategies = start.subsurface_strategies;
         L += beta_k * trace_path(sc, Ray{offset_ray_origin(e.hit.p, e.hit.ng, e.direction), e.direction}, medium,
                                  sampler, counters, way_on);
       };
