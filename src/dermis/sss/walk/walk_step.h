@@ -333,6 +333,19 @@ class MixtureWalkStep {
   // classical exponentials serve the numerator too.
   Channels weights(const FlightProposal& f, const GuideAxes<N>& axes, double length, bool collision,
                    const Channels& q) const {
+    if (p_guided_ <= 0) {
+      // Classical sampling in one channel c alone (q_c = 1: the walk carries c only, as
+      // with one colour channel per walk): the mixture is channel c's own term, which the
+      // numerator cancels but for the albedo. The other channels carry nothing: 0.
+      int only = -1;
+      for (int c = 0; c < N; ++c)
+        if (q[c] > 0) only = only == -1 ? c : N;
+      if (only >= 0 && only < N) {
+        Channels w{};
+        w[std::size_t(only)] = f.scattered ? albedo_[std::size_t(only)] : 1.0;
+        return w;
+      }
+    }
     const double phase = f.scattered ? f.phase : 1.0;
     double a_classical[N], b_classical[N], a_guided[2 * N], b_guided[2 * N];
     int guided_terms = 0;
