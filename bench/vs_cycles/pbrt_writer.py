@@ -61,8 +61,10 @@ def shape_text(shape):
 def material_text(mat, extra):
     k = mat["kind"]
     if k == "subsurface":
+        # Cycles 3.4's Random Walk enters along a cosine lobe (scenes.py, the mapping).
+        entry = ' "string entry" "lambertian"' if mat["method"] == "randomwalk" else ""
         return (f'Material "subsurface" "rgb reflectance" [ {_v(mat["reflectance"])} ] "rgb mfp" [ {_v(mat["mfp"])} ]\n'
-                f'      "float eta" {mat["eta"]:g} "float g" {mat["g"]:g} {extra}')
+                f'      "float eta" {mat["eta"]:g} "float g" {mat["g"]:g}{entry} {extra}')
     if k == "medium" and mat["boundary"] == "glass":
         return (f'Material "subsurface" "rgb sigma_a" [ {_v(mat["sigma_a"])} ] "rgb sigma_s" [ {_v(mat["sigma_s"])} ]\n'
                 f'      "float g" {mat["g"]:g} "float eta" {mat["eta"]:g} {extra}')

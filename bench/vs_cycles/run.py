@@ -571,7 +571,8 @@ def write_report(args, results, info, total, path, image_dir, argv):
         w(sc["checks"] + "\n")
         if m["kind"] == "subsurface":
             w(f"Dermis: `subsurface` reflectance {v3(m['reflectance'], '{:g}')}, mfp {v3(m['mfp'], '{:g}')} mm, "
-              f"eta {m['eta']:g}, g {m['g']:g}. Cycles: Principled `{'RANDOM_WALK' if m['method'] == 'randomwalk' else 'BURLEY'}`, "
+              f"eta {m['eta']:g}, g {m['g']:g}{', entry lambertian' if m['method'] == 'randomwalk' else ''}. "
+              f"Cycles: Principled `{'RANDOM_WALK' if m['method'] == 'randomwalk' else 'BURLEY'}`, "
               f"Base/Subsurface Color = reflectance, Subsurface 1, Subsurface Radius "
               f"{v3(m['cycles_radius'], '{:.3f}')} (converted, see scenes.py), Subsurface IOR {m['eta']:g}, "
               f"Anisotropy {m['g']:g}, Specular {S.principled_specular(m['eta']):.3f} (F0 of eta {m['eta']:g}), "

@@ -14,6 +14,11 @@ Parameter mapping (both renderers' conventions, from their documentation/source)
   sigma_t = 1 / (r_scaled (1 - g)) (subsurface_random_walk.h). We give Cycles the radius
   that yields Dermis' sigma_t = 1/l: r = l / ((1 - g) sqrt(3 (1 - alpha'))) (same extinction; the
   single-scattering albedo still comes from each renderer's own inversion of A).
+- Cycles 3.4's Random Walk enters along a cosine lobe about -N (sample_cos_hemisphere in
+  subsurface_random_walk.h: a diffuse transmission, Chiang, Kutz & Burley 2016) where
+  Dermis' default refracts; its Dermis twin has `"string entry" "lambertian"`
+  (pbrt_writer.py). Thick objects do not tell them apart; thin or translucent ones
+  do (mfp/size 1 and a backlight, f06: the refracted entry is 2.5-4.6x brighter).
 - Cycles 3.4 Christensen-Burley: the profile's d is radius / (4 pi) (bssrdf_setup_radius;
   subsurface_disk.h uses it directly). Dermis' `burley` profile has d = l / s(A) with the
   volume-mfp fit s = 1.85 - A + 7 |A - 0.8|^3 (docs/materials.md). We give Cycles

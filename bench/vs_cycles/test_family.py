@@ -89,3 +89,15 @@ def test_the_held_out_configurations_are_not_in_the_family_and_render(tmp_path):
                             "--no-png", "-o", str(out)], capture_output=True, text=True, timeout=120)
         assert p.returncode == 0, p.stderr
         assert out.exists()
+
+
+def test_the_random_walk_twins_enter_as_cycles_3_4_does():
+    """Cycles 3.4's Random Walk enters along a cosine lobe: its Dermis twin says so; the
+    Christensen-Burley twins (profile methods) have no entry direction to set."""
+    for name, sc in S.SCENES.items():
+        m = sc["material"]
+        if m["kind"] != "subsurface":
+            continue
+        for label, extra in sc["dermis"].items():
+            text = pbrt_writer.scene_text(sc, label, extra)
+            assert ('"string entry" "lambertian"' in text) == (m["method"] == "randomwalk"), (name, label)

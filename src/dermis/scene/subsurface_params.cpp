@@ -72,6 +72,7 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"method", "string", "randomwalk", "how light is carried from entry to exit"},
     {"profile", "string", "burley (dipole for pointcloud)", "the diffusion profile of the profile methods"},
     {"boundary", "string", "diffuse", "random walk: how light leaves (diffuse, dielectric, matched)"},
+    {"entry", "string", "refracted", "random walk with the diffuse boundary: the direction light enters along, refracted or lambertian (a cosine lobe, as Cycles 3.x)"},
     {"walksampling", "string", "mis", "random walk: classical, dwivedi or mis"},
     {"backwardguiding", "bool", "false", "random walk: also guide toward the object's far side"},
     {"guidedshare", "float", "0.5", "random walk (mis): the share of guided flights, in [0, 1] (unset: the render's pilot chooses)"},
@@ -147,6 +148,7 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
   s.loc = loc;
   float scale = 1;
   const ParsedParam *sigma_a = nullptr, *sigma_s = nullptr, *reflectance = nullptr, *mfp = nullptr, *name = nullptr;
+  const ParsedParam* entry = nullptr;
   bool profile_given = false;
   std::optional<float> roughness, uroughness, vroughness;
   for (const ParsedParam& item : pl.items()) {
@@ -173,6 +175,13 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
     }
     else if (n == "method") s.method = lookup(kMethods, p, "subsurface method");
     else if (n == "boundary") s.boundary = lookup(kBoundaries, p, "boundary");
+    else if (n == "entry") {
+      if (p.type != "string" || p.param.strings.size() != 1 ||
+          (p.param.strings[0] != "refracted" && p.param.strings[0] != "lambertian"))
+        throw SceneError(p.value_loc, "\"entry\" must be \"refracted\" or \"lambertian\"");
+      s.lambertian_entry = p.param.strings[0] == "lambertian";
+      entry = &p;
+    }
     else if (n == "walksampling") s.walk_sampling = lookup(kWalkSamplings, p, "walk sampling"), s.walk_sampling_given = true;
     else if (n == "epsilon") s.epsilon = read_float(p);
     else if (n == "albedoinversion") {
@@ -267,6 +276,15 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
     diag.warn(loc, "subsurface: a textured \"roughness\" is not supported by the \"pointcloud\" method "
                    "(its points carry no texture coordinates); 0 used");
     s.roughness_texture = -1;
+  }
+  if (s.lambertian_entry && s.method == SubsurfaceParams::Method::RandomWalk &&
+      s.boundary != SubsurfaceParams::Boundary::Diffuse)
+    throw SceneError(entry->value_loc, "\"entry\" \"lambertian\" needs \"boundary\" \"diffuse\" (a diffuse "
+                                       "transmission in and out; the other boundaries refract)");
+  if (s.lambertian_entry && s.method != SubsurfaceParams::Method::RandomWalk) {
+    diag.warn(entry->param.loc, fmt::format("subsurface: \"entry\" applies to the random walk only; ignored by \"{}\"",
+                                            to_string(s.method)));
+    s.lambertian_entry = false;
   }
   // The point cloud's profile is the dipole by default, as in Jensen & Buehler 2002.
   if (s.method == SubsurfaceParams::Method::PointCloud && !profile_given) s.profile = SubsurfaceParams::Profile::Dipole;

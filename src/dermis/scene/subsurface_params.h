@@ -50,6 +50,10 @@ struct SubsurfaceParams {
   Method method = Method::RandomWalk;
   Profile profile = Profile::Burley;
   Boundary boundary = Boundary::Diffuse;
+  // Random walk, `diffuse` boundary: light that enters takes a direction from a cosine
+  // lobe under the surface (a diffuse transmission, Chiang, Kutz & Burley 2016, sec. 4;
+  // Cycles 3.x's Random Walk) instead of its refracted direction.
+  bool lambertian_entry = false;
   WalkSampling walk_sampling = WalkSampling::Mis;
   // `walksampling` was given: the render's pilot keeps it (and the default guided share).
   bool walk_sampling_given = false;

@@ -122,6 +122,24 @@ TEST(SubsurfaceParams, BadInputIsAnErrorAtItsLocation) {
   expect_error("Material \"subsurface\" \"bool backwardguiding\" [true false]", "\"backwardguiding\" must be one bool");
   expect_error("Material \"subsurface\" \"float illuminationerror\" -0.1", "\"illuminationerror\" must be in [0, 1]");
   expect_error("Material \"subsurface\" \"float illuminationerror\" 2", "\"illuminationerror\" must be in [0, 1]");
+  expect_error("Material \"subsurface\" \"string entry\" \"cosine\"", "\"entry\" must be \"refracted\" or \"lambertian\"");
+  expect_error("Material \"subsurface\" \"string entry\" \"lambertian\" \"string boundary\" \"dielectric\"",
+               "\"entry\" \"lambertian\" needs \"boundary\" \"diffuse\"");
+}
+
+// The walk's entry: refracted (the default) or a diffuse transmission with the `diffuse`
+// boundary; another method ignores it, with a warning.
+TEST(SubsurfaceParams, LambertianEntry) {
+  EXPECT_FALSE(params_of("Material \"subsurface\"").lambertian_entry);
+  EXPECT_FALSE(params_of("Material \"subsurface\" \"string entry\" \"refracted\"").lambertian_entry);
+  EXPECT_TRUE(params_of("Material \"subsurface\" \"string entry\" \"lambertian\"").lambertian_entry);
+  const SceneDesc disk = parse_scene_string(std::string(kHeader) +
+                                            "Material \"subsurface\" \"string entry\" \"lambertian\" "
+                                            "\"string method\" \"disk\"\nShape \"sphere\"\n");
+  EXPECT_FALSE(disk.materials.at(0).subsurface.lambertian_entry);
+  ASSERT_EQ(disk.diagnostics.warnings.size(), 1u);
+  EXPECT_NE(disk.diagnostics.warnings[0].find("\"entry\" applies to the random walk only"), std::string::npos)
+      << disk.diagnostics.warnings[0];
 }
 
 TEST(SubsurfaceVolumetric, IsExactlyAMediumInsideADielectric) {

@@ -17,8 +17,8 @@ namespace dermis {
 
 namespace {
 
-// (eta, g, exit matched, alpha_x, alpha_y)
-using TableKey = std::tuple<double, double, bool, double, double>;
+// (eta, g, exit matched, alpha_x, alpha_y, Lambertian entry)
+using TableKey = std::tuple<double, double, bool, double, double, bool>;
 
 // One table per boundary and g, shared by every material of the process.
 std::mutex g_tables_mutex;
@@ -31,6 +31,7 @@ sss::AlbedoTableConfig table_config(const TableKey& key) {
   config.exit_matched = std::get<2>(key);
   config.alpha_x = std::get<3>(key);
   config.alpha_y = std::get<4>(key);
+  config.entry_lambertian = std::get<5>(key);
   return config;
 }
 
@@ -53,7 +54,8 @@ std::optional<TableKey> table_key(const SubsurfaceParams& p, std::optional<float
     ay = alpha_node ? *alpha_node : roughness_to_alpha(p.vroughness, p.remap_roughness);
     if (std::max(ax, ay) < kSmoothAlpha) ax = ay = 0;
   }
-  return TableKey{matched ? 1.0 : p.eta, p.g, p.boundary == Boundary::Diffuse, ax, ay};
+  const bool diffuse = p.boundary == Boundary::Diffuse;
+  return TableKey{matched ? 1.0 : p.eta, p.g, diffuse, ax, ay, diffuse && p.lambertian_entry};
 }
 
 bool alpha_interpolated(const SubsurfaceParams& p) {

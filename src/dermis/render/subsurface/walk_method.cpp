@@ -36,7 +36,8 @@ sss::WalkMedium walk_medium(const Coefficients& k, float g) {
 
 WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures)
     : params_(params), textures_(textures), inversions_(params), boundary_(params.boundary), eta_(params.eta),
-      roughness_(params, params.boundary == SubsurfaceParams::Boundary::Matched, textures) {
+      roughness_(params, params.boundary == SubsurfaceParams::Boundary::Matched, textures),
+      lambertian_entry_(params.lambertian_entry && params.boundary == SubsurfaceParams::Boundary::Diffuse) {
   medium_per_entry_ = textures_ && (params.textured() || (roughness_.textured() && !inversions_.single() &&
                                                           !inversions_.empty()));
   medium_ = walk_medium(coefficients_from(medium_at(params), inversions_, roughness_.constant().x), params.g);
@@ -91,7 +92,15 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
   using Boundary = SubsurfaceParams::Boundary;
   const SurfaceHit& in = entry.hit;
   Vec3 dir;
-  if (entry.refracted) {
+  if (lambertian_entry_) {
+    // A diffuse transmission (Chiang, Kutz & Burley 2016, sec. 4): a cosine lobe under
+    // the surface, whatever the boundary's refraction; the entry's weight is the
+    // boundary's transmission as for the refracted entry. A direction above the geometric
+    // surface is no light (geometry/shading_normal.h).
+    const float u1 = sampler.uniform(), u2 = sampler.uniform();
+    dir = Frame(-in.ns).to_world(sample_cosine_hemisphere({u1, u2}));
+    if (dot(dir, in.ng) >= 0) return false;
+  } else if (entry.refracted) {
     dir = *entry.refracted;  // through a rough entry
   } else if (boundary_ == Boundary::Matched) {
     dir = -entry.wo;

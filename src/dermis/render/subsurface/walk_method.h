@@ -83,7 +83,8 @@ class WalkMethod {
   AlbedoInversions inversions_;  // (reflectance, mfp) -> coefficients; empty: given, or the fit
   SubsurfaceParams::Boundary boundary_;
   float eta_;
-  BoundaryRoughness roughness_;  // the boundary's alphas per point (the `dielectric` boundary's exits)
+  BoundaryRoughness roughness_;
+  bool lambertian_entry_;  // SubsurfaceParams::lambertian_entry  // the boundary's alphas per point (the `dielectric` boundary's exits)
   // The medium differs from one entry point to another: textured parameters, or a
   // textured roughness that the albedo inversion depends on.
   bool medium_per_entry_ = false;

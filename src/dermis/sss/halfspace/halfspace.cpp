@@ -53,6 +53,15 @@ struct Tally {
   }
 };
 
+// A cosine-weighted direction into the medium (z < 0): the cosine has density 2 mu on
+// [0, 1], so mu = sqrt(xi).
+Vec3d cosine_direction_down(Rng& rng) {
+  const double mu = std::sqrt(rng.uniform_double());
+  const double phi = 2 * kPiD * rng.uniform_double();
+  const double sin_theta = std::sqrt(std::max(0.0, 1 - mu * mu));
+  return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), -mu};
+}
+
 // Incident propagation direction (pointing into the medium, z < 0).
 Vec3d sample_incident_direction(const HalfspaceConfig& c, Rng& rng) {
   switch (c.incidence) {
@@ -60,13 +69,8 @@ Vec3d sample_incident_direction(const HalfspaceConfig& c, Rng& rng) {
       return {0, 0, -1};
     case Incidence::Angle:
       return {std::sin(c.incidence_angle), 0, -std::cos(c.incidence_angle)};
-    case Incidence::Diffuse: {
-      // Cosine-weighted: the cosine has density 2 mu on [0, 1], so mu = sqrt(xi).
-      const double mu = std::sqrt(rng.uniform_double());
-      const double phi = 2 * kPiD * rng.uniform_double();
-      const double sin_theta = std::sqrt(std::max(0.0, 1 - mu * mu));
-      return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), -mu};
-    }
+    case Incidence::Diffuse:
+      return cosine_direction_down(rng);
   }
   return {0, 0, -1};
 }
@@ -130,6 +134,7 @@ void trace_path(const HalfspaceConfig& c, const Policy& policy, Rng& rng, Tally&
     weight = 1.0 - fresnel_dielectric(-incident.z, c.eta);
     if (!refract_through_plane(incident, c.eta, direction)) return;  // total reflection
   }
+  if (c.entry_lambertian) direction = cosine_direction_down(rng);  // a diffuse transmission
   const double entered = weight;
   const double roulette_weight = c.roulette_threshold * weight;
   double absorbed = 0;

@@ -29,6 +29,10 @@ struct HalfspaceConfig {
   // Refract at entry by eta but leave at the first boundary crossing (the renderer's
   // `diffuse` random-walk boundary, whose exit lobe lets everything out).
   bool exit_matched = false;
+  // The light that enters takes a cosine-distributed direction under the boundary (a
+  // diffuse transmission, Chiang, Kutz & Burley 2016) instead of its refracted one; its
+  // weight is the boundary's transmission as without it.
+  bool entry_lambertian = false;
   // Trowbridge-Reitz alphas of a rough dielectric boundary (pbrt-v4's roughness after
   // remapping). Both below kSmoothAlpha (core/microfacet.h): the smooth boundary, exactly
   // as without them (the renderer's rule). Rough, the entry samples the rough dielectric

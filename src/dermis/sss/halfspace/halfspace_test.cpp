@@ -37,6 +37,23 @@ TEST(Halfspace, AlbedoMatchesChandrasekhar) {
   }
 }
 
+// A Lambertian entry (Chiang, Kutz & Burley 2016) sends the entering light along a
+// cosine lobe whatever its incidence: behind a refracting boundary with exit at the
+// first crossing, the albedo per entering light is then the index-matched half-space's
+// under diffuse incidence, Chandrasekhar's, even under normal incidence.
+TEST(Halfspace, LambertianEntryIsDiffuseIncidenceInside) {
+  for (double alpha : {0.5, 0.9}) {
+    const HFunction h(alpha);
+    HalfspaceConfig c = config(alpha, Incidence::Normal, 100000, 43);
+    c.eta = 1.4;
+    c.exit_matched = true;
+    c.entry_lambertian = true;
+    const HalfspaceResult r = simulate_halfspace(c);
+    EXPECT_NEAR(r.albedo_per_entering(), halfspace_albedo_diffuse(h), 4 * r.albedo_per_entering_stderr())
+        << "alpha=" << alpha << " stderr=" << r.albedo_per_entering_stderr();
+  }
+}
+
 // Without absorption nothing is lost: every path leaves or is explicitly truncated
 // (the return time of a conservative walk has infinite mean, so a cap is needed).
 TEST(Halfspace, ConservativeMediumLosesNothing) {

@@ -122,8 +122,9 @@ void AlbedoInversion::init_nodes() {
   if (config.use_cache) {
     const std::string dir = config.cache_dir.empty() ? default_cache_dir() : config.cache_dir;
     if (!dir.empty())
-      cache_path_ = fmt::format("{}/albedo-v{}-eta{:.9g}{}{}-g{:.9g}-n{}-p{}-s{}-{}.txt", dir, kCacheVersion, config.eta,
-                                config.exit_matched ? "-exitmatched" : "",
+      cache_path_ = fmt::format("{}/albedo-v{}-eta{:.9g}{}{}{}-g{:.9g}-n{}-p{}-s{}-{}.txt", dir, kCacheVersion,
+                                config.eta, config.exit_matched ? "-exitmatched" : "",
+                                config.entry_lambertian ? "-lambertianentry" : "",
                                 config.alpha_x > 0 || config.alpha_y > 0
                                     ? fmt::format("-ax{:.9g}-ay{:.9g}", config.alpha_x, config.alpha_y)
                                     : "",
@@ -158,6 +159,7 @@ AlbedoNode simulate_albedo_node(const AlbedoTableConfig& config, int i) {
   c.g = config.g;
   c.eta = config.eta;
   c.exit_matched = config.exit_matched;
+  c.entry_lambertian = config.entry_lambertian;
   c.alpha_x = config.alpha_x;
   c.alpha_y = config.alpha_y;
   c.incidence = Incidence::Diffuse;

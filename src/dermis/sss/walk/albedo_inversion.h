@@ -25,6 +25,7 @@ namespace dermis::sss {
 struct AlbedoTableConfig {
   double eta = 1.0;  // n_medium / n_outside
   bool exit_matched = false;  // entry refracts by eta, exit at the first crossing (HalfspaceConfig)
+  bool entry_lambertian = false;  // entry along a cosine lobe (HalfspaceConfig)
   double g = 0.0;    // HG anisotropy
   // The boundary's Trowbridge-Reitz alphas (HalfspaceConfig::alpha_x, alpha_y): rough at
   // the entry, and at every exit unless exit_matched. Below kSmoothAlpha: smooth.
