@@ -312,6 +312,52 @@ TEST(SubsurfaceRandomWalk, LambertianEntrySlabReturnsTheRequestedReflectance) {
   std::printf("diffuse boundary, Lambertian entry, A = 0.5 requested: %.4f\n", measured);
 }
 
+// A non-scattering slab of optical thickness 1 under a uniform sky, eta = 1: the light
+// that reaches the far face leaves through the exit lobe and sees the sky (radiance 1).
+// Seen from above, the Lambertian entry's radiance is the cosine-weighted transmittance
+// 2 E3(1) = integral 2 mu e^{-1/mu} dmu, whatever the view; the refracted entry's is
+// e^{-1/mu_view}. Both within 4 sigma of the closed forms.
+TEST(SubsurfaceRandomWalk, LambertianEntryCrossesAThinSlabWithTheCosineWeightedTransmittance) {
+  const std::string scene_text = std::string(R"(LookAt 0 0 10  0 0 0  0 1 0
+Camera "perspective"
+Film "rgb" "integer xresolution" 2 "integer yresolution" 2
+Integrator "volpath" "integer maxdepth" 100
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+Material "subsurface" "rgb sigma_a" [1 1 1] "rgb sigma_s" [0 0 0] "float eta" 1 "string walksampling" "classical" )");
+  const std::string slab = R"(
+Shape "trianglemesh" "point3 P" [-500 -500 -1  500 -500 -1  500 500 -1  -500 500 -1
+                                  -500 -500 0  500 -500 0  500 500 0  -500 500 0]
+  "integer indices" [0 2 1  0 3 2   4 5 6  4 6 7   0 1 5  0 5 4   1 2 6  1 6 5   2 3 7  2 7 6   3 0 4  3 4 7]
+)";
+  double two_e3 = 0;  // 2 E3(1), midpoint rule (error ~1e-11)
+  const int nq = 200000;
+  for (int i = 0; i < nq; ++i) {
+    const double mu = (i + 0.5) / nq;
+    two_e3 += 2 * mu * std::exp(-1 / mu) / nq;
+  }
+  const float view_mu = 0.8f;
+  const Vec3 view(std::sqrt(1 - view_mu * view_mu), 0, view_mu);
+  for (const bool lambertian : {true, false}) {
+    Diagnostics diag;
+    auto sc = build_render_scene(
+        parse_scene_string(scene_text + (lambertian ? "\"string entry\" \"lambertian\"" : "") + slab), diag);
+    const int n = 40000;
+    double sum = 0, sum2 = 0;
+    PathCounters counters;
+    for (int i = 0; i < n; ++i) {
+      Sampler rng(SamplerKind::Independent, 91, uint64_t(i), 0);
+      const double L = trace_path(*sc, Ray{view * 1.0f, -view}, -1, rng, counters).average();
+      sum += L, sum2 += L * L;
+    }
+    const double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+    const double expected = lambertian ? two_e3 : std::exp(-1.0 / view_mu);
+    std::printf("%s entry: %.5f +- %.5f, closed form %.5f\n", lambertian ? "Lambertian" : "refracted", mean, se,
+                expected);
+    EXPECT_NEAR(mean, expected, 4 * se) << (lambertian ? "lambertian" : "refracted");
+  }
+}
+
 TEST(SubsurfaceRandomWalk, VanDeHulstFitMissesTheReflectanceBehindADielectric) {
   // The fit ignores the boundary: behind eta = 1.4 the coefficients it gives are far
   // too absorbing (the walk helper measured |dA| up to 0.21). Measure it on the slab.
