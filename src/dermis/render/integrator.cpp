@@ -244,6 +244,10 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
   Vec3 prev_n = start.from_camera ? Vec3(0, 0, 0) : start.prev_n;
   bool prev_sky_gives_way = !start.from_camera && start.prev_sky_gives_way;
   int depth = start.depth, crossings = 0;
+  // Every vertex so far a smooth specular one (glass, a mirror) or none: what the camera
+  // sees directly, through glass or in a mirror. Its first subsurface entry is the
+  // camera's first entry (below), with the exits and strategies that serve it.
+  bool camera_chain = start.from_camera && start.depth == 0;
   // The emission at the next surface (or at infinity) was counted already (a subsurface
   // entry's reflection, below): the path goes on from there without it.
   bool emission_counted = false;
@@ -374,6 +378,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         Vec3 wi = direction_about(ray.d, cos_theta, u_phase.y);
         prev_pdf = henyey_greenstein(cos_theta, g);
         specular = false;
+        camera_chain = false;
         prev_p = p;
         prev_n = Vec3(0, 0, 0);
         prev_sky_gives_way = false;
@@ -444,6 +449,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         ray.tmax = kInf;
         continue;
       }
+      const bool first_entry = camera_chain;
+      camera_chain = false;
       std::optional<Vec3> refracted;
       const BSDF boundary = sm.entry_boundary(hit);
       float F = fresnel_dielectric(dot(wo, hit.ns), sm.entry_eta);
@@ -609,7 +616,6 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
                                  sampler, counters, way_on);
       };
       const int strategy = start.subsurface_strategies ? (*start.subsurface_strategies)[std::size_t(mat.subsurface)] : 0;
-      const bool first_entry = start.from_camera && start.depth == 0 && depth == 1;
       // The camera's first entry averages several exits (below): the scene's
       // subsurfacesamples through the exit lobe, or more (a walk with one colour channel
       // per exit, whatever its boundary).
@@ -811,6 +817,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     beta *= bs->weight;
     eta_scale *= bs->eta_scale;
     specular = bs->specular || !nee;  // no light sampling here: emission counts in full
+    if (!bs->specular) camera_chain = false;
     prev_pdf = bs->pdf;
     const bool behind = two_sided_nee && bs->transmission;
     prev_p = behind ? p_back : p_out;

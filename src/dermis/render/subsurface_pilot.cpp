@@ -10,6 +10,9 @@
 
 #include "dermis/core/rng.h"
 #include "dermis/core/sampler.h"
+#include "dermis/geometry/shading_normal.h"
+#include "dermis/materials/bsdf.h"
+#include "dermis/materials/material.h"
 #include "dermis/render/integrator.h"
 
 namespace dermis {
@@ -24,6 +27,8 @@ constexpr int64_t kPilotMinSamples = 1024, kPilotMaxSamples = 131072;
 constexpr int64_t kPilotProbes = 262144;
 // Samples per pilot pixel: their difference gives the variance of one sample.
 constexpr int kPilotSamples = 2;
+// The most smooth specular vertices (glass, mirrors) a pilot probe follows.
+constexpr int kPilotChainVertices = 8;
 
 // What the pilot's samples of one pixel did, for one strategy.
 struct PilotPixel {
@@ -55,6 +60,34 @@ bool subsurface_pilot_wanted(const RenderScene& sc) {
   return false;
 }
 
+// Whether the camera sees a subsurface object along `ray`: directly, or through smooth
+// glass, mirrors and index-matched boundaries (the camera's path there, whose first
+// subsurface entry is the camera's first entry: integrator.cpp, camera_chain). At glass
+// the way on is the transmission, as the camera path's after its first hit's reflection
+// is split off; under total internal reflection, the reflection.
+bool camera_sees_subsurface(const RenderScene& sc, Ray ray) {
+  for (int vertex = 0; vertex < kPilotChainVertices; ++vertex) {
+    SurfaceHit hit;
+    if (!sc.embree->intersect(ray, hit)) return false;
+    const int index = sc.shapes[std::size_t(hit.shape)].material;
+    if (index < 0) return false;
+    const Vec3 wo = -ray.d;
+    const Material& m = sc.materials[std::size_t(resolve_material(sc.materials, sc.textures, index, hit, wo, 0))];
+    if (m.subsurface >= 0) return true;
+    if (m.is_interface()) {
+      ray = Ray{offset_ray_origin(hit.p, hit.ng, ray.d), ray.d};
+      continue;
+    }
+    hit.ns = shading_normal_seen_from(hit, wo);
+    const BSDF b = bsdf_at(m, sc.textures, hit);
+    if (!b.is_specular() || b.type == BSDF::Type::Coated) return false;
+    const auto bs = bsdf_sample(b, wo, 1.0f, Vec2{0.5f, 0.5f});
+    if (!bs) return false;
+    ray = Ray{offset_ray_origin(hit.p, hit.ng, bs->wi), bs->wi};
+  }
+  return false;
+}
+
 std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const SubsurfacePilotOptions& opt) {
   int strategies = 1;
   for (const auto& m : sc.subsurface)
@@ -71,10 +104,7 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
     const int64_t index = probe_pixel(i);
     const Vec2 centre{float(opt.bounds.x0 + index % opt.bounds.width()) + 0.5f,
                       float(opt.bounds.y0 + index / opt.bounds.width()) + 0.5f};
-    SurfaceHit hit;
-    if (!sc.embree->intersect(sc.camera.generate_ray(centre, Vec2{0.5f, 0.5f}), hit)) return;
-    const int material = sc.shapes[std::size_t(hit.shape)].material;
-    sees[std::size_t(i)] = material >= 0 && sc.materials[std::size_t(material)].subsurface >= 0 ? 1 : 0;
+    sees[std::size_t(i)] = camera_sees_subsurface(sc, sc.camera.generate_ray(centre, Vec2{0.5f, 0.5f})) ? 1 : 0;
   });
   std::vector<int64_t> candidates;
   for (int64_t i = 0; i < probes; ++i)
