@@ -212,16 +212,21 @@ TEST(ChannelPerWalk, ServesTheSphereSeenThroughGlass) {
   expect_less_noise(v, 2.0 / 3.0);
 }
 
-// On that sphere the pilot measures the difference and chooses one channel per walk.
-TEST(ChannelPerWalk, ThePilotChoosesItOnTheSkyLitMilkSphere) {
+// The pilot's choices on a scene (seed 3, as for a render of 256 spp).
+std::vector<SubsurfaceChoice> pilot_choices(const std::string& scene) {
   Diagnostics diag;
-  auto sc = build_render_scene(parse_scene_string(sky_sphere()), diag);
+  auto sc = build_render_scene(parse_scene_string(scene), diag);
   SubsurfacePilotOptions o;
   o.seed = 3;
   o.spp = 256;
   o.bounds = PixelBounds{0, 0, sc->film.xres, sc->film.yres};
   o.full_width = sc->film.xres;
-  const auto choices = run_subsurface_pilot(*sc, o);
+  return run_subsurface_pilot(*sc, o);
+}
+
+// On that sphere the pilot measures the difference and chooses one channel per walk.
+TEST(ChannelPerWalk, ThePilotChoosesItOnTheSkyLitMilkSphere) {
+  const auto choices = pilot_choices(sky_sphere());
   ASSERT_EQ(choices.size(), 1u);
   EXPECT_TRUE(kWalkStrategies[std::size_t(choices[0].strategy)].channel_per_walk) << choices[0].description;
   EXPECT_NE(choices[0].description.find("one colour channel per walk"), std::string::npos) << choices[0].description;
@@ -231,14 +236,7 @@ TEST(ChannelPerWalk, ThePilotChoosesItOnTheSkyLitMilkSphere) {
 // through smooth glass: before, it saw only the pane and chose nothing) and chooses one
 // channel per walk there.
 TEST(ChannelPerWalk, ThePilotChoosesItBehindGlass) {
-  Diagnostics diag;
-  auto sc = build_render_scene(parse_scene_string(sky_sphere_behind_glass()), diag);
-  SubsurfacePilotOptions o;
-  o.seed = 3;
-  o.spp = 256;
-  o.bounds = PixelBounds{0, 0, sc->film.xres, sc->film.yres};
-  o.full_width = sc->film.xres;
-  const auto choices = run_subsurface_pilot(*sc, o);
+  const auto choices = pilot_choices(sky_sphere_behind_glass());
   ASSERT_EQ(choices.size(), 1u);
   EXPECT_TRUE(kWalkStrategies[std::size_t(choices[0].strategy)].channel_per_walk) << choices[0].description;
 }
