@@ -38,6 +38,7 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.dirname(HERE))
 
+import cycles_log  # noqa: E402
 import pbrt_writer  # noqa: E402
 import scenes as S  # noqa: E402
 from dermis_output import LIMIT_RE, RENDER_RE, strip, write_png  # noqa: E402
@@ -171,7 +172,8 @@ def cycles_renders(args, sc, renders, work):
     jpath = os.path.join(work, "cycles-job.json")
     with open(jpath, "w") as f:
         json.dump(job, f, indent=1)
-    cmd = [args.blender, "-b", "--factory-startup", "--python", os.path.join(HERE, "blender_scene.py"), "--", jpath]
+    cmd = [args.blender, "-b", "--factory-startup", *cycles_log.BLENDER_FLAGS, "--python",
+           os.path.join(HERE, "blender_scene.py"), "--", jpath]
     t0 = time.perf_counter()
     p = subprocess.run(cmd, capture_output=True, text=True)
     wall = time.perf_counter() - t0
@@ -182,16 +184,24 @@ def cycles_renders(args, sc, renders, work):
     res = json.load(open(job["result"]))
     # Samples reached: the last "Sample N/M" line before each "vs_cycles: rendered" marker.
     segments = re.split(r"vs_cycles: rendered .*\n", p.stdout)
+    # Cycles' render and total times from its log (the EXR stamp truncates them to 10 ms:
+    # cycles_log.py), each checked against its render's stamp.
+    logged = cycles_log.render_times(p.stderr)
+    if len(logged) != len(res["renders"]):
+        sys.exit(f"Cycles logged {len(logged)} render times for {len(res['renders'])} renders "
+                 f"(Blender run with {' '.join(cycles_log.BLENDER_FLAGS)}); see {work}/cycles-log.txt")
     runs = []
-    for r, seg in zip(res["renders"], segments):
+    for r, seg, (rt, total) in zip(res["renders"], segments, logged):
         reached = [int(n) for n in re.findall(r"Sample (\d+)/\d+", seg)]
         img, attrs = read_exr(r["out"])
-        rt = parse_clock(attrs["cycles.ViewLayer.render_time"])
-        sync = parse_clock(attrs["cycles.ViewLayer.synchronization_time"])
+        stamp = parse_clock(attrs["cycles.ViewLayer.render_time"])
+        if not cycles_log.agrees_with_stamp(rt, stamp):
+            sys.exit(f"Cycles' logged render time {rt} s does not match {r['out']}'s stamp {stamp} s")
         spp = max(reached) if reached else r["spp"]
-        run = Run(r["out"], rt, spp, r["wall"], sync=sync, total=parse_clock(attrs["cycles.ViewLayer.total_time"]))
+        run = Run(r["out"], rt, spp, r["wall"], sync=total - rt, total=total, stamp=stamp)
         run.img, run.attrs = img, attrs
-        log(f"    cycles {os.path.basename(r['out'])}: render {rt:.2f} s (sync {sync:.2f} s, operator {r['wall']:.1f} s), "
+        log(f"    cycles {os.path.basename(r['out'])}: render {rt:.4f} s (stamp {stamp:.2f}; sync {total - rt:.3f} s, "
+            f"operator {r['wall']:.2f} s), "
             f"{spp} spp")
         runs.append(run)
     log(f"    (blender process {wall:.1f} s)")
@@ -528,8 +538,10 @@ def write_report(args, results, info, total, path, image_dir, argv):
       "for the renderer with the heavier tail, so a single seed is not a fair comparison.")
     w("- **Time**: Dermis — the time `dermis render` reports for the render stage (`render_image`: tiles, "
       "all samples; excludes parsing, scene/BVH build and the albedo-inversion table, image writing; printed "
-      "in milliseconds; ≈ marks an older build's 0.1 s figure replaced by wall time minus load time). Cycles — `cycles.ViewLayer.render_time` from the EXR's metadata (path tracing only; "
-      "excludes `synchronization_time`: scene export, BVH, shader compilation; 10 ms resolution). The wall time of "
+      "in milliseconds; ≈ marks an older build's 0.1 s figure replaced by wall time minus load time). Cycles — its render time as Cycles logs it (`--debug-cycles --verbose 2`: "
+      "\"Render time (without synchronization)\", path tracing only; excludes scene export, BVH, shader compilation), "
+      "to the microsecond; the EXR stamp `cycles.ViewLayer.render_time` holds the same time truncated to 10 ms "
+      "(checked against it for every render), which read Cycles up to 10 ms faster than it was (bench/vs_cycles/cycles_log.py). The wall time of "
       "`bpy.ops.render.render()` (sync + render + EXR write) is listed too.")
     w("- **Time** of a sample count: the median of its seeds' render times, with the fastest and slowest in "
       "brackets. A shared machine's run-to-run spread is as large as "
@@ -587,10 +599,10 @@ def write_report(args, results, info, total, path, image_dir, argv):
             for row in f.rows:
                 run = row["run"]
                 other = (f"process {run.wall:.1f}" if label != "Cycles"
-                         else f"sync {run.info['sync']:.2f}, operator {run.wall:.1f}")
+                         else f"stamp {run.info['stamp']:.2f}, sync {run.info['sync']:.3f}, operator {run.wall:.2f}")
                 approx = "≈" if run.info.get("approx") else ""
-                spread = f" ({row['tmin']:.2f}–{row['tmax']:.2f})" if len(row["times"]) > 1 else ""
-                w(f"| {'Dermis ' + label if label != 'Cycles' else 'Cycles'} | {row['spp']:.0f} | {row['seeds']} | {approx}{row['seconds']:.2f}{spread} | "
+                spread = f" ({row['tmin']:.3f}–{row['tmax']:.3f})" if len(row["times"]) > 1 else ""
+                w(f"| {'Dermis ' + label if label != 'Cycles' else 'Cycles'} | {row['spp']:.0f} | {row['seeds']} | {approx}{row['seconds']:.3f}{spread} | "
                   f"{other} | {row['mse_corr']:.4g} ± {row['mse_corr'] * row['rse']:.2g} | "
                   f"{min(row['per_seed']):.3g}–{max(row['per_seed']):.3g} | {row['var_ref']:.3g} | "
                   f"{row['eff']:.4g} |")
