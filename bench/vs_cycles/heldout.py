@@ -1,10 +1,9 @@
 #!/usr/bin/python3
-"""Held-out configurations for checking that a change to the random walk generalises
-beyond the scene family it was measured on (issue 40): eight configurations that are not
-in scenes.FAMILY_CONFIGS, written after the subsurface pilot was built and before it was
-measured on them: other albedos (marble, ketchup, apple, grey), scales and light
-balances on the family's geometries. Dermis only (compare builds or settings with
-bench/compare_efficiency.py); no Cycles twin.
+"""The held-out configurations' random-walk scene files (scenes.HELDOUT_CONFIGS: eight
+configurations that are not in the family, on its geometries), for checking that a change
+to the random walk generalises beyond the family it was measured on (issue 40): compare
+builds or settings on them with bench/compare_efficiency.py. Against Cycles, with the
+disk twins too: run.py --set heldout.
 
   /usr/bin/python3 bench/vs_cycles/heldout.py --out DIR     # writes DIR/h01-....pbrt ...
 """
@@ -14,42 +13,15 @@ import os
 import pbrt_writer
 import scenes as S
 
-HELDOUT_MATERIALS = {
-    "marble": dict(reflectance=[0.92, 0.90, 0.86], ratio=[1.3, 1.0, 0.8]),
-    "ketchup": dict(reflectance=[0.70, 0.15, 0.08], ratio=[6.0, 1.5, 1.0]),
-    "apple": dict(reflectance=[0.80, 0.75, 0.45], ratio=[2.0, 1.5, 0.7]),
-    "grey": dict(reflectance=[0.60, 0.60, 0.60], ratio=[1.0, 1.0, 1.0]),
-}
-# (geometry, light balance, mfp / size, material)
-HELDOUT_CONFIGS = [
-    ("sphere", "key", 0.03, "marble"),
-    ("sphere", "sky", 0.3, "ketchup"),
-    ("sphere", "back", 0.3, "apple"),
-    ("bust", "sky", 0.1, "marble"),
-    ("bust", "both", 0.03, "ketchup"),
-    ("fin", "sky", 0.3, "apple"),
-    ("fin", "back", 1.0, "grey"),
-    ("sphere", "both", 0.3, "grey"),
-]
+HELDOUT_MATERIALS = S.HELDOUT_MATERIALS
+HELDOUT_CONFIGS = S.HELDOUT_CONFIGS
 
 
 def heldout_scenes():
     """name -> scene text of the walk variant (the default method), h01 ... h08."""
-    materials, configs = dict(S.FAMILY_MATERIALS), list(S.FAMILY_CONFIGS)
-    try:
-        S.FAMILY_MATERIALS.update(HELDOUT_MATERIALS)
-        S.FAMILY_CONFIGS[:] = HELDOUT_CONFIGS
-        family = S._family_scenes()
-    finally:
-        S.FAMILY_MATERIALS.clear()
-        S.FAMILY_MATERIALS.update(materials)
-        S.FAMILY_CONFIGS[:] = configs
-    out = {}
     label = "randomwalk (default)"
-    for name, sc in family.items():
-        if name.endswith("-walk"):
-            out["h" + name[1:]] = pbrt_writer.scene_text(sc, label, sc["dermis"][label])
-    return out
+    return {name: pbrt_writer.scene_text(sc, label, sc["dermis"][label])
+            for name, sc in S.HELDOUT.items() if name.endswith("-walk")}
 
 
 def main():

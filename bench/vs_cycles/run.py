@@ -44,10 +44,14 @@ import scenes as S  # noqa: E402
 from dermis_output import LIMIT_RE, RENDER_RE, strip, write_png  # noqa: E402
 
 HUGE_SPP = 1000000
-# The family's report, and the classic seven scenes' (issue 15) beside it.
+# The family's report, the held-out configurations' and the classic seven scenes' (issue 15)
+# beside it.
 DOC = {"family": os.path.join(ROOT, "docs", "results-vs-cycles.md"),
+       "heldout": os.path.join(ROOT, "docs", "results-vs-cycles-heldout.md"),
        "classic": os.path.join(ROOT, "docs", "results-vs-cycles-classic.md")}
-IMAGES = os.path.join(ROOT, "docs", "images", "vs-cycles")
+IMAGES = {"family": os.path.join(ROOT, "docs", "images", "vs-cycles"),
+          "heldout": os.path.join(ROOT, "docs", "images", "vs-cycles-heldout"),
+          "classic": os.path.join(ROOT, "docs", "images", "vs-cycles")}
 
 
 def log(msg):
@@ -415,7 +419,7 @@ def family_entries(results):
         for i, (label, f) in enumerate(r["dermis"].items()):
             obj = [d["eff"] / k["eff"] for d, k in zip(f.rows, c.rows)]
             img = [d["eff"] / k["eff"] for d, k in zip(f.rows_image, c.rows_image)]
-            t = lambda x: max(x, 1e-3)  # noqa: E731  (as in the efficiency: Cycles reports 10 ms steps)
+            t = lambda x: max(x, 1e-3)  # noqa: E731  (as in the efficiency)
             cost = [(t(d["seconds"]) / d["spp"]) / (t(k["seconds"]) / k["spp"]) for d, k in zip(f.rows, c.rows)]
             mse = [(d["mse_corr"] * d["spp"]) / (k["mse_corr"] * k["spp"]) for d, k in zip(f.rows, c.rows)]
             rays = [d["rays_per_sample"] for d in f.rows if d.get("rays_per_sample")]
@@ -443,6 +447,11 @@ def family_targets(entries):
     return t
 
 
+def held_out(entries):
+    """Whether the entries are the held-out configurations (h01 ...) rather than the family's."""
+    return all(e["config"].startswith("h") for e in entries)
+
+
 def family_chart(entries, path):
     """Efficiency ratio per configuration and method, both conventions (log scale)."""
     import matplotlib
@@ -464,16 +473,22 @@ def family_chart(entries, path):
     ax.set_yticklabels(names, fontsize=7)
     ax.set_xlabel("efficiency Dermis ÷ Cycles, 1 / (MSE × time), geometric mean over the sweep")
     ax.legend(fontsize=7, loc="lower right")
-    ax.set_title("Dermis vs Cycles on the scene family (solid: walk blue, disk orange, volumetric green)", fontsize=9)
+    ax.set_title(f"Dermis vs Cycles on the {'held-out configurations' if held_out(entries) else 'scene family'} "
+                 "(solid: walk blue, disk orange, volumetric green)", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
 
 def write_family_section(w, entries, image_dir, rel_images):
-    w("## The scene family: efficiency Dermis ÷ Cycles per configuration\n")
-    w("Configurations chosen before any tuning (`bench/vs_cycles/scenes.py`, FAMILY_CONFIGS), the same renderer "
-      "settings everywhere. **obj**: MSE over the object's pixels, render-stage time (the primary convention); "
+    if held_out(entries):
+        w("## The held-out configurations: efficiency Dermis ÷ Cycles per configuration\n")
+        w("Configurations that are not in the family and were never used to tune Dermis (`bench/vs_cycles/scenes.py`, "
+          "HELDOUT_CONFIGS: other albedos, scales and light balances on the family's geometries and lights).\n")
+    else:
+        w("## The scene family: efficiency Dermis ÷ Cycles per configuration\n")
+    w("Configurations chosen before any tuning (`bench/vs_cycles/scenes.py`, FAMILY_CONFIGS or HELDOUT_CONFIGS), "
+      "the same renderer settings everywhere. **obj**: MSE over the object's pixels, render-stage time (the primary convention); "
       "**img**: MSE over the whole image (silhouettes included), time of the whole process (`dermis render` from "
       "start to exit; Cycles' render operator: sync + render + EXR write). Each: geometric mean over the sample "
       "counts, and the lowest of them in brackets. **cost/sample** and **MSE×spp**: Dermis ÷ Cycles (render stage, "
@@ -654,8 +669,10 @@ FINDINGS_MARKER = "<!-- findings: written by hand below this line; kept when run
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--set", choices=["family", "classic"], default="family",
+    ap.add_argument("--set", choices=["family", "heldout", "classic"], default="family",
                     help="family (default): the scene family of issue 40, chosen before tuning (scenes.FAMILY); "
+                         "heldout: eight other configurations on the family's geometries, never used for tuning "
+                         "(scenes.HELDOUT; the family's settings, report docs/results-vs-cycles-heldout.md); "
                          "classic: the seven scenes of issue 15")
     ap.add_argument("--scenes", default="", help=f"comma-separated scene names instead of --set, from "
                     f"{', '.join(S.SCENES)}")
@@ -685,7 +702,7 @@ def main():
     ap.add_argument("--note", default="", help="a sentence for the report (e.g. the state of the machine)")
     args = ap.parse_args()
     argv = sys.argv[1:]
-    family = args.set == "family" and not args.scenes
+    family = args.set in ("family", "heldout") and not args.scenes
     if not args.spp:
         args.spp = "4,16" if args.quick else "16,64" if family else "16,64,256"
     if not args.seeds:
@@ -712,7 +729,8 @@ def main():
         time.sleep(30)
     else:
         sys.exit(f"{args.dermis} not found: build first (make build)")
-    names = [n for n in args.scenes.split(",") if n] or (list(S.FAMILY) if args.set == "family" else S.DEFAULT_SCENES)
+    names = [n for n in args.scenes.split(",") if n] or list(
+        {"family": S.FAMILY, "heldout": S.HELDOUT, "classic": S.DEFAULT_SCENES}[args.set])
     for n in names:
         if n not in S.SCENES:
             sys.exit(f"unknown scene {n}; known: {', '.join(S.SCENES)}")
@@ -736,8 +754,8 @@ def main():
         write_report(args, results, info, total, os.path.join(args.out, "results-vs-cycles.md"),
                      os.path.join(args.out, "images"), argv)
     else:
-        write_report(args, results, info, total, DOC["classic" if args.set == "classic" and not args.scenes else "family"],
-                     IMAGES, argv)
+        doc = "family" if args.scenes else args.set
+        write_report(args, results, info, total, DOC[doc], IMAGES[doc], argv)
 
 
 if __name__ == "__main__":

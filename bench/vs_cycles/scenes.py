@@ -237,27 +237,33 @@ def _family_lights(g, balance):
     return sky, lights
 
 
-def _family_scenes():
+def _family_scenes(configs=None, materials=None, prefix="f", kind="Family", media=True):
+    """The family's scenes (walk and disk twin of each configuration, then the media), or
+    another set of configurations on the same geometries and lights (the held-out set)."""
+    configs = FAMILY_CONFIGS if configs is None else configs
+    materials = FAMILY_MATERIALS if materials is None else materials
     out = {}
-    for k, (geo, balance, scale, mat) in enumerate(FAMILY_CONFIGS, 1):
-        g, m = FAMILY_GEOMETRY[geo], FAMILY_MATERIALS[mat]
+    for k, (geo, balance, scale, mat) in enumerate(configs, 1):
+        g, m = FAMILY_GEOMETRY[geo], materials[mat]
         sky, lights = _family_lights(g, balance)
         mean = sum(m["ratio"]) / 3.0
         mfp = [scale * g["size"] * r / mean for r in m["ratio"]]
-        base = f"f{k:02d}-{geo}-{balance}-{scale:g}-{mat}"
+        base = f"{prefix}{k:02d}-{geo}-{balance}-{scale:g}-{mat}"
         geom = dict(shape=g["shape"], camera=g["camera"], lights=lights)
-        info = dict(config=f"f{k:02d}", geometry=geo, balance=balance, scale=scale, albedo=mat)
+        info = dict(config=f"{prefix}{k:02d}", geometry=geo, balance=balance, scale=scale, albedo=mat)
         for method, label, cycles, extra in (
                 ("randomwalk", "randomwalk (default)", "Random Walk", ""),
                 ("burley", "disk burley", "Christensen-Burley", '"string method" "disk" "string profile" "burley"')):
             name = f"{base}-{'walk' if method == 'randomwalk' else 'disk'}"
             sc = scene(name, geom, dict(kind="subsurface", method=method, reflectance=m["reflectance"], mfp=mfp,
                                         eta=1.4, g=0.0),
-                       f"Family configuration {info['config']}: {geo}, light {balance}, mfp/size {scale:g} "
+                       f"{kind} configuration {info['config']}: {geo}, light {balance}, mfp/size {scale:g} "
                        f"(mfp {', '.join(f'{x:.3g}' for x in mfp)} mm), albedo {mat}; Dermis `{label}` vs Cycles "
                        f"{cycles}.", {label: extra}, sky=sky, res=FAMILY_RES)
             sc["family"] = dict(info, method="walk" if method == "randomwalk" else "disk")
             out[name] = sc
+    if not media:
+        return out
     g = FAMILY_GEOMETRY["sphere"]
     sky, lights = _family_lights(g, "both")
     geom = dict(shape=g["shape"], camera=g["camera"], lights=lights)
@@ -274,6 +280,31 @@ def _family_scenes():
 
 FAMILY = _family_scenes()
 SCENES.update(FAMILY)
+
+# Held-out configurations, for checking that what was measured on the family generalises:
+# other albedos (marble, ketchup, apple, grey), scales and light balances on the family's
+# geometries and lights, none of them a family configuration. Written after the subsurface
+# pilot was built and before it was measured on them; used since to check changes to the
+# random walk (heldout.py) and against Cycles (run.py --set heldout), never to tune one.
+HELDOUT_MATERIALS = {
+    "marble": dict(reflectance=[0.92, 0.90, 0.86], ratio=[1.3, 1.0, 0.8]),
+    "ketchup": dict(reflectance=[0.70, 0.15, 0.08], ratio=[6.0, 1.5, 1.0]),
+    "apple": dict(reflectance=[0.80, 0.75, 0.45], ratio=[2.0, 1.5, 0.7]),
+    "grey": dict(reflectance=[0.60, 0.60, 0.60], ratio=[1.0, 1.0, 1.0]),
+}
+# (geometry, light balance, mfp / size, material)
+HELDOUT_CONFIGS = [
+    ("sphere", "key", 0.03, "marble"),
+    ("sphere", "sky", 0.3, "ketchup"),
+    ("sphere", "back", 0.3, "apple"),
+    ("bust", "sky", 0.1, "marble"),
+    ("bust", "both", 0.03, "ketchup"),
+    ("fin", "sky", 0.3, "apple"),
+    ("fin", "back", 1.0, "grey"),
+    ("sphere", "both", 0.3, "grey"),
+]
+HELDOUT = _family_scenes(HELDOUT_CONFIGS, HELDOUT_MATERIALS, prefix="h", kind="Held-out", media=False)
+SCENES.update(HELDOUT)
 
 # ---------------------------------------------------------------- parameter conversions
 
