@@ -30,3 +30,44 @@ def agrees_with_stamp(seconds, stamp_seconds):
     """Whether a logged time is the one behind an EXR stamp, which truncates it to
     hundredths (within a float's rounding): the check that log lines and renders pair up."""
     return -1e-4 < seconds - stamp_seconds < 0.0101
+
+
+def main():
+    """Per scene of a run.py output folder: Cycles' median render time per sample count as
+    logged and as stamped, and their ratio (what the stamp's truncation took off)."""
+    import json
+    import math
+    import os
+    import statistics
+    import sys
+
+    import OpenImageIO as oiio
+
+    if len(sys.argv) != 2:
+        sys.exit("usage: cycles_log.py RUN_FOLDER   (run.py's --out)")
+    root = sys.argv[1]
+    for name in sorted(os.listdir(root)):
+        folder = os.path.join(root, name)
+        if not os.path.exists(os.path.join(folder, "cycles-log.txt")):
+            continue
+        renders = json.load(open(os.path.join(folder, "cycles-result.json")))["renders"]
+        logged = render_times(open(os.path.join(folder, "cycles-log.txt")).read())
+        by_spp = {}
+        for r, (seconds, _) in zip(renders, logged):
+            if "time_limit" in r and r["time_limit"]:
+                continue  # a reference
+            stamp = oiio.ImageInput.open(r["out"]).spec().getattribute("cycles.ViewLayer.render_time")
+            minutes, secs = stamp.split(":")[-2:]
+            by_spp.setdefault(r["spp"], []).append((seconds, 60 * int(minutes) + float(secs)))
+        ratios, cells = [], []
+        for spp, pairs in sorted(by_spp.items()):
+            t, s = statistics.median(p[0] for p in pairs), statistics.median(p[1] for p in pairs)
+            ratios.append(t / s)
+            cells.append(f"{spp} spp {t:.4f} s / stamp {s:.2f} s = {t / s:.3f}")
+        if ratios:
+            gm = math.exp(sum(map(math.log, ratios)) / len(ratios))
+            print(f"{name}: " + "; ".join(cells) + f"; geometric mean {gm:.3f}")
+
+
+if __name__ == "__main__":
+    main()
