@@ -5,8 +5,10 @@
 
 #include <fmt/format.h>
 
+#include "dermis/core/cache_dir.h"
 #include "dermis/scene/gzip_file.h"
 #include "dermis/scene/loop_subdivision.h"
+#include "dermis/scene/mesh_cache.h"
 #include "dermis/scene/mesh_import.h"
 #include "dermis/scene/pbrt_v4_types.h"
 #include "dermis/scene/ply_reader.h"
@@ -232,7 +234,7 @@ void SceneParser::shape(const Token& d, TokenStream& ts) {
       if (type == "plymesh") {
         sh.mesh = read_ply(file, monitor_);
       } else {
-        ImportedMesh im = import_mesh_assimp(file, monitor_);
+        ImportedMesh im = import_mesh_cached(file, monitor_, default_cache_dir());
         for (const std::string& note : im.notes) s_.diagnostics.warn(loc, fmt::format("'{}': {}", file, note));
         sh.mesh = std::move(im.mesh);
       }
