@@ -42,7 +42,8 @@ struct SourceState {
   uint32_t crc = 0;
 };
 
-std::optional<SourceState> source_state(const std::string& path) {
+// The file's path, size and time (crc left 0): cheap, for the first comparison.
+std::optional<SourceState> source_stat(const std::string& path) {
   std::error_code ec;
   SourceState s;
   s.path = fs::canonical(path, ec).string();
@@ -53,17 +54,30 @@ std::optional<SourceState> source_state(const std::string& path) {
   if (ec) return std::nullopt;
   s.size = uint64_t(size);
   s.mtime = int64_t(mtime.time_since_epoch().count());
+  return s;
+}
+
+// The CRC-32 of the file's bytes, reported to `stage` (if any) as fractions up to `upto`
+// (throws Interrupted when cancelled); false when the file cannot be read whole.
+bool add_crc(SourceState& s, LoadStage* stage, double upto) {
   std::ifstream in(s.path, std::ios::binary);
-  if (!in) return std::nullopt;
+  if (!in) return false;
   std::vector<char> buffer(1 << 20);
   uint64_t read = 0;
+  s.crc = 0;
   while (in) {
     in.read(buffer.data(), std::streamsize(buffer.size()));
     const std::size_t got = std::size_t(in.gcount());
     s.crc = crc_of(buffer.data(), got, s.crc);
     read += got;
+    if (stage && s.size > 0) stage->update(upto * double(read) / double(s.size));
   }
-  if (read != s.size) return std::nullopt;  // the file changed while it was read
+  return read == s.size;  // else the file changed while it was read
+}
+
+std::optional<SourceState> source_state(const std::string& path) {
+  std::optional<SourceState> s = source_stat(path);
+  if (!s || !add_crc(*s, nullptr, 0)) return std::nullopt;
   return s;
 }
 
@@ -118,12 +132,17 @@ struct Reader {
   }
 };
 
-std::string header(const SourceState& s) {
+// The header without the content's CRC (which follows it).
+std::string stat_header(const SourceState& s) {
   std::string out(kMagic, sizeof kMagic);
   put(out, kFormatVersion);
   put_string(out, s.path);
   put(out, s.size);
   put(out, s.mtime);
+  return out;
+}
+std::string header(const SourceState& s) {
+  std::string out = stat_header(s);
   put(out, s.crc);
   return out;
 }
@@ -137,7 +156,12 @@ std::string mesh_cache_path(const std::string& cache_dir, const std::string& can
 
 namespace {
 
-std::optional<ImportedMesh> load(const std::string& cache_dir, const SourceState& source) {
+// The cached mesh of the file whose path, size and time are `source`'s: its content's CRC
+// is computed only when the cache's header matches those (a likely hit), and then under
+// the stage "reading NAME" with the monitor (so that a hit reports and obeys Ctrl-C as
+// the import does; a miss reports nothing, and the import's own stage follows).
+std::optional<ImportedMesh> load(const std::string& cache_dir, SourceState source, const LoadMonitor* monitor,
+                                 bool with_stage) {
   std::ifstream in(mesh_cache_path(cache_dir, source.path), std::ios::binary);
   if (!in) return std::nullopt;
   const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -146,9 +170,13 @@ std::optional<ImportedMesh> load(const std::string& cache_dir, const SourceState
   uint32_t stored_crc;
   std::memcpy(&stored_crc, data.data() + data.size() - sizeof stored_crc, sizeof stored_crc);
   if (crc_of(data.data(), data.size() - sizeof stored_crc) != stored_crc) return std::nullopt;
-  const std::string expected = header(source);
+  const std::string expected = stat_header(source);
   if (data.compare(0, expected.size(), expected) != 0) return std::nullopt;  // another file, or it changed
+  std::optional<LoadStage> stage;
+  if (with_stage) stage.emplace(monitor, "reading " + fs::path(source.path).filename().string());
+  if (!add_crc(source, stage ? &*stage : nullptr, 0.9)) return std::nullopt;
   Reader r{data, expected.size()};
+  if (r.get<uint32_t>() != source.crc) return std::nullopt;  // edited, size and time kept
   ImportedMesh m;
   r.get_array(m.mesh.positions);
   r.get_array(m.mesh.normals);
@@ -162,7 +190,30 @@ std::optional<ImportedMesh> load(const std::string& cache_dir, const SourceState
   } catch (const std::exception&) {
     return std::nullopt;
   }
+  if (stage) stage->finish();
   return m;
+}
+
+// Removes the cache files of meshes whose source file is gone (renders of temporary
+// files would otherwise fill the directory), and unreadable ones; keeps `keep`.
+void prune(const std::string& cache_dir, const std::string& keep) {
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(cache_dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("mesh-", 0) != 0 || e.path().extension() != ".bin" || e.path().string() == keep) continue;
+    std::string head(4096, '\0');
+    {
+      std::ifstream in(e.path(), std::ios::binary);
+      in.read(head.data(), std::streamsize(head.size()));
+      head.resize(std::size_t(in.gcount()));
+    }
+    Reader r{head, sizeof kMagic};
+    const bool ours = head.compare(0, sizeof kMagic, std::string(kMagic, sizeof kMagic)) == 0;
+    r.get<uint32_t>();  // the format's version: any
+    const std::string source = r.get_string();
+    std::error_code exists_ec;
+    if (!ours || r.bad || !fs::exists(source, exists_ec)) fs::remove(e.path(), ec);
+  }
 }
 
 bool save(const std::string& cache_dir, const SourceState& source, const ImportedMesh& mesh) {
@@ -195,6 +246,7 @@ bool save(const std::string& cache_dir, const SourceState& source, const Importe
     fs::remove(tmp, ec);
     return false;
   }
+  prune(cache_dir, target);
   return true;
 }
 
@@ -202,8 +254,8 @@ bool save(const std::string& cache_dir, const SourceState& source, const Importe
 
 std::optional<ImportedMesh> load_cached_mesh(const std::string& cache_dir, const std::string& path) {
   if (cache_dir.empty()) return std::nullopt;
-  const std::optional<SourceState> source = source_state(path);
-  return source ? load(cache_dir, *source) : std::nullopt;
+  const std::optional<SourceState> source = source_stat(path);
+  return source ? load(cache_dir, *source, nullptr, false) : std::nullopt;
 }
 
 bool save_cached_mesh(const std::string& cache_dir, const std::string& path, const ImportedMesh& mesh) {
@@ -212,13 +264,18 @@ bool save_cached_mesh(const std::string& cache_dir, const std::string& path, con
   return source && save(cache_dir, *source, mesh);
 }
 
-ImportedMesh import_mesh_cached(const std::string& path, const LoadMonitor* monitor, const std::string& cache_dir) {
-  const std::optional<SourceState> before = cache_dir.empty() ? std::nullopt : source_state(path);
-  if (before)
-    if (std::optional<ImportedMesh> cached = load(cache_dir, *before)) return std::move(*cached);
+ImportedMesh import_mesh_cached(const std::string& path, const LoadMonitor* monitor, const std::string& cache_dir,
+                                double min_import_seconds) {
+  const std::optional<SourceState> stat = cache_dir.empty() ? std::nullopt : source_stat(path);
+  if (stat)
+    if (std::optional<ImportedMesh> cached = load(cache_dir, *stat, monitor, true)) return std::move(*cached);
+  const std::optional<SourceState> before = stat ? source_state(path) : std::nullopt;
+  const auto start = std::chrono::steady_clock::now();
   ImportedMesh m = import_mesh_assimp(path, monitor);
-  // Cached only if the file is still what it was before the import began.
-  if (before) {
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Cached if the import was slow enough to be worth a file, and the file is still what
+  // it was before the import began.
+  if (before && seconds >= min_import_seconds) {
     const std::optional<SourceState> after = source_state(path);
     if (after && header(*after) == header(*before)) save(cache_dir, *before, m);
   }

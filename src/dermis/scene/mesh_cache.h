@@ -35,10 +35,16 @@ std::optional<ImportedMesh> load_cached_mesh(const std::string& cache_dir, const
 // (no directory, full disk, the file changed while it was read): the cache is optional.
 bool save_cached_mesh(const std::string& cache_dir, const std::string& path, const ImportedMesh& mesh);
 
-// import_mesh_assimp through the cache: the cached import if valid, else the file
-// imported and cached. An empty cache_dir (no $XDG_CACHE_HOME or $HOME) imports without
-// a cache. The same mesh and notes either way.
-ImportedMesh import_mesh_cached(const std::string& path, const LoadMonitor* monitor,
-                                const std::string& cache_dir);
+// Imports that took less than this are not cached (a small file parses about as fast as
+// its cache reads back, and would only add a file).
+inline constexpr double kMinImportSecondsToCache = 0.05;
+
+// import_mesh_assimp through the cache: the cached import if valid (reported as the stage
+// "reading NAME", as the import is, and stopped by the monitor's cancel flag), else the
+// file imported and, if that took min_import_seconds or more, cached. An empty cache_dir
+// (no $XDG_CACHE_HOME or $HOME) imports without a cache. The same mesh and notes either
+// way. Saving also removes the cache files of sources that no longer exist.
+ImportedMesh import_mesh_cached(const std::string& path, const LoadMonitor* monitor, const std::string& cache_dir,
+                                double min_import_seconds = kMinImportSecondsToCache);
 
 }  // namespace dermis

@@ -2,8 +2,11 @@
 // mesh or an error) whenever the file or the cache is not what the cache says.
 #include "dermis/scene/mesh_cache.h"
 
+#include <atomic>
 #include <cstring>
 #include <filesystem>
+#include <utility>
+#include <vector>
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -54,16 +57,16 @@ TEST_F(MeshCacheTest, TheCachedMeshIsTheImportBitForBit) {
   ASSERT_EQ(direct.notes.size(), 1u);  // the point
 
   EXPECT_FALSE(load_cached_mesh(cache.string(), obj.string()));  // nothing cached yet
-  expect_same(import_mesh_cached(obj.string(), nullptr, cache.string()), direct);  // imported, then cached
+  expect_same(import_mesh_cached(obj.string(), nullptr, cache.string(), 0.0), direct);  // imported, then cached
   ASSERT_TRUE(fs::exists(cache_file()));
   const std::optional<ImportedMesh> cached = load_cached_mesh(cache.string(), obj.string());
   ASSERT_TRUE(cached);
   expect_same(*cached, direct);
-  expect_same(import_mesh_cached(obj.string(), nullptr, cache.string()), direct);  // from the cache
+  expect_same(import_mesh_cached(obj.string(), nullptr, cache.string(), 0.0), direct);  // from the cache
 }
 
 TEST_F(MeshCacheTest, AFileEditedToTheSameSizeAndTimeIsImportedAgain) {
-  import_mesh_cached(obj.string(), nullptr, cache.string());
+  import_mesh_cached(obj.string(), nullptr, cache.string(), 0.0);
   ASSERT_TRUE(load_cached_mesh(cache.string(), obj.string()));
   const auto time = fs::last_write_time(obj);
   std::string edited = kObj;
@@ -72,7 +75,7 @@ TEST_F(MeshCacheTest, AFileEditedToTheSameSizeAndTimeIsImportedAgain) {
   write(edited);
   fs::last_write_time(obj, time);  // as if the edit kept the time: the content's CRC still tells
   EXPECT_FALSE(load_cached_mesh(cache.string(), obj.string()));
-  const ImportedMesh again = import_mesh_cached(obj.string(), nullptr, cache.string());
+  const ImportedMesh again = import_mesh_cached(obj.string(), nullptr, cache.string(), 0.0);
   expect_same(again, import_mesh_assimp(obj.string()));
   bool moved = false;
   for (const Vec3& p : again.mesh.positions) moved = moved || p.x == 2;
@@ -82,7 +85,7 @@ TEST_F(MeshCacheTest, AFileEditedToTheSameSizeAndTimeIsImportedAgain) {
 }
 
 TEST_F(MeshCacheTest, ADamagedOrTruncatedCacheIsAMiss) {
-  const ImportedMesh direct = import_mesh_cached(obj.string(), nullptr, cache.string());
+  const ImportedMesh direct = import_mesh_cached(obj.string(), nullptr, cache.string(), 0.0);
   const std::string path = cache_file();
   std::string bytes;
   {
@@ -101,20 +104,57 @@ TEST_F(MeshCacheTest, ADamagedOrTruncatedCacheIsAMiss) {
   std::ofstream(path, std::ios::binary | std::ios::trunc) << "";
   EXPECT_FALSE(load_cached_mesh(cache.string(), obj.string()));
   // The import goes on as if nothing was cached, and replaces the damaged file.
-  expect_same(import_mesh_cached(obj.string(), nullptr, cache.string()), direct);
+  expect_same(import_mesh_cached(obj.string(), nullptr, cache.string(), 0.0), direct);
   ASSERT_TRUE(load_cached_mesh(cache.string(), obj.string()));
 }
 
 TEST_F(MeshCacheTest, NoCacheDirectoryImportsWithoutOne) {
-  expect_same(import_mesh_cached(obj.string(), nullptr, ""), import_mesh_assimp(obj.string()));
+  expect_same(import_mesh_cached(obj.string(), nullptr, "", 0.0), import_mesh_assimp(obj.string()));
   EXPECT_FALSE(fs::exists(cache));
   EXPECT_FALSE(load_cached_mesh("", obj.string()));
   EXPECT_FALSE(save_cached_mesh("", obj.string(), import_mesh_assimp(obj.string())));
 }
 
 TEST_F(MeshCacheTest, AMissingFileIsTheImportsError) {
-  EXPECT_THROW(import_mesh_cached((dir / "missing.obj").string(), nullptr, cache.string()), std::runtime_error);
+  EXPECT_THROW(import_mesh_cached((dir / "missing.obj").string(), nullptr, cache.string(), 0.0), std::runtime_error);
   EXPECT_FALSE(fs::exists(cache));
+}
+
+TEST_F(MeshCacheTest, AHitReportsTheReadingStageAndStopsOnCtrlC) {
+  import_mesh_cached(obj.string(), nullptr, cache.string(), 0.0);
+  std::vector<std::pair<std::string, double>> calls;
+  std::atomic<bool> cancel{false};
+  LoadMonitor monitor;
+  monitor.progress = [&](const std::string& stage, double f) { calls.emplace_back(stage, f); };
+  monitor.cancel = &cancel;
+  const ImportedMesh hit = import_mesh_cached(obj.string(), &monitor, cache.string(), 0.0);
+  expect_same(hit, import_mesh_assimp(obj.string()));
+  ASSERT_GE(calls.size(), 2u);
+  EXPECT_EQ(calls.front(), std::make_pair(std::string("reading quad.obj"), 0.0));
+  EXPECT_EQ(calls.back(), std::make_pair(std::string("reading quad.obj"), 1.0));
+  // Cancelled at the stage's first report: Interrupted, as the import would be.
+  monitor.progress = [&](const std::string&, double) { cancel = true; };
+  EXPECT_THROW(import_mesh_cached(obj.string(), &monitor, cache.string(), 0.0), Interrupted);
+}
+
+TEST_F(MeshCacheTest, AnImportQuickerThanTheMinimumIsNotCached) {
+  // No import takes a billion seconds (a threshold that no clock can make flaky).
+  expect_same(import_mesh_cached(obj.string(), nullptr, cache.string(), 1e9), import_mesh_assimp(obj.string()));
+  EXPECT_FALSE(fs::exists(cache_file()));
+}
+
+TEST_F(MeshCacheTest, SavingRemovesTheCachesOfFilesThatAreGone) {
+  const fs::path other = dir / "other.obj";
+  std::ofstream(other) << kObj;
+  import_mesh_cached(other.string(), nullptr, cache.string(), 0.0);
+  const std::string other_cache = mesh_cache_path(cache.string(), fs::canonical(other).string());
+  ASSERT_TRUE(fs::exists(other_cache));
+  std::ofstream(cache / "mesh-v1-notours.bin") << "not a cache file";
+  fs::remove(other);
+  import_mesh_cached(obj.string(), nullptr, cache.string(), 0.0);  // a save
+  EXPECT_TRUE(fs::exists(cache_file()));
+  EXPECT_FALSE(fs::exists(other_cache));
+  EXPECT_FALSE(fs::exists(cache / "mesh-v1-notours.bin"));
 }
 
 }  // namespace
