@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 #include <set>
+#include <stdexcept>
 #include <tuple>
 
 #include "dermis/core/microfacet.h"
@@ -189,16 +190,16 @@ double AlbedoInversions::single_scattering_albedo(double surface_albedo, float b
   const double w = x - float(k);
   const sss::AlbedoInversion &a = *tables_[std::size_t(k)], &b = *tables_[std::size_t(k) + 1];
   // A(alpha) interpolated between the two tables (it is smooth in the boundary's alpha;
-  // its inverse is steep near a rough dielectric's A_max), inverted by bisection as one
-  // table inverts its own interpolant; above the blend's A(1): alpha = 1.
-  auto blended = [&](double alpha) { return a.surface_albedo(alpha) * (1 - w) + b.surface_albedo(alpha) * w; };
-  if (surface_albedo >= blended(1.0)) return 1.0;
-  double lo = 0, hi = 1;
-  for (int i = 0; i < 48; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (blended(mid) < surface_albedo ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
+  // its inverse is steep near a rough dielectric's A_max): the blend of two monotone
+  // cubics on the same nodes is the cubic of the blended nodes, inverted as one table
+  // inverts its own; above the blend's A(1): alpha = 1.
+  if (a.size() != b.size()) throw std::logic_error("albedo inversions: tables of different sizes");
+  auto blended = [&](int i) {
+    const sss::HermiteNode p = a.node(i), q = b.node(i);
+    return sss::HermiteNode{p.t, p.y * (1 - w) + q.y * w, p.m * (1 - w) + q.m * w};
+  };
+  const double t = sss::crossing_of_non_increasing(a.size(), blended, surface_albedo);
+  return 1 - t * t;
 }
 
 Coefficients coefficients_from(const MediumAt& m, const AlbedoInversions& inversions, float boundary_alpha) {

@@ -1,6 +1,8 @@
 #include "dermis/render/subsurface/walk_method.h"
 
+#include <atomic>
 #include <cmath>
+#include <optional>
 
 #include "dermis/core/frame.h"
 #include "dermis/core/warp.h"
@@ -24,6 +26,25 @@ sss::WalkSampling walk_sampling(SubsurfaceParams::WalkSampling s) {
 
 constexpr int kMaxInternalReflections = 256;
 
+std::atomic<uint64_t> g_next_method_id{0};
+
+// The step sampler a thread built last for a textured medium, and what it was built
+// for: the camera's first entry takes two or more walks from one point (one medium),
+// and a texture repeats its values over whole regions. Building a step solves Dwivedi's
+// eigenvalue equation in each channel (sss/walk/dwivedi.h); reusing it is exact.
+struct LastTexturedStep {
+  uint64_t method = ~uint64_t(0);
+  std::size_t strategy = 0;
+  RGB sigma_s, sigma_t;
+  float g = 0;
+  std::optional<sss::MixtureWalkStep<3>> step;
+  bool matches(uint64_t m, std::size_t s, const sss::WalkMedium& medium) const {
+    return step && method == m && strategy == s && g == medium.g && sigma_s == medium.sigma_s &&
+           sigma_t == medium.sigma_t;
+  }
+};
+thread_local LastTexturedStep t_last_textured_step;
+
 sss::WalkMedium walk_medium(const Coefficients& k, float g) {
   sss::WalkMedium m;
   m.sigma_s = k.sigma_s;
@@ -37,7 +58,8 @@ sss::WalkMedium walk_medium(const Coefficients& k, float g) {
 WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures)
     : params_(params), textures_(textures), inversions_(params), boundary_(params.boundary), eta_(params.eta),
       roughness_(params, params.boundary == SubsurfaceParams::Boundary::Matched, textures),
-      lambertian_entry_(params.lambertian_entry && params.boundary == SubsurfaceParams::Boundary::Diffuse) {
+      lambertian_entry_(params.lambertian_entry && params.boundary == SubsurfaceParams::Boundary::Diffuse),
+      id_(g_next_method_id++) {
   medium_per_entry_ = textures_ && (params.textured() || (roughness_.textured() && !inversions_.single() &&
                                                           !inversions_.empty()));
   medium_ = walk_medium(coefficients_from(medium_at(params), inversions_, roughness_.constant().x), params.g);
@@ -76,7 +98,14 @@ bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Sub
                                           params_.g);
     for (int c = 0; c < 3; ++c)
       if (!(m.sigma_t[c] > 0) || !std::isfinite(m.sigma_t[c])) return false;  // a texture without extinction
-    exited = walk(entry, settings_[strategy], sss::make_walk_step(m, settings_[strategy]), initial, sampler, out);
+    LastTexturedStep& last = t_last_textured_step;
+    if (!last.matches(id_, strategy, m)) {
+      last.step.reset();  // make_walk_step throws for a medium it cannot walk: no stale step stays
+      last.step.emplace(sss::make_walk_step(m, settings_[strategy]));
+      last.method = id_, last.strategy = strategy;
+      last.sigma_s = m.sigma_s, last.sigma_t = m.sigma_t, last.g = m.g;
+    }
+    exited = walk(entry, settings_[strategy], *last.step, initial, sampler, out);
   }
   if (channel >= 0) {
     out.weight *= float(kChannelWalks);

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -93,6 +94,9 @@ class WalkMethod {
   std::array<sss::WalkSettings, kWalkStrategies.size()> settings_;
   std::array<bool, kWalkStrategies.size()> channel_per_walk_{};
   std::vector<sss::MixtureWalkStep<3>> steps_;
+  // This method among all made in the process: the key of a thread's last textured step
+  // (walk_method.cpp), which an address, reused by a later method, could not be.
+  uint64_t id_;
 };
 
 }  // namespace dermis

@@ -231,15 +231,15 @@ void AlbedoInversion::save() const {
   if (ec) std::filesystem::remove(tmp, ec);
 }
 
+HermiteNode AlbedoInversion::node(int k) const {
+  return {t_[std::size_t(k)], albedo_[std::size_t(k)], slope_[std::size_t(k)]};
+}
+
 double AlbedoInversion::albedo_at_t(double t) const {
   const int n = int(t_.size());
   t = std::clamp(t, 0.0, 1.0);
   const int k = std::min(n - 2, int(t * (n - 1)));
-  const double h = t_[k + 1] - t_[k], s = (t - t_[k]) / h;
-  // Cubic Hermite basis (Fritsch & Carlson 1980, eq. 2).
-  const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
-  const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
-  return h00 * albedo_[k] + h10 * h * slope_[k] + h01 * albedo_[k + 1] + h11 * h * slope_[k + 1];
+  return hermite_between(node(k), node(k + 1), t);
 }
 
 double AlbedoInversion::surface_albedo(double alpha) const {
@@ -252,13 +252,8 @@ double AlbedoInversion::surface_albedo(double alpha) const {
 double AlbedoInversion::single_scattering_albedo(double a) const {
   if (!(a >= 0 && a <= 1))
     throw std::invalid_argument("albedo inversion: surface albedo must be in [0, 1], got " + std::to_string(a));
-  // A(t) is non-increasing in t: bisection to double precision.
-  double lo = 0, hi = 1;
-  for (int i = 0; i < 200 && hi - lo > 1e-16; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (albedo_at_t(mid) > a ? lo : hi) = mid;
-  }
-  const double t = 0.5 * (lo + hi);
+  // A(t) is non-increasing in t (a textured material inverts per walk, in each channel).
+  const double t = crossing_of_non_increasing(int(t_.size()), [this](int k) { return node(k); }, a);
   return 1 - t * t;
 }
 

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "dermis/sss/walk/monotone_hermite.h"
 #include "dermis/sss/walk/walk_step.h"
 
 namespace dermis::sss {
@@ -75,12 +76,16 @@ class AlbedoInversion {
 
   // A(alpha) for alpha in [0, 1] (monotone cubic interpolation in t; Fritsch & Carlson 1980).
   double surface_albedo(double single_scattering_albedo) const;
-  // alpha(A) for A in [0, 1]: the inverse of surface_albedo (bisection on the interpolant).
+  // alpha(A) for A in [0, 1]: the inverse of surface_albedo (Newton on the interpolant's
+  // cubic, bracketed; where A is flat, the end of the flat part nearest alpha = 1).
   double single_scattering_albedo(double surface_albedo) const;
 
   const std::vector<double>& node_alphas() const { return alpha_; }
   const std::vector<double>& node_albedos() const { return albedo_; }  // after the monotone fix
   const std::vector<double>& node_stderrs() const { return stderr_; }
+  // Node k of the interpolant in t = sqrt(1 - alpha): t, A and dA/dt.
+  HermiteNode node(int k) const;
+  int size() const { return int(t_.size()); }
   bool from_cache() const { return from_cache_; }
   double build_seconds() const { return build_seconds_; }
   const std::string& cache_path() const { return cache_path_; }

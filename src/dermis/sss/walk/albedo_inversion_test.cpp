@@ -74,6 +74,46 @@ TEST(AlbedoInversion, AgreesWithDirectSimulation) {
   }
 }
 
+// The inversion (a node interval, then Newton on its cubic) against bisection on the
+// interpolant itself, t* = sup{t : A(t) > a}: on a simulated table, and on a fitted one
+// with flat parts (equal nodes, as the monotone fit leaves where the noise ran uphill),
+// where the answer is the end of the flat part nearest alpha = 1.
+TEST(AlbedoInversion, InvertsAsBisectionOfTheInterpolant) {
+  auto bisection = [](const AlbedoInversion& inv, double a) {
+    double lo = 0, hi = 1;  // in t = sqrt(1 - alpha)
+    for (int i = 0; i < 200 && hi - lo > 1e-16; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (inv.surface_albedo(1 - mid * mid) > a ? lo : hi) = mid;
+    }
+    const double t = 0.5 * (lo + hi);
+    return 1 - t * t;
+  };
+  const AlbedoInversion simulated(small_table(1.4, temp_cache_dir("newton")));
+  AlbedoTableConfig c;
+  c.size = 6;
+  c.use_cache = false;
+  const std::vector<AlbedoNode> flat{{1.0, 0}, {0.7, 0}, {0.7, 0}, {0.4, 0}, {0.1, 0}, {0.1, 0}};
+  const AlbedoInversion fitted(c, flat, /*fitted=*/true);
+  // Where A(t) meets a flat part, its slope is 0 and the level a pins t down only to
+  // about sqrt(1e-16) (A - a is quadratic there, for both methods): 1e-7 in alpha there,
+  // 1e-12 where A falls steadily (the simulated table).
+  for (const auto& [inv, tolerance] : {std::pair{&simulated, 1e-12}, std::pair{&fitted, 1e-7}}) {
+    for (int i = 0; i <= 2000; ++i) {
+      const double a = i / 2000.0;
+      const double alpha = inv->single_scattering_albedo(a);
+      EXPECT_NEAR(alpha, bisection(*inv, a), tolerance) << "A = " << a;
+      if (a > inv->node_albedos().back() && a < inv->node_albedos().front()) {
+        EXPECT_NEAR(inv->surface_albedo(alpha), a, 1e-12) << "A = " << a;
+      }
+    }
+    for (double a : inv->node_albedos()) EXPECT_NEAR(inv->single_scattering_albedo(a), bisection(*inv, a), tolerance);
+  }
+  // On the flat part at 0.7 (t in [0.2, 0.4]): its end nearest alpha = 1, t = 0.2.
+  EXPECT_NEAR(fitted.single_scattering_albedo(0.7), 1 - 0.2 * 0.2, 1e-7);
+  EXPECT_EQ(fitted.single_scattering_albedo(0.05), 0.0);  // below A(alpha = 0) = 0.1
+  EXPECT_EQ(fitted.single_scattering_albedo(1.0), 1.0);
+}
+
 TEST(AlbedoInversion, CachesAndRebuildsCorruptCache) {
   const std::string dir = temp_cache_dir("cache");
   AlbedoTableConfig c = small_table(1.2, dir);
