@@ -207,6 +207,23 @@ def material(obj):
         p.inputs["Subsurface Color"].default_value = a
         p.inputs["Subsurface"].default_value = 1.0  # weight 1, and radius multiplier 1
         p.inputs["Subsurface Radius"].default_value = m["cycles_radius"]
+        if "checker" in m:
+            # Cycles' checker (svm_checker.h): Color1 where the parities of floor(x), floor(y),
+            # floor(z) of p x Scale sum to odd, Color2 where even (pbrt-v4's tex1), in object
+            # space (the objects' transforms are the identity, the sphere at the origin: the
+            # world space of the pbrt texture). The radius follows the colour (its conversion
+            # depends on the reflectance: scenes.cycles_radius).
+            c = m["checker"]
+            coord = nt.nodes.new("ShaderNodeTexCoord")
+            for socket, even, odd in (("Base Color", a, (*c["reflectance"], 1.0)),
+                                      ("Subsurface Color", a, (*c["reflectance"], 1.0)),
+                                      ("Subsurface Radius", (*m["cycles_radius"], 1.0), (*c["cycles_radius"], 1.0))):
+                ch = nt.nodes.new("ShaderNodeTexChecker")
+                ch.inputs["Scale"].default_value = 1.0 / c["cell"]
+                ch.inputs["Color1"].default_value = odd
+                ch.inputs["Color2"].default_value = even
+                nt.links.new(coord.outputs["Object"], ch.inputs["Vector"])
+                nt.links.new(ch.outputs["Color"], p.inputs[socket])
         p.inputs["Subsurface IOR"].default_value = m["eta"]
         p.inputs["Subsurface Anisotropy"].default_value = m["g"]
         p.inputs["Metallic"].default_value = 0.0

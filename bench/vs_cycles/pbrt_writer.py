@@ -63,7 +63,18 @@ def material_text(mat, extra):
     if k == "subsurface":
         # Cycles 3.4's Random Walk enters along a cosine lobe (scenes.py, the mapping).
         entry = ' "string entry" "lambertian"' if mat["method"] == "randomwalk" else ""
-        return (f'Material "subsurface" "rgb reflectance" [ {_v(mat["reflectance"])} ] "rgb mfp" [ {_v(mat["mfp"])} ]\n'
+        reflectance = f'"rgb reflectance" [ {_v(mat["reflectance"])} ]'
+        texture = ""
+        if "checker" in mat:
+            # pbrt-v4's 3D checkerboard: tex1 where floor(x) + floor(y) + floor(z) is even, in
+            # the texture space Scale(cell) makes (a point p is p / cell there).
+            c = mat["checker"]
+            texture = (f'AttributeBegin\n    Scale {c["cell"]:g} {c["cell"]:g} {c["cell"]:g}\n'
+                       f'    Texture "reflectance" "spectrum" "checkerboard" "integer dimension" 3\n'
+                       f'      "rgb tex1" [ {_v(mat["reflectance"])} ] "rgb tex2" [ {_v(c["reflectance"])} ]\n'
+                       f'  AttributeEnd\n  ')
+            reflectance = '"texture reflectance" "reflectance"'
+        return (f'{texture}Material "subsurface" {reflectance} "rgb mfp" [ {_v(mat["mfp"])} ]\n'
                 f'      "float eta" {mat["eta"]:g} "float g" {mat["g"]:g}{entry} {extra}')
     if k == "medium" and mat["boundary"] == "glass":
         return (f'Material "subsurface" "rgb sigma_a" [ {_v(mat["sigma_a"])} ] "rgb sigma_s" [ {_v(mat["sigma_s"])} ]\n'

@@ -10,6 +10,8 @@ for the family, over the whole image too).
   /usr/bin/python3 bench/vs_cycles/run.py --quick                 # the family, smoke test, ~3 min
   /usr/bin/python3 bench/vs_cycles/run.py                         # the family (issue 40), ~19 min on 2 cores
   /usr/bin/python3 bench/vs_cycles/run.py --set classic           # the seven scenes of issue 15, ~18 min
+  /usr/bin/python3 bench/vs_cycles/run.py --set heldout           # eight held-out configurations, ~11 min
+  /usr/bin/python3 bench/vs_cycles/run.py --set textured          # six with a checkerboard reflectance, ~9 min
   /usr/bin/python3 bench/vs_cycles/run.py --scenes medium-matched,calibration --spp 16,64
 
 Measurement (as bench/sss_methods.py): E[(A - R)^2] = Var A + bias^2 + Var R, and the
@@ -48,9 +50,11 @@ HUGE_SPP = 1000000
 # beside it.
 DOC = {"family": os.path.join(ROOT, "docs", "results-vs-cycles.md"),
        "heldout": os.path.join(ROOT, "docs", "results-vs-cycles-heldout.md"),
+       "textured": os.path.join(ROOT, "docs", "results-vs-cycles-textured.md"),
        "classic": os.path.join(ROOT, "docs", "results-vs-cycles-classic.md")}
 IMAGES = {"family": os.path.join(ROOT, "docs", "images", "vs-cycles"),
           "heldout": os.path.join(ROOT, "docs", "images", "vs-cycles-heldout"),
+          "textured": os.path.join(ROOT, "docs", "images", "vs-cycles-textured"),
           "classic": os.path.join(ROOT, "docs", "images", "vs-cycles")}
 
 
@@ -304,6 +308,9 @@ def run_scene(args, name):
         sc["res"] = list(args.res)
     if sc["material"]["kind"] == "subsurface":
         sc["material"]["cycles_radius"] = S.cycles_radius(sc["material"])
+        if "checker" in sc["material"]:
+            c = sc["material"]["checker"]
+            c["cycles_radius"] = S.cycles_radius(dict(sc["material"], reflectance=c["reflectance"]))
     work = os.path.join(args.out, name)
     os.makedirs(work, exist_ok=True)
     log(f"[{name}] {sc['res'][0]}x{sc['res'][1]}")
@@ -447,9 +454,16 @@ def family_targets(entries):
     return t
 
 
-def held_out(entries):
-    """Whether the entries are the held-out configurations (h01 ...) rather than the family's."""
-    return all(e["config"].startswith("h") for e in entries)
+def config_set(entries):
+    """Which set the entries are: the held-out configurations (h01 ...), the textured ones
+    (t01 ...) or the family's."""
+    for prefix, name in (("h", "heldout"), ("t", "textured")):
+        if all(e["config"].startswith(prefix) for e in entries):
+            return name
+    return "family"
+
+
+SET_TITLES = {"family": "scene family", "heldout": "held-out configurations", "textured": "textured configurations"}
 
 
 def family_chart(entries, path):
@@ -473,7 +487,7 @@ def family_chart(entries, path):
     ax.set_yticklabels(names, fontsize=7)
     ax.set_xlabel("efficiency Dermis ÷ Cycles, 1 / (MSE × time), geometric mean over the sweep")
     ax.legend(fontsize=7, loc="lower right")
-    ax.set_title(f"Dermis vs Cycles on the {'held-out configurations' if held_out(entries) else 'scene family'} "
+    ax.set_title(f"Dermis vs Cycles on the {SET_TITLES[config_set(entries)]} "
                  "(solid: walk blue, disk orange, volumetric green)", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
@@ -481,10 +495,15 @@ def family_chart(entries, path):
 
 
 def write_family_section(w, entries, image_dir, rel_images):
-    if held_out(entries):
+    if config_set(entries) == "heldout":
         w("## The held-out configurations: efficiency Dermis ÷ Cycles per configuration\n")
         w("Configurations that are not in the family and were never used to tune Dermis (`bench/vs_cycles/scenes.py`, "
           "HELDOUT_CONFIGS: other albedos, scales and light balances on the family's geometries and lights).\n")
+    elif config_set(entries) == "textured":
+        w("## The textured configurations: efficiency Dermis ÷ Cycles per configuration\n")
+        w("The reflectance a 3D checkerboard of the material's and 0.6 × it, the mfp constant, on the family's "
+          "geometries and lights (`bench/vs_cycles/scenes.py`, TEXTURED_CONFIGS; Cycles' Subsurface Radius follows "
+          "each square's reflectance through a second checker). Never used to tune Dermis.\n")
     else:
         w("## The scene family: efficiency Dermis ÷ Cycles per configuration\n")
     w("Configurations chosen before any tuning (`bench/vs_cycles/scenes.py`, FAMILY_CONFIGS or HELDOUT_CONFIGS), "
@@ -603,7 +622,11 @@ def write_report(args, results, info, total, path, image_dir, argv):
               f"Base/Subsurface Color = reflectance, Subsurface 1, Subsurface Radius "
               f"{v3(m['cycles_radius'], '{:.3f}')} (converted, see scenes.py), Subsurface IOR {m['eta']:g}, "
               f"Anisotropy {m['g']:g}, Specular {S.principled_specular(m['eta']):.3f} (F0 of eta {m['eta']:g}), "
-              "Roughness 0.\n")
+              "Roughness 0."
+              + (f" Checkerboard squares of reflectance {v3(m['checker']['reflectance'], '{:g}')}: Cycles' Checker "
+                 f"texture (object space, scale 1/{m['checker']['cell']:g} mm) gives their colour and Subsurface Radius "
+                 f"{v3(m['checker']['cycles_radius'], '{:.3f}')}; Dermis' `checkerboard` (dimension 3, cells "
+                 f"{m['checker']['cell']:g} mm)." if "checker" in m else "") + "\n")
         elif m["kind"] == "medium":
             w(f"Medium: sigma_a {v3(m['sigma_a'], '{:g}')}, sigma_s {v3(m['sigma_s'], '{:g}')} per mm, HG g {m['g']:g}; "
               + ("index-matched boundary." if m["boundary"] == "matched" else f"smooth dielectric, IOR {m['eta']:g}.") + "\n")
@@ -669,10 +692,12 @@ FINDINGS_MARKER = "<!-- findings: written by hand below this line; kept when run
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--set", choices=["family", "heldout", "classic"], default="family",
+    ap.add_argument("--set", choices=["family", "heldout", "textured", "classic"], default="family",
                     help="family (default): the scene family of issue 40, chosen before tuning (scenes.FAMILY); "
                          "heldout: eight other configurations on the family's geometries, never used for tuning "
                          "(scenes.HELDOUT; the family's settings, report docs/results-vs-cycles-heldout.md); "
+                         "textured: six configurations whose reflectance is a checkerboard (scenes.TEXTURED; the "
+                         "family's settings, report docs/results-vs-cycles-textured.md); "
                          "classic: the seven scenes of issue 15")
     ap.add_argument("--scenes", default="", help=f"comma-separated scene names instead of --set, from "
                     f"{', '.join(S.SCENES)}")
@@ -702,7 +727,7 @@ def main():
     ap.add_argument("--note", default="", help="a sentence for the report (e.g. the state of the machine)")
     args = ap.parse_args()
     argv = sys.argv[1:]
-    family = args.set in ("family", "heldout") and not args.scenes
+    family = args.set in ("family", "heldout", "textured") and not args.scenes
     if not args.spp:
         args.spp = "4,16" if args.quick else "16,64" if family else "16,64,256"
     if not args.seeds:
@@ -730,7 +755,7 @@ def main():
     else:
         sys.exit(f"{args.dermis} not found: build first (make build)")
     names = [n for n in args.scenes.split(",") if n] or list(
-        {"family": S.FAMILY, "heldout": S.HELDOUT, "classic": S.DEFAULT_SCENES}[args.set])
+        {"family": S.FAMILY, "heldout": S.HELDOUT, "textured": S.TEXTURED, "classic": S.DEFAULT_SCENES}[args.set])
     for n in names:
         if n not in S.SCENES:
             sys.exit(f"unknown scene {n}; known: {', '.join(S.SCENES)}")

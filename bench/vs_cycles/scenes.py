@@ -174,16 +174,17 @@ FIN_SEMI_AXES = [25.0, 3.0, 18.0]  # mm: 50 wide, 36 high, 6 thick (along y, fac
 # smaller than the object's silhouette: hidden from the camera).
 FAMILY_GEOMETRY = {
     "sphere": dict(
-        shape=SPHERE_GEOM["shape"], camera=dict(SPHERE_GEOM["camera"], fov=18.0), size=40.0,
+        shape=SPHERE_GEOM["shape"], camera=dict(SPHERE_GEOM["camera"], fov=18.0), size=40.0, checker_cell=10.0,
         key=quad_light([-100.0, 30.0, 80.0], [0.0, 0.0, 0.0], 10.0, SMALL_KEY),
         back=quad_light([55.0, 65.0, -20.0], [0.0, 0.0, 0.0], 10.0, SMALL_KEY)),
     "bust": dict(
-        shape=BUST_GEOM["shape"], camera=dict(BUST_GEOM["camera"], fov=36.0), size=240.0,
+        shape=BUST_GEOM["shape"], camera=dict(BUST_GEOM["camera"], fov=36.0), size=240.0, checker_cell=40.0,
         key=quad_light([-800.0, -500.0, 600.0], [0.0, 0.0, 0.0], 100.0, SMALL_KEY),
         back=None),
     "fin": dict(
         shape=dict(kind="ellipsoid", center=[0.0, 0.0, 0.0], semi_axes=FIN_SEMI_AXES, segments=96, rings=48),
         camera=dict(eye=[-40.0, -150.0, 20.0], target=[0.0, 0.0, 0.0], up=[0.0, 0.0, 1.0], fov=26.0), size=6.0,
+        checker_cell=10.0,
         key=quad_light([-90.0, -80.0, 70.0], [0.0, 0.0, 0.0], 10.0, SMALL_KEY),
         back=quad_light([10.0, 60.0, 5.0], [0.0, 0.0, 0.0], 8.0, SMALL_KEY)),
 }
@@ -237,9 +238,10 @@ def _family_lights(g, balance):
     return sky, lights
 
 
-def _family_scenes(configs=None, materials=None, prefix="f", kind="Family", media=True):
+def _family_scenes(configs=None, materials=None, prefix="f", kind="Family", media=True, checker=None):
     """The family's scenes (walk and disk twin of each configuration, then the media), or
-    another set of configurations on the same geometries and lights (the held-out set)."""
+    another set of configurations on the same geometries and lights (the held-out set).
+    checker: the reflectance a checkerboard alternates with (textured_material)."""
     configs = FAMILY_CONFIGS if configs is None else configs
     materials = FAMILY_MATERIALS if materials is None else materials
     out = {}
@@ -255,11 +257,15 @@ def _family_scenes(configs=None, materials=None, prefix="f", kind="Family", medi
                 ("randomwalk", "randomwalk (default)", "Random Walk", ""),
                 ("burley", "disk burley", "Christensen-Burley", '"string method" "disk" "string profile" "burley"')):
             name = f"{base}-{'walk' if method == 'randomwalk' else 'disk'}"
-            sc = scene(name, geom, dict(kind="subsurface", method=method, reflectance=m["reflectance"], mfp=mfp,
-                                        eta=1.4, g=0.0),
+            material = dict(kind="subsurface", method=method, reflectance=m["reflectance"], mfp=mfp, eta=1.4, g=0.0)
+            if checker:
+                material["checker"] = dict(cell=g["checker_cell"],
+                                           reflectance=[checker * a for a in m["reflectance"]])
+            sc = scene(name, geom, material,
                        f"{kind} configuration {info['config']}: {geo}, light {balance}, mfp/size {scale:g} "
-                       f"(mfp {', '.join(f'{x:.3g}' for x in mfp)} mm), albedo {mat}; Dermis `{label}` vs Cycles "
-                       f"{cycles}.", {label: extra}, sky=sky, res=FAMILY_RES)
+                       f"(mfp {', '.join(f'{x:.3g}' for x in mfp)} mm), albedo {mat}"
+                       + (f" in a 3D checkerboard with {checker:g} x it (cells {g['checker_cell']:g} mm)" if checker else "")
+                       + f"; Dermis `{label}` vs Cycles {cycles}.", {label: extra}, sky=sky, res=FAMILY_RES)
             sc["family"] = dict(info, method="walk" if method == "randomwalk" else "disk")
             out[name] = sc
     if not media:
@@ -306,6 +312,27 @@ HELDOUT_CONFIGS = [
 HELDOUT = _family_scenes(HELDOUT_CONFIGS, HELDOUT_MATERIALS, prefix="h", kind="Held-out", media=False)
 SCENES.update(HELDOUT)
 
+# Textured configurations: the reflectance a 3D checkerboard of the material's and 0.6 x
+# it (cells of FAMILY_GEOMETRY's checker_cell: a few across the object), the mfp constant,
+# as a user's texture map varies the colour. Both renderers take the medium at the entry
+# point for the whole walk (Cycles' closure there; Dermis: render/subsurface/walk_method.h)
+# and the profile of the entry for the probes. Cycles gets the Subsurface Radius of each
+# square's reflectance from a second checker (the conversion depends on A). Chosen when
+# the textured walk was made faster (2026-12-05), before it was measured against Cycles;
+# never used to tune.
+TEXTURED_CHECKER = 0.6
+TEXTURED_CONFIGS = [
+    ("sphere", "both", 0.03, "skin"),
+    ("bust", "sky", 0.03, "marble"),
+    ("fin", "back", 0.3, "skin"),
+    ("bust", "both", 0.01, "apple"),
+    ("sphere", "key", 0.3, "jade"),
+    ("fin", "sky", 0.1, "ketchup"),
+]
+TEXTURED = _family_scenes(TEXTURED_CONFIGS, {**FAMILY_MATERIALS, **HELDOUT_MATERIALS}, prefix="t", kind="Textured",
+                          media=False, checker=TEXTURED_CHECKER)
+SCENES.update(TEXTURED)
+
 # ---------------------------------------------------------------- parameter conversions
 
 def fresnel_f0(eta):
@@ -344,7 +371,8 @@ def burley_s_volume(a):
 
 
 def cycles_radius(material):
-    """The Principled Subsurface Radius that reproduces Dermis' parameters (see module doc)."""
+    """The Principled Subsurface Radius that reproduces Dermis' parameters (see module doc);
+    of a checkerboard's other squares: cycles_radius(dict(material, reflectance=...))."""
     a, l, eta, g = material["reflectance"], material["mfp"], material["eta"], material["g"]
     if material["method"] == "randomwalk":
         return [li / ((1.0 - g) * math.sqrt(3.0 * (1.0 - _cycles_dipole_alpha_prime(ai, eta)))) for ai, li in zip(a, l)]

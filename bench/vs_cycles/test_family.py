@@ -89,6 +89,24 @@ def test_the_held_out_configurations_are_not_in_the_family_and_render(tmp_path):
         renders_without_warning(sc, tmp_path)
 
 
+def test_the_textured_configurations_are_new_and_render(tmp_path):
+    """A checkerboard reflectance (run.py --set textured): configurations of neither the
+    family nor the held-out set, walk and disk twin each, the texture in the Dermis text,
+    the other squares' Cycles radius from their own reflectance."""
+    assert not {tuple(c) for c in S.TEXTURED_CONFIGS} & {tuple(c) for c in S.FAMILY_CONFIGS + S.HELDOUT_CONFIGS}
+    methods = sorted(sc["family"]["method"] for sc in S.TEXTURED.values())
+    assert methods == ["disk"] * len(S.TEXTURED_CONFIGS) + ["walk"] * len(S.TEXTURED_CONFIGS)
+    for name, sc in sorted(S.TEXTURED.items()):
+        m = sc["material"]
+        assert m["checker"]["reflectance"] == [S.TEXTURED_CHECKER * a for a in m["reflectance"]]
+        for label, extra in sc["dermis"].items():
+            text = pbrt_writer.scene_text(sc, label, extra)
+            assert '"texture reflectance" "reflectance"' in text and '"checkerboard" "integer dimension" 3' in text
+        other = S.cycles_radius(dict(m, reflectance=m["checker"]["reflectance"]))
+        assert all(r != o for r, o in zip(S.cycles_radius(m), other)), name
+        renders_without_warning(sc, tmp_path)
+
+
 def test_the_random_walk_twins_enter_as_cycles_3_4_does():
     """Cycles 3.4's Random Walk enters along a cosine lobe: its Dermis twin says so; the
     Christensen-Burley twins (profile methods) have no entry direction to set."""
