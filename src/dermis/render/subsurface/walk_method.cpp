@@ -29,18 +29,20 @@ constexpr int kMaxInternalReflections = 256;
 std::atomic<uint64_t> g_next_method_id{0};
 
 // The step sampler a thread built last for a textured medium, and what it was built
-// for: the camera's first entry takes two or more walks from one point (one medium),
-// and a texture repeats its values over whole regions. Building a step solves Dwivedi's
-// eigenvalue equation in each channel (sss/walk/dwivedi.h); reusing it is exact.
+// from: the textures' values at the entry and the boundary's alpha there. The camera's
+// first entry takes two or more walks from one point (one medium), and a texture
+// repeats its values over whole regions. The medium needs the albedo inversion in each
+// channel, and the step Dwivedi's eigenvalue in each (sss/walk/); reusing them is exact.
 struct LastTexturedStep {
   uint64_t method = ~uint64_t(0);
   std::size_t strategy = 0;
-  RGB sigma_s, sigma_t;
-  float g = 0;
+  MediumAt at;
+  float boundary_alpha = 0;
+  bool walkable = false;  // every channel has a positive, finite extinction
   std::optional<sss::MixtureWalkStep<3>> step;
-  bool matches(uint64_t m, std::size_t s, const sss::WalkMedium& medium) const {
-    return step && method == m && strategy == s && g == medium.g && sigma_s == medium.sigma_s &&
-           sigma_t == medium.sigma_t;
+  bool matches(uint64_t m, std::size_t s, const MediumAt& a, float alpha) const {
+    return method == m && strategy == s && boundary_alpha == alpha && at.sigma_a == a.sigma_a &&
+           at.sigma_s == a.sigma_s && at.reflectance == a.reflectance && at.mfp == a.mfp && at.scale == a.scale;
   }
 };
 thread_local LastTexturedStep t_last_textured_step;
@@ -93,18 +95,20 @@ bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Sub
     exited = walk(entry, settings_[strategy], steps_[strategy], initial, sampler, out);
   } else {
     // The entry point's own medium.
-    const sss::WalkMedium m = walk_medium(coefficients_from(medium_at(params_, textures_, texture_context(entry.hit)),
-                                                            inversions_, roughness_.at(entry.hit).x),
-                                          params_.g);
-    for (int c = 0; c < 3; ++c)
-      if (!(m.sigma_t[c] > 0) || !std::isfinite(m.sigma_t[c])) return false;  // a texture without extinction
+    const MediumAt at = medium_at(params_, textures_, texture_context(entry.hit));
+    const float boundary_alpha = roughness_.at(entry.hit).x;
     LastTexturedStep& last = t_last_textured_step;
-    if (!last.matches(id_, strategy, m)) {
-      last.step.reset();  // make_walk_step throws for a medium it cannot walk: no stale step stays
-      last.step.emplace(sss::make_walk_step(m, settings_[strategy]));
-      last.method = id_, last.strategy = strategy;
-      last.sigma_s = m.sigma_s, last.sigma_t = m.sigma_t, last.g = m.g;
+    if (!last.matches(id_, strategy, at, boundary_alpha)) {
+      last.method = ~uint64_t(0);  // until the new one is built (make_walk_step may throw)
+      last.step.reset();
+      const sss::WalkMedium m = walk_medium(coefficients_from(at, inversions_, boundary_alpha), params_.g);
+      last.walkable = true;
+      for (int c = 0; c < 3; ++c)
+        if (!(m.sigma_t[c] > 0) || !std::isfinite(m.sigma_t[c])) last.walkable = false;  // a texture without extinction
+      if (last.walkable) last.step.emplace(sss::make_walk_step(m, settings_[strategy]));
+      last.method = id_, last.strategy = strategy, last.at = at, last.boundary_alpha = boundary_alpha;
     }
+    if (!last.walkable) return false;
     exited = walk(entry, settings_[strategy], *last.step, initial, sampler, out);
   }
   if (channel >= 0) {

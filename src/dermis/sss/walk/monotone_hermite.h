@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace dermis::sss {
 
@@ -31,10 +32,12 @@ inline double hermite_between(const HermiteNode& a, const HermiteNode& b, double
 // the last's where it always does. On a flat part at the level, the end with the least t.
 // The node interval by bisection on the node values, then Newton on its cubic, bracketed
 // (a step leaving the bracket bisects instead: Press et al., Numerical Recipes, 3rd ed.,
-// sec. 9.4), to double precision: where the cubic meets the level with slope 0 (the
+// sec. 9.4), to a few ulps of max(|t|, 1): where the cubic meets the level with slope 0 (the
 // edge of a flat part) that pins t* only to about 1e-8.
+// steps (if given): the Newton or bisection steps taken.
 template <class NodeAt>
-double crossing_of_non_increasing(int n, NodeAt&& node, double level) {
+double crossing_of_non_increasing(int n, NodeAt&& node, double level, int* steps = nullptr) {
+  if (steps) *steps = 0;
   const HermiteNode first = node(0), last = node(n - 1);
   if (!(first.y > level)) return first.t;
   if (last.y > level) return last.t;
@@ -46,14 +49,26 @@ double crossing_of_non_increasing(int n, NodeAt&& node, double level) {
   const HermiteNode a = node(lo_node), b = node(lo_node + 1);
   double lo = a.t, hi = b.t;
   double t = a.y > b.y ? lo + (hi - lo) * (a.y - level) / (a.y - b.y) : lo;  // the chord's crossing
-  for (int i = 0; i < 100 && hi - lo > 1e-16; ++i) {
+  // Converged when a step or the bracket is a few ulps of the scale max(|t|, 1) (1e-16
+  // would be under one ulp near t = 1, where Newton then alternates between neighbours;
+  // a tolerance relative to t, under the rounding of A near t = 0).
+  const double tolerance = 4 * std::numeric_limits<double>::epsilon() * std::max({1.0, std::abs(lo), std::abs(hi)});
+  for (int i = 0; i < 100 && hi - lo > tolerance; ++i) {
+    if (steps) ++*steps;
     double slope;
     const double f = hermite_between(a, b, t, &slope) - level;
     (f > 0 ? lo : hi) = t;
-    const double newton = slope < 0 ? t - f / slope : lo - 1;
-    const double next = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
-    if (std::abs(next - t) <= 1e-16) break;
-    t = next;
+    if (slope < 0) {
+      const double newton = t - f / slope;
+      // Converged: a Newton step of a few ulps (it may round onto the bracket's end that
+      // t has just become).
+      if (std::abs(newton - t) <= tolerance) break;
+      if (newton > lo && newton < hi) {
+        t = newton;
+        continue;
+      }
+    }
+    t = 0.5 * (lo + hi);  // a step that leaves the bracket, or no slope: bisection
   }
   return std::clamp(t, lo, hi);
 }

@@ -100,5 +100,26 @@ TEST(MonotoneHermite, CrossingIsTheBisectionsAnswer) {
   }
 }
 
+// Newton converges in a few steps where the cubic falls steadily, t near 1 included (a
+// stopping rule finer than t's ulp there once made it take all 100).
+TEST(MonotoneHermite, ConvergesInAFewSteps) {
+  std::vector<HermiteNode> nodes;
+  for (int i = 0; i <= 31; ++i) {  // A = (1 - t)(2 - t)/2: falling, slope (2t - 3)/2 < 0 throughout
+    const double t = i / 31.0;
+    nodes.push_back({t, (1 - t) * (2 - t) / 2, (2 * t - 3) / 2});
+  }
+  auto node = [&](int k) { return nodes[std::size_t(k)]; };
+  int most = 0;
+  for (int i = 1; i < 100000; ++i) {
+    const double level = i / 100000.0;
+    int steps = 0;
+    const double t = crossing_of_non_increasing(int(nodes.size()), node, level, &steps);
+    EXPECT_NEAR(value_at(nodes, t), level, 1e-13) << level;
+    EXPECT_LE(steps, 8) << level;
+    most = std::max(most, steps);
+  }
+  EXPECT_LE(most, 8);
+}
+
 }  // namespace
 }  // namespace dermis::sss
