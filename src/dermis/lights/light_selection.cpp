@@ -174,7 +174,7 @@ float LightSelection::importance(std::size_t i, Vec3 p, Vec3 n) const {
 }
 
 int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped, int group,
-                           float* group_importance, bool sky_gives_way) const {
+                           float* group_importance, SkyRule sky) const {
   *pmf = 0;
   if (group_importance) *group_importance = 0;
   if (count_ == 0) return -1;
@@ -183,7 +183,7 @@ int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remappe
     return *pmf > 0 ? int(i) : -1;
   }
   std::array<float, kPointwiseLightLimit> w;
-  const float sum = weights(p, n, group, w.data(), sky_gives_way);
+  const float sum = weights(p, n, group, w.data(), sky);
   if (group_importance) *group_importance = sum;
   if (!(sum > 0)) return -1;
   float target = u * sum;
@@ -199,26 +199,33 @@ int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remappe
   return int(chosen);
 }
 
-float LightSelection::pmf(int light, Vec3 p, Vec3 n, bool sky_gives_way) const {
+float LightSelection::pmf(int light, Vec3 p, Vec3 n, SkyRule sky) const {
   if (light < 0 || std::size_t(light) >= count_) return 0;
   if (!pointwise_) return power_.pmf_discrete(std::size_t(light));
   std::array<float, kPointwiseLightLimit> w;
-  const float sum = weights(p, n, group_of(std::size_t(light), n), w.data(), sky_gives_way);
+  const float sum = weights(p, n, group_of(std::size_t(light), n), w.data(), sky);
   return sum > 0 ? w[std::size_t(light)] / sum : 0.0f;
 }
 
-float LightSelection::weights(Vec3 p, Vec3 n, int group, float* w, bool sky_gives_way) const {
+float LightSelection::weights(Vec3 p, Vec3 n, int group, float* w, SkyRule sky) const {
   float sum = 0, others = 0, skies = 0;
   for (std::size_t i = 0; i < count_; ++i) {
     sum += w[i] = group_of(i, n) == group ? importance(i, p, n) : 0.0f;
     (bounds_[i].uniform_sky ? skies : others) += w[i];
   }
-  if (!outweighed_sky_gives_way_ || !(skies > 0)) return sum;
+  if (!(skies > 0)) return sum;
+  if (surface(n) && sky == SkyRule::GivesWay) {
+    // Asked for by the caller (SkyRule::GivesWay): the uniform skies are never chosen.
+    for (std::size_t i = 0; i < count_; ++i)
+      if (bounds_[i].uniform_sky) w[i] = 0;
+    return others;
+  }
+  if (!outweighed_sky_gives_way_) return sum;
   if (surface(n)) {
     // At a surface where the caller asks for the rule, the skies are a group of their own
     // (group 1, the finite lights group 0): they give way where the finite lights outweigh
     // them (the header's rule).
-    if (!sky_gives_way || group != 1 || !infinite_all_uniform_) return sum;
+    if (sky != SkyRule::Outweighed || group != 1 || !infinite_all_uniform_) return sum;
     float finite = 0;
     for (std::size_t i = 0; i < count_; ++i)
       if (!group_[i]) finite += importance(i, p, n);

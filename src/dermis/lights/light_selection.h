@@ -19,7 +19,7 @@
 // they outweigh it: it is not chosen, its probability is zero in pmf() too, and its
 // emission is found by the sampled scattering directions at MIS weight one. In a medium
 // that is where the other lights' importances sum to more than its own (4 pi L); at a
-// surface point where the caller asks for it (sky_gives_way: the integrator's subsurface
+// surface point where the caller asks for it (SkyRule::Outweighed: the integrator's subsurface
 // exits), where the lights at infinity are a group of their own and all uniform skies,
 // where the finite lights' importances sum to more than theirs (pi L). Its light samples
 // draw directions as the scattering nearly does (uniformly over the sphere in a medium,
@@ -53,6 +53,17 @@ namespace dermis {
 
 inline constexpr std::size_t kPointwiseLightLimit = 32;
 
+// Whether uniform skies are light-sampled at a surface point (the header's rule; in a
+// medium the rule always applies).
+enum class SkyRule : unsigned char {
+  Sampled,     // they are (every surface point but a subsurface exit)
+  Outweighed,  // they give way where the finite lights outweigh them (subsurface exits)
+  // They always give way: never chosen, probability zero, their emission found by the
+  // scattered directions at MIS weight one. A walk strategy the render's pilot may choose
+  // at subsurface exits (render/subsurface/walk_method.h, WalkStrategy::exit_sky_sampled).
+  GivesWay,
+};
+
 class LightSelection {
  public:
   LightSelection() = default;
@@ -78,22 +89,30 @@ class LightSelection {
   // light (as Cycles' light_distribution_sample reuses its number).
   // `group_importance`, when given, receives the sum of the group's importances at (p, n)
   // (0 when the selection is not pointwise).
-  // `sky_gives_way`: at a surface point, whether the rule above applies there (the
+  // `sky`: at a surface point, whether the rule above applies there (SkyRule: the
   // integrator lets it at subsurface exits only); in a medium it always does.
   int sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped = nullptr, int group = 0,
-             float* group_importance = nullptr, bool sky_gives_way = false) const;
+             float* group_importance = nullptr, SkyRule sky = SkyRule::Sampled) const;
   // The probability that sample() for the light's group chooses `light` at (p, n), with
-  // the same sky_gives_way.
-  float pmf(int light, Vec3 p, Vec3 n, bool sky_gives_way = false) const;
+  // the same rule.
+  float pmf(int light, Vec3 p, Vec3 n, SkyRule sky = SkyRule::Sampled) const;
 
   // At a surface point where the lights at infinity are sampled as a group of their own
   // (groups(n) == 2): true when the rule above leaves them out at a point that asks for it
-  // (sky_gives_way), that is when all of them are uniform skies and the finite lights'
+  // (SkyRule::Outweighed), that is when all of them are uniform skies and the finite lights'
   // importances, `finite_importance` (sample()'s group_importance for group 0), sum to
-  // more than theirs. sample() for group 1 with sky_gives_way then chooses none; a caller
+  // more than theirs. sample() for group 1 with that rule then chooses none; a caller
   // that has the sum may skip that call.
   bool uniform_sky_outweighed(float finite_importance) const {
     return outweighed_sky_gives_way_ && infinite_all_uniform_ && finite_importance > uniform_sky_importance_;
+  }
+
+  // Whether SkyRule::GivesWay may change what sample() chooses: a uniform sky among the
+  // lights, chosen pointwise.
+  bool has_uniform_sky() const {
+    for (const Bounds& b : bounds_)
+      if (b.uniform_sky) return true;
+    return false;
   }
 
   // Whether a ray from o along the unit direction d may meet a finite emitter (an area
@@ -109,7 +128,7 @@ class LightSelection {
  private:
   static bool surface(Vec3 n) { return n.x != 0 || n.y != 0 || n.z != 0; }
   // The weights sample() chooses from for the group at (p, n), their sum returned.
-  float weights(Vec3 p, Vec3 n, int group, float* w, bool sky_gives_way) const;
+  float weights(Vec3 p, Vec3 n, int group, float* w, SkyRule sky) const;
   // The group light i is sampled in at a point with normal n.
   int group_of(std::size_t i, Vec3 n) const { return groups(n) == 2 ? group_[i] : 0; }
 

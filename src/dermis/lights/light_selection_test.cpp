@@ -227,7 +227,7 @@ TEST(LightSelection, AUniformSkyGivesWayInAMediumToLightsThatOutweighIt) {
 // sample() reports for group 0) exceed its own, pi L: facing a bright quad, not facing away
 // from it (importance zero), not when the sky is bright, not for a sky with an image, not
 // with the rule off, and never with lights at infinity alone. Where it is outweighed it
-// gives way at a point that asks for it (sky_gives_way): its group chooses no light and its
+// gives way at a point that asks for it (SkyRule::Outweighed): its group chooses no light and its
 // probability is zero; at other surface points it keeps its group.
 TEST(LightSelection, AUniformSkyGivesWayAtASurfaceWhereTheFiniteLightsOutweighIt) {
   const std::vector<Light> lights = {triangle({-0.5f, 3, -0.5f}, {0.5f, 3, -0.5f}, {0.5f, 3, 0.5f}, 40),
@@ -246,31 +246,70 @@ TEST(LightSelection, AUniformSkyGivesWayAtASurfaceWhereTheFiniteLightsOutweighIt
   EXPECT_FALSE(sel.uniform_sky_outweighed(finite_importance(sel, {0, -1, 0})));  // the quad behind
   EXPECT_EQ(finite_importance(sel, {0, -1, 0}), 0.0f);
   float pmf = 1;
-  EXPECT_EQ(sel.sample(0.5f, p, {0, 1, 0}, &pmf, nullptr, 1, nullptr, true), -1);  // facing: the sky gives way
+  EXPECT_EQ(sel.sample(0.5f, p, {0, 1, 0}, &pmf, nullptr, 1, nullptr, SkyRule::Outweighed), -1);  // facing: the sky gives way
   EXPECT_EQ(pmf, 0.0f);
-  EXPECT_EQ(sel.pmf(2, p, {0, 1, 0}, true), 0.0f);
+  EXPECT_EQ(sel.pmf(2, p, {0, 1, 0}, SkyRule::Outweighed), 0.0f);
   EXPECT_EQ(sel.sample(0.5f, p, {0, 1, 0}, &pmf, nullptr, 1), 2);  // not asked for: it keeps its group
   EXPECT_FLOAT_EQ(sel.pmf(2, p, {0, 1, 0}), 1.0f);
-  EXPECT_EQ(sel.sample(0.5f, p, {0, -1, 0}, &pmf, nullptr, 1, nullptr, true), 2);  // the quad behind
+  EXPECT_EQ(sel.sample(0.5f, p, {0, -1, 0}, &pmf, nullptr, 1, nullptr, SkyRule::Outweighed), 2);  // the quad behind
   EXPECT_FLOAT_EQ(pmf, 1.0f);
-  EXPECT_FLOAT_EQ(sel.pmf(2, p, {0, -1, 0}, true), 1.0f);
+  EXPECT_FLOAT_EQ(sel.pmf(2, p, {0, -1, 0}, SkyRule::Outweighed), 1.0f);
   const LightSelection off(lights, 10, false);
   EXPECT_FALSE(off.uniform_sky_outweighed(finite_importance(off, {0, 1, 0})));
-  EXPECT_FLOAT_EQ(off.pmf(2, p, {0, 1, 0}, true), 1.0f);
+  EXPECT_FLOAT_EQ(off.pmf(2, p, {0, 1, 0}, SkyRule::Outweighed), 1.0f);
 
   const LightSelection bright_sky({lights[0], lights[1], sky(400)}, 10);
   EXPECT_FALSE(bright_sky.uniform_sky_outweighed(finite_importance(bright_sky, {0, 1, 0})));
-  EXPECT_FLOAT_EQ(bright_sky.pmf(2, p, {0, 1, 0}, true), 1.0f);
+  EXPECT_FLOAT_EQ(bright_sky.pmf(2, p, {0, 1, 0}, SkyRule::Outweighed), 1.0f);
 
   Light map = sky(0.1f);
   map.environment = std::make_shared<const EnvironmentMap>(2, 1, std::vector<float>(6, 0.1f), Transform(), 1.0f,
                                                            EnvironmentMap::Mapping::LatLong);
   const LightSelection with_map({lights[0], lights[1], map}, 10);
   EXPECT_FALSE(with_map.uniform_sky_outweighed(finite_importance(with_map, {0, 1, 0})));
-  EXPECT_FLOAT_EQ(with_map.pmf(2, p, {0, 1, 0}, true), 1.0f);
+  EXPECT_FLOAT_EQ(with_map.pmf(2, p, {0, 1, 0}, SkyRule::Outweighed), 1.0f);
 
   const LightSelection sky_alone({sky(0.1f)}, 10);
   EXPECT_FALSE(sky_alone.uniform_sky_outweighed(1e30f));
+}
+
+// SkyRule::GivesWay: at a surface point, uniform skies are never chosen and have
+// probability zero, whatever the other lights (none, a dim quad, a sky with an image in
+// their group); the other lights keep their shares. In a medium the rule is the usual one.
+TEST(LightSelection, AUniformSkyAlwaysGivesWayWhereTheCallerAsks) {
+  const Vec3 p{0, 0, 0}, up{0, 1, 0};
+  float pmf = 1;
+  const LightSelection sky_alone({sky(0.1f)}, 10);
+  EXPECT_TRUE(sky_alone.has_uniform_sky());
+  EXPECT_EQ(sky_alone.sample(0.5f, p, up, &pmf, nullptr, 0, nullptr, SkyRule::GivesWay), -1);
+  EXPECT_EQ(pmf, 0.0f);
+  EXPECT_EQ(sky_alone.pmf(0, p, up, SkyRule::GivesWay), 0.0f);
+  EXPECT_EQ(sky_alone.sample(0.5f, p, up, &pmf, nullptr, 0, nullptr, SkyRule::Outweighed), 0);  // alone: kept
+  EXPECT_FLOAT_EQ(sky_alone.pmf(0, p, up, SkyRule::Outweighed), 1.0f);
+  EXPECT_FLOAT_EQ(sky_alone.pmf(0, p, Vec3(0, 0, 0), SkyRule::GivesWay), 1.0f);  // in a medium
+
+  // A dim quad (the sky outweighs it) and the sky: two groups; the sky's chooses none.
+  const std::vector<Light> quad_and_sky = {triangle({-0.5f, 3, -0.5f}, {0.5f, 3, -0.5f}, {0.5f, 3, 0.5f}, 0.01f),
+                                           sky(10)};
+  const LightSelection both(quad_and_sky, 10);
+  ASSERT_EQ(both.groups(up), 2);
+  EXPECT_EQ(both.sample(0.5f, p, up, &pmf, nullptr, 1, nullptr, SkyRule::GivesWay), -1);
+  EXPECT_EQ(both.pmf(1, p, up, SkyRule::GivesWay), 0.0f);
+  EXPECT_FLOAT_EQ(both.pmf(1, p, up, SkyRule::Outweighed), 1.0f);  // not outweighed: sampled
+  EXPECT_EQ(both.sample(0.5f, p, up, &pmf, nullptr, 0, nullptr, SkyRule::GivesWay), 0);
+  EXPECT_FLOAT_EQ(pmf, 1.0f);
+
+  // A sky with an image keeps its group; the uniform one beside it gives way.
+  Light map = sky(0.1f);
+  map.environment = std::make_shared<const EnvironmentMap>(2, 1, std::vector<float>(6, 0.1f), Transform(), 1.0f,
+                                                           EnvironmentMap::Mapping::LatLong);
+  const LightSelection skies({map, sky(0.1f)}, 10);
+  EXPECT_FLOAT_EQ(skies.pmf(0, p, up, SkyRule::GivesWay), 1.0f);
+  EXPECT_EQ(skies.pmf(1, p, up, SkyRule::GivesWay), 0.0f);
+  EXPECT_EQ(skies.sample(0.99f, p, up, &pmf, nullptr, 0, nullptr, SkyRule::GivesWay), 0);
+
+  const LightSelection map_alone({map}, 10);
+  EXPECT_FALSE(map_alone.has_uniform_sky());
 }
 
 TEST(LightSelection, ManyLightsUseThePowerDistribution) {

@@ -53,10 +53,10 @@ inline Vec3 direction_about(Vec3 axis, float cos_theta, float u) {
 template <class Scatter>
 RGB estimate_direct_group(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
                           Scatter&& scatter, int group, float* group_importance = nullptr,
-                          bool sky_gives_way = false) {
+                          SkyRule sky = SkyRule::Sampled) {
   const Vec2 u = sampler.get2d();
   float pmf, u_reused = 0;
-  const int li = sc.light_selection.sample(u.x, p, n, &pmf, &u_reused, group, group_importance, sky_gives_way);
+  const int li = sc.light_selection.sample(u.x, p, n, &pmf, &u_reused, group, group_importance, sky);
   if (li < 0 || pmf <= 0) return RGB(0);
   const Vec2 u_position{u_reused, u.y};
   const Light& light = sc.lights[li];
@@ -123,19 +123,20 @@ bool add_bright_emission_seen(const RenderScene& sc, const Ray& ray, RGB weight,
 }
 
 // One light sample from each group of the light selection (finite lights, lights at
-// infinity: lights/light_selection.h), two dimensions each. With sky_gives_way (the
+// infinity: lights/light_selection.h), two dimensions each. With SkyRule::Outweighed (the
 // subsurface exits), where the finite lights outweigh a uniform sky
 // (LightSelection::uniform_sky_outweighed, from the importance sum the first choice
 // computes), the sky's sample is not taken (its two dimensions are): the scattered
-// direction, whose vertex says sky_gives_way too, finds it at MIS weight one.
+// direction, whose vertex says the same rule, finds it at MIS weight one. With
+// SkyRule::GivesWay (a walk strategy's exits) no uniform sky is chosen, the same way.
 template <class Scatter>
 RGB estimate_direct(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
-                    Scatter&& scatter, bool sky_gives_way = false) {
+                    Scatter&& scatter, SkyRule sky = SkyRule::Sampled) {
   float finite_importance = 0;
-  RGB L = estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 0, &finite_importance);
+  RGB L = estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 0, &finite_importance, sky);
   if (sc.light_selection.groups(n) == 2) {
-    if (!sky_gives_way || !sc.light_selection.uniform_sky_outweighed(finite_importance))
-      L += estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 1, nullptr, sky_gives_way);
+    if (sky != SkyRule::Outweighed || !sc.light_selection.uniform_sky_outweighed(finite_importance))
+      L += estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 1, nullptr, sky);
     else
       sampler.get2d();
   }
@@ -242,7 +243,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
   // The last scattering event's next-event point and normal (integrator.h PathStart).
   Vec3 prev_p = start.from_camera ? ray.o : start.prev_p;
   Vec3 prev_n = start.from_camera ? Vec3(0, 0, 0) : start.prev_n;
-  bool prev_sky_gives_way = !start.from_camera && start.prev_sky_gives_way;
+  SkyRule prev_sky = start.from_camera ? SkyRule::Sampled : start.prev_sky;
   int depth = start.depth, crossings = 0;
   // Every vertex so far a smooth specular one (glass, a mirror) or none: what the camera
   // sees directly, through glass or in a mirror. Its first subsurface entry is the
@@ -381,7 +382,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         camera_chain = false;
         prev_p = p;
         prev_n = Vec3(0, 0, 0);
-        prev_sky_gives_way = false;
+        prev_sky = SkyRule::Sampled;
         ray = Ray{p, wi};
         if (!survives_roulette(sc.medium_sees_lights[medium] ? kMediumRouletteThreshold : kSurfaceRouletteThreshold))
           break;
@@ -397,7 +398,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         RGB Le = infinite_light_radiance(light, ray.d);
         if (Le.is_black()) continue;
         float w = specular ? 1.0f
-                           : power_heuristic(prev_pdf, sc.light_selection.pmf(li, prev_p, prev_n, prev_sky_gives_way) *
+                           : power_heuristic(prev_pdf, sc.light_selection.pmf(li, prev_p, prev_n, prev_sky) *
                                                            light_pdf(light, prev_p, ray.d, {}, {}, prev_n));
         L += beta * Le * w;
       }
@@ -411,7 +412,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       RGB Le = area_light_radiance(light, hit.ng, -ray.d);
       if (!Le.is_black()) {
         float w = specular ? 1.0f
-                           : power_heuristic(prev_pdf, sc.light_selection.pmf(li, prev_p, prev_n, prev_sky_gives_way) *
+                           : power_heuristic(prev_pdf, sc.light_selection.pmf(li, prev_p, prev_n, prev_sky) *
                                                            light_pdf(light, prev_p, ray.d, hit.p, hit.ng));
         L += beta * Le * w;
       }
@@ -477,7 +478,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           prev_pdf = bs->pdf;
           prev_p = entry_nee ? p_out : hit.p;
           prev_n = hit.ng;
-          prev_sky_gives_way = false;
+          prev_sky = SkyRule::Sampled;
           ray = Ray{offset_ray_origin(hit.p, hit.ng, bs->wi), bs->wi};
           if (!beta.is_finite() || beta.is_black()) break;
           continue;
@@ -545,6 +546,9 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         const Material& m = sc.materials[sc.shapes[h.shape].material];
         return m.type == Material::Type::Diffuse ? bsdf_at(m, sc.textures, h).albedo : RGB(0);
       };
+      const int strategy = start.subsurface_strategies ? (*start.subsurface_strategies)[std::size_t(mat.subsurface)] : 0;
+      // Whether uniform skies are light-sampled at this material's exits (the strategy's).
+      const SkyRule exit_sky = sm.exit_sky_rule(strategy);
       // Light sampled through a rough boundary from inside (a walk's exits), on the
       // outside, in the medium the path entered from.
       auto light_through = [&](Vec3 p, Vec3 n, const BSDF& b, Vec3 wo_in, Sampler& smp) {
@@ -562,7 +566,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
               if (!shading_side_agrees(at, wi)) return std::pair{RGB(0), 0.0f};
               return std::pair{bsdf_eval(sw, at.ns, wi), bsdf_pdf(sw, at.ns, wi)};
             },
-            /*sky_gives_way=*/true);
+            exit_sky);
       };
       auto exit_light = [&](const SurfaceHit& at, Sampler& smp) {
         RoughExitTable table_at;  // a textured roughness: the table of the point's alpha
@@ -596,7 +600,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         way_on.prev_pdf = b->pdf;
         way_on.prev_p = p_out_k;
         way_on.prev_n = at.ng;
-        way_on.prev_sky_gives_way = true;
+        way_on.prev_sky = exit_sky;
         L += beta_k * trace_path(sc, Ray{p_out_k, b->wi}, medium, sampler, counters, way_on);
       };
       // A nested way on along an Along exit's direction e.direction (another exit's, at the
@@ -611,11 +615,10 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         way_on.prev_pdf = e.direction_pdf;
         way_on.prev_p = weighed ? offset_ray_origin(e.hit.p, e.hit.ng, e.hit.ng) : e.hit.p;
         way_on.prev_n = e.hit.ng;
-        way_on.prev_sky_gives_way = false;  // light_through's samples
+        way_on.prev_sky = SkyRule::Sampled;  // light_through's samples
         L += beta_k * trace_path(sc, Ray{offset_ray_origin(e.hit.p, e.hit.ng, e.direction), e.direction}, medium,
                                  sampler, counters, way_on);
       };
-      const int strategy = start.subsurface_strategies ? (*start.subsurface_strategies)[std::size_t(mat.subsurface)] : 0;
       // The camera's first entry averages several exits (below): the scene's
       // subsurfacesamples through the exit lobe, or more (a walk with one colour channel
       // per exit, whatever its boundary).
@@ -694,7 +697,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         prev_pdf = ex.direction_pdf;
         prev_p = weighed ? offset_ray_origin(ex.hit.p, ex.hit.ng, ex.hit.ng) : ex.hit.p;
         prev_n = ex.hit.ng;
-        prev_sky_gives_way = false;  // light_through's samples
+        prev_sky = SkyRule::Sampled;  // light_through's samples
         ray = Ray{offset_ray_origin(ex.hit.p, ex.hit.ng, ex.direction), ex.direction};
         continue;
       }
@@ -726,7 +729,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       prev_pdf = bs->pdf;
       prev_p = p_out;
       prev_n = ex.hit.ng;
-      prev_sky_gives_way = true;
+      prev_sky = exit_sky;
       ray = Ray{p_out, bs->wi};
       if (!beta.is_finite() || beta.is_black()) break;
       if (!survives_roulette(kSurfaceRouletteThreshold)) break;
@@ -822,7 +825,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
     const bool behind = two_sided_nee && bs->transmission;
     prev_p = behind ? p_back : p_out;
     prev_n = behind ? -surface_n : surface_n;
-    prev_sky_gives_way = false;
+    prev_sky = SkyRule::Sampled;
     if (bs->transmission) {
       const int before = medium;
       medium = medium_after_crossing(s, bs->wi, hit.ng, medium);

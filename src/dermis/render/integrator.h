@@ -50,9 +50,9 @@ struct PathStart {
   float prev_pdf = 0;
   Vec3 prev_p;  // the next-event point there (offset off the surface)
   Vec3 prev_n;  // and the normal of the hemisphere its light selection saw (zero in a medium)
-  // Whether an outweighed uniform sky gave way there (LightSelection's sky_gives_way: at
-  // subsurface exits).
-  bool prev_sky_gives_way = false;
+  // The rule by which uniform skies were light-sampled there (LightSelection's SkyRule:
+  // at subsurface exits, Outweighed or the strategy's GivesWay).
+  SkyRule prev_sky = SkyRule::Sampled;
   // The path starts after a specular event (not from the camera: a smooth boundary's
   // exit): the emission it meets first counts in full, as after the camera.
   bool prev_specular = false;

@@ -88,10 +88,26 @@ bool camera_sees_subsurface(const RenderScene& sc, Ray ray) {
   return false;
 }
 
+namespace {
+// The strategies (kWalkStrategies) the pilot measures, of the first `count`: all but those
+// that differ from another only where a uniform sky is light-sampled at exits
+// (WalkStrategy::exit_sky_sampled), when the scene has none (their images would be the
+// other's, their pilot samples wasted).
+std::vector<int> offered_strategies(const RenderScene& sc, int count) {
+  std::vector<int> offered;
+  for (int v = 0; v < count; ++v)
+    if (v == 0 || kWalkStrategies[std::size_t(v)].exit_sky_sampled || sc.light_selection.has_uniform_sky())
+      offered.push_back(v);
+  return offered;
+}
+}  // namespace
+
 std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const SubsurfacePilotOptions& opt) {
-  int strategies = 1;
+  int most = 1;
   for (const auto& m : sc.subsurface)
-    if (m) strategies = std::max(strategies, m->strategy_count());
+    if (m) most = std::max(most, m->strategy_count());
+  const std::vector<int> offered = offered_strategies(sc, most);
+  const int strategies = int(offered.size());  // measured, indexed by their place in `offered`
 
   // The pixels whose centre sees a subsurface object (of at most kPilotProbes, evenly
   // spaced in raster order): the pilot spends its samples there.
@@ -120,8 +136,8 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
   std::vector<PilotPixel> pixels(std::size_t(count) * std::size_t(strategies));
   FilterSampler filter(sc.film.filter);
   const uint64_t pilot_seed = mix64(opt.seed ^ 0x5eb5a11f0ull);  // not the image's numbers
-  std::vector<std::vector<int>> every_material;  // strategy v for every material
-  for (int v = 0; v < strategies; ++v) every_material.emplace_back(sc.subsurface.size(), v);
+  std::vector<std::vector<int>> every_material;  // strategy offered[i] for every material
+  for (int v : offered) every_material.emplace_back(sc.subsurface.size(), v);
 
   tbb::parallel_for(int64_t(0), count, [&](int64_t k) {
     if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) return;
@@ -168,8 +184,10 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
   std::vector<SubsurfaceChoice> choices;
   for (std::size_t m = 0; m < materials; ++m) {
     const SubsurfaceMaterial& sm = *sc.subsurface[m];
-    const int n_strategies = sm.strategy_count();
-    if (n_strategies < 2) continue;
+    const int material_count = sm.strategy_count();
+    if (material_count < 2) continue;
+    int n_strategies = 0;  // the offered strategies this material has (the first ones)
+    while (n_strategies < strategies && offered[std::size_t(n_strategies)] < material_count) ++n_strategies;
     std::vector<StrategyMeasure> e(static_cast<std::size_t>(n_strategies));
     for (int v = 0; v < n_strategies; ++v) {
       StrategyMeasure& s = e[std::size_t(v)];
@@ -201,8 +219,9 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
     if (e[0].pixels < kMinPilotPixels) continue;
     SubsurfaceChoice choice;
     choice.material = int(m);
-    choice.strategy = best_strategy(e, kMinPilotPixels, kPilotSignificance);
-    const StrategyMeasure& chosen = e[std::size_t(choice.strategy)];
+    const int best = best_strategy(e, kMinPilotPixels, kPilotSignificance);
+    choice.strategy = offered[std::size_t(best)];
+    const StrategyMeasure& chosen = e[std::size_t(best)];
     choice.pixels = int(chosen.pixels);
     choice.gain = chosen.variance_cost() > 0 ? e[0].variance_cost() / chosen.variance_cost() : 1;
     choice.gain_se = choice.gain * chosen.log_ratio_se;
@@ -229,13 +248,14 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
   const SubsurfaceParams& p = m.params;
   const bool share_given = p.walk_sampling_given || p.guided_share_given;
   const std::string what = fmt::format(
-      "guided share {:g}{}, {}", share_given ? p.guided_share : w.p_guided, share_given ? " (given)" : "",
+      "guided share {:g}{}, {}{}", share_given ? p.guided_share : w.p_guided, share_given ? " (given)" : "",
       m.channel_per_walk(c.strategy)
           ? fmt::format("one colour channel per walk at the camera's first entry{}",
                         p.channel_per_walk_given ? " (given)" : "")
                          : fmt::format("channel preference {:g}{}",
                                        p.channel_preference_given ? p.channel_preference : w.channel_preference,
-                                       p.channel_preference_given ? " (given)" : ""));
+                                       p.channel_preference_given ? " (given)" : ""),
+      w.exit_sky_sampled ? "" : ", uniform skies not light-sampled at exits");
   if (c.strategy == 0)
     return fmt::format("material {} ({}): {} (the default: no other strategy is significantly faster on {} pilot "
                        "pixels)",

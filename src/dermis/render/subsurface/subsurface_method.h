@@ -17,6 +17,7 @@
 #include <optional>
 #include <variant>
 
+#include "dermis/lights/light_selection.h"
 #include "dermis/materials/bsdf.h"
 #include "dermis/materials/rough_exit_lobe.h"
 
@@ -57,6 +58,16 @@ struct SubsurfaceMaterial {
   bool channel_per_walk(int strategy) const {
     const WalkMethod* walk = std::get_if<WalkMethod>(&method);
     return walk && walk->channel_per_walk(strategy);
+  }
+
+  // Whether uniform skies are light-sampled at the material's exits
+  // (WalkStrategy::exit_sky_sampled; always for the other methods).
+  SkyRule exit_sky_rule(int strategy) const {
+    const bool walk = std::holds_alternative<WalkMethod>(method);
+    return walk && strategy > 0 && strategy < int(kWalkStrategies.size()) &&
+                   !kWalkStrategies[std::size_t(strategy)].exit_sky_sampled
+               ? SkyRule::GivesWay
+               : SkyRule::Outweighed;
   }
 
   // How many exits the camera's first entry averages (SubsurfaceEntry::exit_index), each
