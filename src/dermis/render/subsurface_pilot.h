@@ -40,9 +40,12 @@ struct StrategyMeasure {
   double variance_cost() const { return variance * rays; }  // the inverse of the efficiency
 };
 
-// The strategy with the least variance x cost, if its estimated gain over the default
-// (0) is significant: log(gain) above `sigmas` x log_ratio_se. The default where any
-// strategy was measured on fewer than min_pixels pixels.
+// Of the strategies whose estimated gain over the default (0) is significant (log(gain)
+// above `sigmas` x log_ratio_se), the one with the least variance x cost; the default
+// where none is, or where any strategy was measured on fewer than min_pixels pixels.
+// (Not the least variance x cost, then tested: among eight strategies the noisiest
+// estimate is often the least and not significant, and the default then stayed where
+// another strategy's gain was clear.)
 int best_strategy(const std::vector<StrategyMeasure>& measures, int64_t min_pixels, double sigmas);
 // Of the pilot's choice: a switch needs a gain this many standard errors above 1.
 inline constexpr double kPilotSignificance = 2;

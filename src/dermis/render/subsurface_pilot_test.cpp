@@ -32,9 +32,13 @@ TEST(SubsurfacePilot, ChoosesTheLeastVarianceTimesCostWhenSignificant) {
   const std::vector<StrategyMeasure> m{measure(1, 10, 0), measure(2, 4, 0.1), measure(1, 12, 0.1),
                                        measure(0.5, 10, 0.1)};
   EXPECT_EQ(best_strategy(m, 32, 2), 3);
-  // The same gain within its noise (standard error 0.4: 0.69 < 0.8) keeps the default.
+  // The same gain within its noise (standard error 0.4: 0.69 < 0.8) is passed over for
+  // the next best whose gain is significant (log 1.25 = 0.22 > 2 x 0.1), and keeps the
+  // default where that one's is not either.
   std::vector<StrategyMeasure> noisy = m;
   noisy[3].log_ratio_se = 0.4;
+  EXPECT_EQ(best_strategy(noisy, 32, 2), 1);
+  noisy[1].log_ratio_se = 0.2;
   EXPECT_EQ(best_strategy(noisy, 32, 2), 0);
   // So does a strategy measured on too few pixels, and a default that is best.
   std::vector<StrategyMeasure> few = m;
