@@ -93,11 +93,6 @@ bool camera_sees_subsurface(const RenderScene& sc, Ray ray) {
   return false;
 }
 
-namespace {
-// The strategies (kWalkStrategies) the pilot measures, of the first `count`: all but those
-// that differ from another only where a uniform sky is light-sampled at exits
-// (WalkStrategy::exit_sky_sampled), when the scene has none (their images would be the
-// other's, their pilot samples wasted).
 std::vector<int> offered_strategies(const RenderScene& sc, int count) {
   std::vector<int> offered;
   for (int v = 0; v < count; ++v)
@@ -105,7 +100,6 @@ std::vector<int> offered_strategies(const RenderScene& sc, int count) {
       offered.push_back(v);
   return offered;
 }
-}  // namespace
 
 std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const SubsurfacePilotOptions& opt) {
   int most = 1;

@@ -70,6 +70,12 @@ struct SubsurfacePilotOptions {
 // A material's choice needs at least this many pilot pixels (else it keeps the default).
 inline constexpr int64_t kMinPilotPixels = 32;
 
+// The strategies (kWalkStrategies) the pilot measures, of the first `count`: all but those
+// that differ from another only where a uniform sky is light-sampled at exits
+// (WalkStrategy::exit_sky_sampled), when the scene has none (their images would be the
+// other's, their pilot samples wasted).
+std::vector<int> offered_strategies(const RenderScene& scene, int count);
+
 // Whether a material has strategies to choose from and the scene did not turn the pilot off.
 bool subsurface_pilot_wanted(const RenderScene& scene);
 

@@ -62,6 +62,27 @@ std::string milk_sphere(const std::string& extra = "", const std::string& integr
   return header + kMilk + extra + "\nShape \"sphere\"\n";
 }
 
+// The strategies without the uniform skies' light samples at exits are measured only
+// where a uniform sky is among the lights (elsewhere they are their partners' images).
+TEST(SubsurfacePilot, OffersTheSkyStrategiesOnlyUnderAUniformSky) {
+  const int all = int(kWalkStrategies.size());
+  std::vector<int> sky_off, with_sky_sampled;
+  for (int v = 0; v < all; ++v)
+    (kWalkStrategies[std::size_t(v)].exit_sky_sampled ? with_sky_sampled : sky_off).push_back(v);
+  ASSERT_FALSE(sky_off.empty());
+  Diagnostics diag;
+  auto with_sky = build_render_scene(parse_scene_string(milk_sphere()), diag);
+  EXPECT_EQ(offered_strategies(*with_sky, all).size(), std::size_t(all));
+  std::string no_sky = milk_sphere();
+  const std::string sky_line = "LightSource \"infinite\" \"rgb L\" [0.6 0.7 0.8]\n";
+  ASSERT_NE(no_sky.find(sky_line), std::string::npos);
+  no_sky.erase(no_sky.find(sky_line), sky_line.size());
+  auto without = build_render_scene(parse_scene_string(no_sky), diag);
+  ASSERT_FALSE(without->light_selection.has_uniform_sky());
+  EXPECT_EQ(offered_strategies(*without, all), with_sky_sampled);
+  EXPECT_EQ(offered_strategies(*without, 1), std::vector<int>{0});
+}
+
 // Every strategy the pilot may choose renders the same picture as the default (each
 // flight's weight is f / q for the q it was drawn from: sss/walk/walk_step.h): 128
 // independent samples each, region means within 4 standard errors.
@@ -152,6 +173,8 @@ TEST(SubsurfacePilot, TheSceneTurnsItOffOrPinsTheStrategy) {
       parse_scene_string(milk_sphere(" \"float guidedshare\" 0 \"float channelpreference\" 0")), diag);
   EXPECT_EQ(pinned->subsurface[0]->strategy_count(), 1);
   EXPECT_FALSE(subsurface_pilot_wanted(*pinned));
+  for (int v = 0; v < int(kWalkStrategies.size()); ++v)  // its exits' light samples too
+    EXPECT_EQ(pinned->subsurface[0]->exit_sky_rule(v), SkyRule::Outweighed);
   // Out of range: refused with the parameter's position.
   EXPECT_THROW(parse_scene_string(milk_sphere(" \"float guidedshare\" 1.5")), SceneError);
   EXPECT_THROW(parse_scene_string(milk_sphere(" \"float channelpreference\" -1")), SceneError);

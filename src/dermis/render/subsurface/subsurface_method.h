@@ -61,10 +61,11 @@ struct SubsurfaceMaterial {
   }
 
   // Whether uniform skies are light-sampled at the material's exits
-  // (WalkStrategy::exit_sky_sampled; always for the other methods).
+  // (WalkStrategy::exit_sky_sampled; always for the other methods, and for a walk whose
+  // parameters pin its strategy, whatever the pilot tries on the others).
   SkyRule exit_sky_rule(int strategy) const {
     const bool walk = std::holds_alternative<WalkMethod>(method);
-    return walk && strategy > 0 && strategy < int(kWalkStrategies.size()) &&
+    return walk && strategy_count() > 1 && strategy > 0 && strategy < int(kWalkStrategies.size()) &&
                    !kWalkStrategies[std::size_t(strategy)].exit_sky_sampled
                ? SkyRule::GivesWay
                : SkyRule::Outweighed;
