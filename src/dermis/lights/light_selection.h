@@ -37,7 +37,9 @@
 // (docs/rendering.md, "Light selection"), at subsurface exits: bust-burley 1.07x
 // efficiency, bust-walk 1.03x, sphere-burley 0.94x; on a Lambertian sphere 0.95x (the
 // sky's stratified light sample and the BSDF's direction two samples of what the cosine
-// lobe covers), so not at other surfaces.
+// lobe covers), so not at other surfaces. SkyRule::GivesWay goes further where the caller
+// asks: the uniform skies are never chosen (the probe methods' exits, and walk strategies
+// the render's pilot may choose: render/subsurface/subsurface_method.h, exit_sky_rule).
 // With more lights, a point-independent distribution in proportion to power (lights at
 // infinity and finite lights as two groups, each chosen with probability 1/2).
 #pragma once
