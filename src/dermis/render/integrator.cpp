@@ -128,7 +128,7 @@ bool add_bright_emission_seen(const RenderScene& sc, const Ray& ray, RGB weight,
 // (LightSelection::uniform_sky_outweighed, from the importance sum the first choice
 // computes), the sky's sample is not taken (its two dimensions are): the scattered
 // direction, whose vertex says the same rule, finds it at MIS weight one. With
-// SkyRule::GivesWay (a walk strategy's exits) no uniform sky is chosen, the same way.
+// SkyRule::GivesWay (the probes' exits, some walk strategies') no uniform sky is chosen.
 template <class Scatter>
 RGB estimate_direct(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
                     Scatter&& scatter, SkyRule sky = SkyRule::Sampled) {
@@ -547,7 +547,8 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         return m.type == Material::Type::Diffuse ? bsdf_at(m, sc.textures, h).albedo : RGB(0);
       };
       const int strategy = start.subsurface_strategies ? (*start.subsurface_strategies)[std::size_t(mat.subsurface)] : 0;
-      // Whether uniform skies are light-sampled at this material's exits (the strategy's).
+      // Whether uniform skies are light-sampled at this material's exits (its method's rule,
+      // a walk's by its strategy: SubsurfaceMaterial::exit_sky_rule).
       const SkyRule exit_sky = sm.exit_sky_rule(strategy);
       // Light sampled through a rough boundary from inside (a walk's exits), on the
       // outside, in the medium the path entered from.

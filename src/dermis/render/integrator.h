@@ -50,8 +50,8 @@ struct PathStart {
   float prev_pdf = 0;
   Vec3 prev_p;  // the next-event point there (offset off the surface)
   Vec3 prev_n;  // and the normal of the hemisphere its light selection saw (zero in a medium)
-  // The rule by which uniform skies were light-sampled there (LightSelection's SkyRule:
-  // at subsurface exits, Outweighed or the strategy's GivesWay).
+  // The rule by which uniform skies were light-sampled there (LightSelection's SkyRule: at
+  // subsurface exits, SubsurfaceMaterial::exit_sky_rule).
   SkyRule prev_sky = SkyRule::Sampled;
   // The path starts after a specular event (not from the camera: a smooth boundary's
   // exit): the emission it meets first counts in full, as after the camera.

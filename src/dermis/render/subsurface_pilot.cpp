@@ -22,9 +22,9 @@ namespace {
 // The pilot takes about this share of the samples the render takes where a subsurface
 // object is in view, within the bounds below.
 constexpr double kPilotShare = 0.05;
-// The floor is per strategy measured (96 pixels of two samples each: with fewer, the
-// pilot's noise kept the default on the textured marble bust at 16 spp where it had
-// switched with the 85 that a floor of 1024 samples gave six strategies).
+// The floor is per strategy measured (96 pixels of two samples each, a little more than
+// the 85 that a floor of 1024 samples gave six strategies), so that offering more
+// strategies does not thin each one's measure where the floor decides (small renders).
 constexpr int64_t kPilotMinSamplesPerStrategy = 192, kPilotMaxSamples = 131072;
 // Pixels probed for a subsurface object in view (one camera ray each), at most.
 constexpr int64_t kPilotProbes = 262144;

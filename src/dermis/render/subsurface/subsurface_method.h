@@ -69,7 +69,8 @@ struct SubsurfaceMaterial {
   // family, held-out and textured sets with a sky (20 of them, efficiency 1.02-1.22x;
   // docs/probe-sampling.md), where the walk's default lost (0.95-0.98x on the marble bust).
   SkyRule exit_sky_rule(int strategy) const {
-    if (!std::holds_alternative<WalkMethod>(method)) return SkyRule::GivesWay;
+    if (!std::holds_alternative<WalkMethod>(method))
+      return exits_through_lobe() ? SkyRule::GivesWay : SkyRule::Outweighed;  // the point cloud: no exits
     return strategy_count() > 1 && strategy > 0 && strategy < int(kWalkStrategies.size()) &&
                    !kWalkStrategies[std::size_t(strategy)].exit_sky_sampled
                ? SkyRule::GivesWay
