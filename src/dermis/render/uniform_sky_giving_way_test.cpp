@@ -25,6 +25,25 @@ int sky_light(const RenderScene& sc) {
   return -1;
 }
 
+// The shared scene's camera and sky (support/lit_sphere_scene.h) without its spherical
+// light: the sky alone, 16 x 16 pixels.
+const char* const kLoneSkyHeader = R"(LookAt 0 -4 1.5  0 0 0  0 0 1
+Camera "perspective" "float fov" 34
+Film "rgb" "integer xresolution" 16 "integer yresolution" 16
+Integrator "volpath" "integer maxdepth" 100000
+WorldBegin
+LightSource "infinite" "rgb L" [0.6 0.7 0.8]
+)";
+
+// A subsurface sphere with `method_params` (the method and its parameters) on a grey floor.
+std::string subsurface_sphere_on_floor(const std::string& method_params) {
+  return R"(
+Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
+Shape "bilinearmesh" "point3 P" [-3 -3 -0.8  3 -3 -0.8  -3 3 -0.8  3 3 -0.8]
+Material "subsurface" "rgb reflectance" [0.9 0.8 0.6] "rgb mfp" [0.3 0.2 0.1] "float eta" 1.4 )" +
+         method_params + "\nShape \"sphere\" \"float radius\" 0.8\n";
+}
+
 TEST(UniformSkyGivingWay, InAMediumKeepsThePicture) {
   // The shared sky and spherical light, and a brighter point light that outweighs the sky
   // at the sphere (the sky still brings about two fifths of the light there).
@@ -116,26 +135,13 @@ TEST(UniformSkyGivingWay, AtSubsurfaceExitsKeepsThePicture) {
 // against broken weights: the sky's light sample still taken at a lone sky's exits while
 // the way on finds it at MIS weight one fails by far.
 TEST(UniformSkyGivingWay, AlwaysAtAWalksExitsKeepsThePicture) {
-  const std::string walk_sphere_on_floor = R"(
-Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
-Shape "bilinearmesh" "point3 P" [-3 -3 -0.8  3 -3 -0.8  -3 3 -0.8  3 3 -0.8]
-Material "subsurface" "rgb reflectance" [0.9 0.8 0.6] "rgb mfp" [0.3 0.2 0.1] "float eta" 1.4
-Shape "sphere" "float radius" 0.8
-)";
-  const std::string lone_sky = R"(LookAt 0 -4 1.5  0 0 0  0 0 1
-Camera "perspective" "float fov" 34
-Film "rgb" "integer xresolution" 16 "integer yresolution" 16
-Integrator "volpath" "integer maxdepth" 100000
-WorldBegin
-LightSource "infinite" "rgb L" [0.6 0.7 0.8]
-)";
   std::vector<int> sky_off;
   for (int v = 0; v < int(kWalkStrategies.size()); ++v)
     if (!kWalkStrategies[std::size_t(v)].exit_sky_sampled) sky_off.push_back(v);
   ASSERT_FALSE(sky_off.empty());
-  for (const std::string& header : {lone_sky, testing::lit_sphere_header(16)}) {
+  for (const std::string& header : {std::string(kLoneSkyHeader), testing::lit_sphere_header(16)}) {
     Diagnostics diag;
-    auto sc = build_render_scene(parse_scene_string(header + walk_sphere_on_floor), diag);
+    auto sc = build_render_scene(parse_scene_string(header + subsurface_sphere_on_floor("")), diag);
     ASSERT_TRUE(sc->light_selection.has_uniform_sky());
     ASSERT_EQ(sc->subsurface.size(), 1u);
     EXPECT_EQ(sc->subsurface[0]->exit_sky_rule(0), SkyRule::Outweighed);
@@ -161,24 +167,11 @@ LightSource "infinite" "rgb L" [0.6 0.7 0.8]
 // errors). Checked against broken weights: the exits' sky light samples taken
 // while the way on still weighs the sky at MIS weight one fails by far.
 TEST(UniformSkyGivingWay, NeverAtAProbesExitsKeepsThePicture) {
-  const std::string lone_sky = R"(LookAt 0 -4 1.5  0 0 0  0 0 1
-Camera "perspective" "float fov" 34
-Film "rgb" "integer xresolution" 16 "integer yresolution" 16
-Integrator "volpath" "integer maxdepth" 100000
-WorldBegin
-LightSource "infinite" "rgb L" [0.6 0.7 0.8]
-)";
-  for (const std::string& header : {lone_sky, testing::lit_sphere_header(16)})
+  for (const std::string& header : {std::string(kLoneSkyHeader), testing::lit_sphere_header(16)})
   for (const char* method : {"disk", "sphere-lines"}) {
     SCOPED_TRACE(method);
-    const std::string scene = header + fmt::format(R"(
-Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
-Shape "bilinearmesh" "point3 P" [-3 -3 -0.8  3 -3 -0.8  -3 3 -0.8  3 3 -0.8]
-Material "subsurface" "rgb reflectance" [0.9 0.8 0.6] "rgb mfp" [0.3 0.2 0.1] "float eta" 1.4
-  "string method" "{}" "string profile" "burley"
-Shape "sphere" "float radius" 0.8
-)",
-                                          method);
+    const std::string scene =
+        header + subsurface_sphere_on_floor(fmt::format("\"string method\" \"{}\" \"string profile\" \"burley\"", method));
     Diagnostics diag;
     auto uniform = build_render_scene(parse_scene_string(scene), diag);
     auto image = build_render_scene(parse_scene_string(scene), diag);
