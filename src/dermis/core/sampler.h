@@ -37,12 +37,17 @@ inline const char* sampler_kind_name(SamplerKind kind) {
 class Sampler {
  public:
   Sampler(SamplerKind kind, uint64_t seed, uint64_t pixel, uint32_t sample_index)
+      : Sampler(kind, seed, pixel, sample_index, pixel_key(seed, pixel)) {}
+  // The same, with pixel_key(seed, pixel) made once for all of a pixel's samples.
+  Sampler(SamplerKind kind, uint64_t seed, uint64_t pixel, uint32_t sample_index, uint64_t key)
       : kind_(kind),
-        rng_(seed, pixel, sample_index),
-        pixel_key_(mix64(seed ^ mix64(pixel + 0x5ab1e5eedull))),
+        seed_(seed),
+        pixel_(pixel),
+        pixel_key_(key),
         pixel_seed_(uint32_t(pixel_key_)),
         index_(sample_index),
         reversed_index_(reverse_bits(sample_index)) {}
+  static uint64_t pixel_key(uint64_t seed, uint64_t pixel) { return mix64(seed ^ mix64(pixel + 0x5ab1e5eedull)); }
 
   SamplerKind kind() const { return kind_; }
   // The next number is taken from dimension d (and d + 1 for get2d), and so on.
@@ -82,7 +87,7 @@ class Sampler {
 
   // The next dimension as a 32-bit fraction of one.
   uint32_t next_fraction() {
-    if (kind_ == SamplerKind::Independent || dim_ >= stratified_end_) return rng_.next_u32();
+    if (kind_ == SamplerKind::Independent || dim_ >= stratified_end_) return stream().next_u32();
     const uint32_t seed = dimension_seed(dim_++);
     const uint32_t i = shuffled_index(seed);
     // Dimension 0 of Sobol' is the bit reversal of the index; reverse(scramble(reverse(x)))
@@ -106,11 +111,17 @@ class Sampler {
   // takes a Sampler too: each call is the next dimension.
   float uniform() { return get1d(); }
   double uniform_double() {
-    return kind_ == SamplerKind::Independent || dim_ >= stratified_end_ ? rng_.uniform_double()
+    return kind_ == SamplerKind::Independent || dim_ >= stratified_end_ ? stream().uniform_double()
                                                                          : fraction_to_double(next_fraction());
   }
 
  private:
+  // The sample's PCG32 stream, seeded on first use: a camera sample that meets only the
+  // sky never draws from it.
+  Rng& stream() {
+    if (!stream_seeded_) rng_ = Rng(seed_, pixel_, index_), stream_seeded_ = true;
+    return rng_;
+  }
   // nested_uniform_scramble(index_, seed), the index's reversal kept from the constructor.
   uint32_t shuffled_index(uint32_t seed) const { return reverse_bits(laine_karras_permutation(reversed_index_, seed)); }
   // The seed of dimension d in this pixel: one multiply-xorshift-multiply round of
@@ -125,7 +136,9 @@ class Sampler {
   }
 
   SamplerKind kind_;
+  bool stream_seeded_ = false;
   Rng rng_;
+  uint64_t seed_, pixel_;
   uint64_t pixel_key_;
   uint32_t pixel_seed_;
   uint32_t index_;

@@ -25,9 +25,31 @@ Camera::Camera(const Transform& camera_to_world, float fov_degrees, float lens_r
     else
       window_ = {-1, 1, -1 / aspect, 1 / aspect};
   }
+  // The screen position (sx, sy) of raster (x, y), as in generate_ray: sx = w0 + x (w1 -
+  // w0) / xres, sy = w3 - y (w3 - w2) / yres.
+  const double sx_dx = (double(window_[1]) - window_[0]) / xres, sy_dy = -(double(window_[3]) - window_[2]) / yres;
+  const Transform& m = camera_to_world_;
+  if (projection_ == Projection::Orthographic) {
+    origin_ = Vec3(m.point(Vec3d(window_[0], window_[3], 0)));
+    origin_dx_ = Vec3(m.vector(Vec3d(sx_dx, 0, 0)));
+    origin_dy_ = Vec3(m.vector(Vec3d(0, sy_dy, 0)));
+    dir_ = Vec3(m.vector(Vec3d(0, 0, 1)));
+  } else {
+    const double t = tan_half_fov_;
+    origin_ = Vec3(m.point(Vec3d(0, 0, 0)));
+    dir_ = Vec3(m.vector(Vec3d(window_[0] * t, window_[3] * t, 1)));
+    dir_dx_ = Vec3(m.vector(Vec3d(sx_dx * t, 0, 0)));
+    dir_dy_ = Vec3(m.vector(Vec3d(0, sy_dy * t, 0)));
+  }
 }
 
 Ray Camera::generate_ray(Vec2 film, Vec2 u_lens) const {
+  if (lens_radius_ <= 0) {
+    Ray r;
+    r.o = origin_ + origin_dx_ * film.x + origin_dy_ * film.y;
+    r.d = normalize(dir_ + dir_dx_ * film.x + dir_dy_ * film.y);
+    return r;
+  }
   float sx = window_[0] + film.x / float(xres_) * (window_[1] - window_[0]);
   float sy = window_[3] - film.y / float(yres_) * (window_[3] - window_[2]);
   const bool ortho = projection_ == Projection::Orthographic;

@@ -19,6 +19,8 @@ class Camera {
          int yres, const std::array<float, 4>* screen_window = nullptr, Projection projection = Projection::Perspective);
   // film: raster position in pixels; u_lens in [0,1)^2.
   Ray generate_ray(Vec2 film, Vec2 u_lens) const;
+  // A thin lens (lens radius > 0): generate_ray reads u_lens; a pinhole ignores it.
+  bool has_lens() const { return lens_radius_ > 0; }
 
  private:
   Transform camera_to_world_;
@@ -26,6 +28,10 @@ class Camera {
   float tan_half_fov_ = 1, lens_radius_ = 0, focal_distance_ = 1e6f;
   int xres_ = 1, yres_ = 1;
   std::array<float, 4> window_{-1, 1, -1, 1};  // xmin xmax ymin ymax
+  // Without a lens the world-space ray is linear in the raster position (x, y): origin
+  // origin_ + x origin_dx_ + y origin_dy_, direction (before normalising) dir_ + x dir_dx_
+  // + y dir_dy_; made once, in double, from the camera transform.
+  Vec3 origin_, origin_dx_, origin_dy_, dir_, dir_dx_, dir_dy_;
 };
 
 }  // namespace dermis

@@ -36,6 +36,25 @@ TEST(CameraOrthographic, RaysLeaveTheScreenWindowAlongTheViewAxis) {
   expect_near(w.generate_ray({200, 100}, {0.5f, 0.5f}).o, Vec3(1, -0.5f, 0), 1e-6f, "window corner");
 }
 
+// The pinhole perspective camera: raster (x, y) is the screen point (sx, sy) = (w0 + x (w1 -
+// w0) / xres, w3 - y (w3 - w2) / yres) on the plane z = 1 / tan(fov / 2), seen from the
+// origin; under a placed and mirrored camera (as bench/vs_cycles' scenes: Scale -1 1 1 and a
+// LookAt), computed here in double from the transform.
+TEST(CameraPerspective, PinholeRaysFollowTheProjectionUnderAnyTransform) {
+  const Transform place = Transform::scale({-1, 1, 1}) *
+                          Transform::look_at({-850, -1000, 150}, {0, 0, 10}, {0, 0, 1}).inverse();
+  const int xres = 128, yres = 96;
+  const double t = std::tan(36.0 * 3.14159265358979323846 / 360.0), aspect = double(xres) / yres;
+  const Camera c(place, 36, 0, 1e6f, xres, yres);
+  for (const Vec2 film : {Vec2(0, 0), Vec2(128, 96), Vec2(64, 48), Vec2(13.25f, 90.5f), Vec2(127.9f, 0.1f)}) {
+    const double sx = -aspect + film.x * 2 * aspect / xres, sy = 1 - film.y * 2.0 / yres;
+    const Vec3d d = normalize(place.vector(Vec3d(sx * t, sy * t, 1)));
+    const Ray r = c.generate_ray(film, {0.5f, 0.5f});
+    expect_near(r.o, Vec3(place.point(Vec3d(0, 0, 0))), 1e-3f, "origin (world units of 1000)");
+    expect_near(r.d, Vec3(d), 2e-6f, "direction");
+  }
+}
+
 // A thin lens: every lens sample's ray for one raster position passes through the pinhole
 // ray's point on the plane of focus, for both projections.
 TEST(CameraThinLens, RaysOfAPixelMeetOnThePlaneOfFocus) {
