@@ -55,13 +55,11 @@ Ray Camera::generate_ray(Vec2 film, Vec2 u_lens) const {
   const bool ortho = projection_ == Projection::Orthographic;
   Vec3 origin = ortho ? Vec3(sx, sy, 0) : Vec3(0, 0, 0);
   Vec3 dir = ortho ? Vec3(0, 0, 1) : Vec3(sx * tan_half_fov_, sy * tan_half_fov_, 1);
-  if (lens_radius_ > 0) {
-    // Thin lens: the ray through the lens point meets the pinhole ray on the plane of focus.
-    Vec2 lens = sample_uniform_disk_concentric(u_lens) * lens_radius_;
-    Vec3 focus = origin + dir * focal_distance_;
-    origin = origin + Vec3(lens.x, lens.y, 0);
-    dir = focus - origin;
-  }
+  // Thin lens: the ray through the lens point meets the pinhole ray on the plane of focus.
+  const Vec2 lens = sample_uniform_disk_concentric(u_lens) * lens_radius_;
+  const Vec3 focus = origin + dir * focal_distance_;
+  origin = origin + Vec3(lens.x, lens.y, 0);
+  dir = focus - origin;
   Ray r;
   r.o = camera_to_world_.point(origin);
   r.d = normalize(camera_to_world_.vector(dir));
