@@ -162,6 +162,7 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
     d["strategy"] = c.strategy;
     d["gain"] = c.gain;
     d["gain_se"] = c.gain_se;
+    d["first_stage_only"] = c.first_stage_only;
     d["pixels"] = c.pixels;
     d["description"] = c.description;
     choices.append(d);
@@ -213,7 +214,7 @@ stats: also return a dict (image, stats): seconds (wall), cpu_seconds (this proc
   pixel's estimated error, the standard error over the square root of the value; inf
   with fewer than 2 samples), converged_pixels, pixel_rays (uint64 array: the rays each
   pixel traced), subsurface_choices (the render's subsurface pilot, one dict per
-  random-walk material it measured: material, strategy, gain, gain_se, pixels,
+  random-walk material it measured: material, strategy, gain, gain_se, first_stage_only, pixels,
   description; docs/rendering.md "The subsurface pilot").
 noise_threshold: adaptive sampling (default: the scene's Sampler "noisethreshold"; 0: off):
   pixels stop once their estimated error (the standard error over the square root of the

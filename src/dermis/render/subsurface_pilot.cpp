@@ -58,6 +58,20 @@ int best_strategy(const std::vector<StrategyMeasure>& measures, int64_t min_pixe
   return best;
 }
 
+bool no_strategy_can_gain(const std::vector<StrategyMeasure>& measures, int64_t min_pixels, double sigmas) {
+  if (measures.empty()) return true;
+  for (const StrategyMeasure& m : measures)
+    if (m.pixels < min_pixels) return false;
+  const double d = measures[0].variance_cost();
+  if (!(d > 0)) return false;
+  for (std::size_t v = 1; v < measures.size(); ++v) {
+    const StrategyMeasure& m = measures[v];
+    if (!(m.variance_cost() > 0) || !std::isfinite(m.log_ratio_se)) return false;
+    if (std::log(d / m.variance_cost()) + sigmas * m.log_ratio_se >= std::log(kPilotWorthwhileGain)) return false;
+  }
+  return true;
+}
+
 bool subsurface_pilot_wanted(const RenderScene& sc) {
   if (!sc.settings.subsurface_pilot) return false;
   for (const auto& m : sc.subsurface)
@@ -138,8 +152,8 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
   std::vector<std::vector<int>> every_material;  // strategy offered[i] for every material
   for (int v : offered) every_material.emplace_back(sc.subsurface.size(), v);
 
-  tbb::parallel_for(int64_t(0), count, [&](int64_t k) {
-    if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) return;
+  // Pilot pixel k, every strategy offered: two samples each, with the same numbers.
+  auto render_pixel = [&](int64_t k) {
     const int64_t index = candidates[std::size_t((double(k) + 0.5) * double(candidates.size()) / double(count))];
     const int x = opt.bounds.x0 + int(index % opt.bounds.width()), y = opt.bounds.y0 + int(index / opt.bounds.width());
     const uint64_t image_pixel = uint64_t(y) * uint64_t(opt.full_width) + uint64_t(x);
@@ -164,8 +178,15 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
       }
       out.rays = counters.rays;
     }
-  });
-  if (opt.cancel && opt.cancel->load()) return {};
+  };
+  // The two stages: the even pilot pixels, then the odd ones (each stage spread over the
+  // whole object), both where the first did not settle every material.
+  auto render_stage = [&](int stage) {
+    tbb::parallel_for(int64_t(0), (count - stage + 1) / 2, [&](int64_t i) {
+      if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) return;
+      render_pixel(2 * i + stage);
+    });
+  };
 
   // Per material and strategy, each pilot pixel's variance of one sample (R + G + B;
   // negative: the pixel does not measure the material), and the sums in pixel order.
@@ -180,20 +201,23 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
     }
     return variance;
   };
-  std::vector<SubsurfaceChoice> choices;
-  for (std::size_t m = 0; m < materials; ++m) {
-    const SubsurfaceMaterial& sm = *sc.subsurface[m];
-    const int material_count = sm.strategy_count();
-    if (material_count < 2) continue;
-    int n_strategies = 0;  // the offered strategies this material has (the first ones)
+  // The offered strategies material m has (the first ones of `offered`); 0: none to choose.
+  auto strategies_of = [&](std::size_t m) {
+    const int material_count = sc.subsurface[m]->strategy_count();
+    if (material_count < 2) return 0;
+    int n_strategies = 0;
     while (n_strategies < strategies && offered[std::size_t(n_strategies)] < material_count) ++n_strategies;
-    std::vector<StrategyMeasure> e(static_cast<std::size_t>(n_strategies));
-    for (int v = 0; v < n_strategies; ++v) {
+    return n_strategies;
+  };
+  // What material m's strategies measured on the pilot pixels k < `upto` with k % step == 0.
+  auto measure = [&](std::size_t m, int64_t upto, int64_t step) {
+    std::vector<StrategyMeasure> e(static_cast<std::size_t>(strategies_of(m)));
+    for (int v = 0; v < int(e.size()); ++v) {
       StrategyMeasure& s = e[std::size_t(v)];
       double sum_rays = 0, sum = 0;
       // Paired with the default: sums of a, b, a^2, b^2, ab over the pixels both measured.
       double n = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
-      for (int64_t k = 0; k < count; ++k) {
+      for (int64_t k = 0; k < upto; k += step) {
         const double a = pixel_variance(k, v, m);
         if (a < 0) continue;
         ++s.pixels;
@@ -215,15 +239,34 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
         s.log_ratio_se = std::numeric_limits<double>::infinity();  // not comparable: keep the default
       }
     }
+    return e;
+  };
+
+  render_stage(0);
+  if (opt.cancel && opt.cancel->load()) return {};
+  bool settled = true;  // every material's choice is the default after the first stage
+  for (std::size_t m = 0; m < materials && settled; ++m)
+    if (strategies_of(m) > 0) settled = no_strategy_can_gain(measure(m, count, 2), kMinPilotPixels, kPilotSignificance);
+  if (!settled) {
+    render_stage(1);
+    if (opt.cancel && opt.cancel->load()) return {};
+  }
+  const int64_t step = settled ? 2 : 1;
+
+  std::vector<SubsurfaceChoice> choices;
+  for (std::size_t m = 0; m < materials; ++m) {
+    if (strategies_of(m) == 0) continue;
+    const std::vector<StrategyMeasure> e = measure(m, count, step);
     if (e[0].pixels < kMinPilotPixels) continue;
     SubsurfaceChoice choice;
     choice.material = int(m);
-    const int best = best_strategy(e, kMinPilotPixels, kPilotSignificance);
+    const int best = settled ? 0 : best_strategy(e, kMinPilotPixels, kPilotSignificance);
     choice.strategy = offered[std::size_t(best)];
     const StrategyMeasure& chosen = e[std::size_t(best)];
     choice.pixels = int(chosen.pixels);
     choice.gain = chosen.variance_cost() > 0 ? e[0].variance_cost() / chosen.variance_cost() : 1;
     choice.gain_se = choice.gain * chosen.log_ratio_se;
+    choice.first_stage_only = settled;
     choice.description = describe_subsurface_choice(sc, choice);
     choices.push_back(choice);
   }
@@ -255,6 +298,10 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
                                        p.channel_preference_given ? p.channel_preference : w.channel_preference,
                                        p.channel_preference_given ? " (given)" : ""),
       w.exit_sky_sampled ? "" : ", uniform skies not light-sampled at exits");
+  if (c.strategy == 0 && c.first_stage_only)
+    return fmt::format("material {} ({}): {} (the default: no other strategy can be {:.0f} % faster, measured on "
+                       "{} pilot pixels, the first of two stages)",
+                       c.material, to_string(m.params.method), what, (kPilotWorthwhileGain - 1) * 100, c.pixels);
   if (c.strategy == 0)
     return fmt::format("material {} ({}): {} (the default: no other strategy is significantly faster on {} pilot "
                        "pixels)",

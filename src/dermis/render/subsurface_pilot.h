@@ -50,12 +50,23 @@ int best_strategy(const std::vector<StrategyMeasure>& measures, int64_t min_pixe
 // Of the pilot's choice: a switch needs a gain this many standard errors above 1.
 inline constexpr double kPilotSignificance = 2;
 
+// The pilot measures in two stages, each on half of its pixels (spread over the whole
+// object). Where after the first no strategy of any material could be worth switching
+// to, the second is not rendered and every material keeps its default: no strategy's
+// gain, `sigmas` standard errors above its estimate, reaches kPilotWorthwhileGain. (A
+// gain below that is not worth the second stage's cost, which is half the pilot: 2-4 %
+// of a small render's time.) False where any strategy was measured on fewer than
+// min_pixels pixels or not comparably (infinite standard error).
+bool no_strategy_can_gain(const std::vector<StrategyMeasure>& measures, int64_t min_pixels, double sigmas);
+inline constexpr double kPilotWorthwhileGain = 1.05;
+
 struct SubsurfaceChoice {
   int material = -1;  // RenderScene::subsurface index
   int strategy = 0;   // the walk's kWalkStrategies
   int pixels = 0;     // pilot pixels that measured it
   double gain = 1;    // estimated efficiency of the choice over the default's (strategy 0)
   double gain_se = 0;  // its standard error
+  bool first_stage_only = false;  // settled after the first of the pilot's two stages
   std::string description;  // for the user: describe_subsurface_choice
 };
 

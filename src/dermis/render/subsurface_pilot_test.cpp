@@ -50,6 +50,31 @@ TEST(SubsurfacePilot, ChoosesTheLeastVarianceTimesCostWhenSignificant) {
             0);
 }
 
+// The first of the pilot's two stages settles the choice (the default) only where no
+// strategy's gain, two standard errors above its estimate, reaches 5 %.
+TEST(SubsurfacePilot, StopsAfterTheFirstStageOnlyWhereNoStrategyCanGain) {
+  // variance x rays 10 against 12 and 11: log(10/12) + 2 x 0.05 = -0.08 and
+  // log(10/11) + 2 x 0.05 = 0.005 < log 1.05 = 0.049.
+  const std::vector<StrategyMeasure> worse{measure(1, 10, 0), measure(1, 12, 0.05), measure(1, 11, 0.05)};
+  EXPECT_TRUE(no_strategy_can_gain(worse, 32, 2));
+  // The same estimate but noisier: 2 x 0.05 more reaches log 1.05; so does a strategy
+  // estimated 5 % faster, however precisely.
+  std::vector<StrategyMeasure> noisy = worse;
+  noisy[2].log_ratio_se = 0.1;
+  EXPECT_FALSE(no_strategy_can_gain(noisy, 32, 2));
+  EXPECT_FALSE(no_strategy_can_gain({measure(1, 10, 0), measure(1, 10 / 1.06, 0.001)}, 32, 2));
+  EXPECT_TRUE(no_strategy_can_gain({measure(1, 10, 0), measure(1, 10 / 1.04, 0.001)}, 32, 2));
+  // Too few pixels, a strategy not comparable, or a default of no variance: measure on.
+  std::vector<StrategyMeasure> few = worse;
+  few[0].pixels = 31;
+  EXPECT_FALSE(no_strategy_can_gain(few, 32, 2));
+  EXPECT_FALSE(
+      no_strategy_can_gain({measure(1, 10, 0), measure(2, 10, std::numeric_limits<double>::infinity())}, 32, 2));
+  EXPECT_FALSE(no_strategy_can_gain({measure(0, 10, 0), measure(1, 10, 0.01)}, 32, 2));
+  // The default alone: nothing to measure.
+  EXPECT_TRUE(no_strategy_can_gain({measure(1, 10, 0)}, 32, 2));
+}
+
 const std::string kMilk =
     R"(Material "subsurface" "rgb reflectance" [0.95 0.9 0.75] "rgb mfp" [0.6 0.4 0.2] "float eta" 1.4)";
 
@@ -133,6 +158,30 @@ TEST(SubsurfacePilot, ChoosesTheSameWhateverTheThreadCount) {
   EXPECT_EQ(0, std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)));
 }
 
+// A dark, dense medium (grey, mfp a fiftieth of the radius) has no strategy that could
+// beat the default by 5 %: the pilot stops after its first stage. The milk sphere's one
+// colour channel per walk is many times faster: both stages, and the switch.
+TEST(SubsurfacePilot, StopsAfterItsFirstStageWhereTheDefaultIsClear) {
+  const std::string dark =
+      R"(Material "subsurface" "rgb reflectance" [0.3 0.3 0.3] "rgb mfp" [0.02 0.02 0.02] "float eta" 1.4)";
+  RenderOptions o;
+  o.spp = 16;
+  o.seed = 1;
+  Diagnostics diag;
+  auto dark_sphere = build_render_scene(parse_scene_string(testing::lit_sphere_header(32) + dark + "\nShape \"sphere\"\n"), diag);
+  const RenderResult d = render_image(*dark_sphere, o);
+  ASSERT_EQ(d.subsurface_choices.size(), 1u);
+  EXPECT_EQ(d.subsurface_choices[0].strategy, 0);
+  EXPECT_TRUE(d.subsurface_choices[0].first_stage_only) << d.subsurface_choices[0].description;
+  auto milk = build_render_scene(parse_scene_string(testing::lit_sphere_header(32) + kMilk + "\nShape \"sphere\"\n"), diag);
+  const RenderResult m = render_image(*milk, o);
+  ASSERT_EQ(m.subsurface_choices.size(), 1u);
+  EXPECT_NE(m.subsurface_choices[0].strategy, 0);
+  EXPECT_FALSE(m.subsurface_choices[0].first_stage_only);
+  // The first stage is half of the pilot's pixels.
+  EXPECT_GT(m.subsurface_choices[0].pixels, d.subsurface_choices[0].pixels * 3 / 2);
+}
+
 // The choice as the user reads it: the strategy, the gain and its standard error; a gain
 // whose standard error exceeds half of it (a heavy-tailed default: the medium in glass of
 // the family once printed 152783x +- 152746) is called rough.
@@ -155,7 +204,13 @@ TEST(SubsurfacePilot, DescribesTheChoiceAndARoughGain) {
   const std::string rough = describe_subsurface_choice(*sc, c);
   EXPECT_NE(rough.find("a rough figure"), std::string::npos) << rough;
   c.strategy = 0;
-  EXPECT_NE(describe_subsurface_choice(*sc, c).find("the default: no other strategy"), std::string::npos);
+  EXPECT_NE(describe_subsurface_choice(*sc, c).find("the default: no other strategy is significantly faster"),
+            std::string::npos);
+  c.first_stage_only = true;
+  EXPECT_NE(describe_subsurface_choice(*sc, c).find("no other strategy can be 5 % faster, measured on 200 pilot "
+                                                    "pixels, the first of two stages"),
+            std::string::npos)
+      << describe_subsurface_choice(*sc, c);
 }
 
 TEST(SubsurfacePilot, TheSceneTurnsItOffOrPinsTheStrategy) {
