@@ -15,7 +15,8 @@
 // count and process count. A sample counts toward the material its camera path entered
 // first (pixels whose two samples disagree are left out). Deterministic: the pilot's
 // pixels, samples and sums are fixed, and the same in every process of a group; a resumed
-// render makes the same choice.
+// render makes the same choice. Two stages, each on half of the pixels: the second only
+// where the first leaves a strategy that could be worth a switch (no_strategy_can_gain).
 #pragma once
 
 #include <atomic>
