@@ -4,14 +4,19 @@ Cycles, timing each render.
   blender -b --factory-startup --python bench/vs_cycles/blender_scene.py -- job.json
 
 job.json: {"scene": {...}, "threads": 2, "renders": [{"out": "x.exr", "spp": 64, "seed": 1,
-"time_limit": 0}, ...], "result": "result.json", "root": "<repository root>"}
+"time_limit": 0, "dermis_before": [{"label": ..., "out": ..., "cmd": [...]}, ...]}, ...],
+"result": "result.json", "root": "<repository root>"}
 Writes result.json: Blender/Cycles version, the settings as read back, and per render the
 wall time of bpy.ops.render.render(); Cycles' own statistics are in each EXR's metadata.
+A render's dermis_before commands (`dermis render` of the same sample count and seed) are
+run just before it, their exit status, stderr and wall time returned with it ("dermis"):
+the two renderers' sweeps interleaved (run.py).
 """
 
 import json
 import math
 import os
+import subprocess
 import sys
 import time
 
@@ -304,6 +309,13 @@ print("vs_cycles: Cycles settings:", json.dumps(info), flush=True)
 
 results = []
 for r in job["renders"]:
+    # Dermis' renders of the same sample count and seed first (run.py: the two renderers'
+    # sweeps interleaved, so that the shared machine's slow spells fall on both).
+    dermis_runs = []
+    for d in r.get("dermis_before", []):
+        t0 = time.perf_counter()
+        p = subprocess.run(d["cmd"], capture_output=True, text=True)
+        dermis_runs.append(dict(d, returncode=p.returncode, stderr=p.stderr, wall=time.perf_counter() - t0))
     c.seed = r["seed"]
     c.time_limit = r.get("time_limit", 0.0)
     c.samples = r["spp"]
@@ -314,7 +326,7 @@ for r in job["renders"]:
     t0 = time.perf_counter()
     bpy.ops.render.render(write_still=True)
     wall = time.perf_counter() - t0
-    rec = dict(r, wall=wall)
+    rec = dict(r, wall=wall, dermis=dermis_runs)
     results.append(rec)
     print(f"vs_cycles: rendered {r['out']} ({r['spp']} spp, seed {r['seed']}, time limit {c.time_limit:g}) "
           f"in {wall:.2f} s", flush=True)

@@ -98,23 +98,25 @@ class Run:
         return self.img
 
 
-def dermis_render(args, scene_file, out, spp=None, seconds=None, seed=1, res=None):
+def dermis_command(args, scene_file, out, spp=None, seconds=None, seed=1):
     cmd = [args.dermis, "render", scene_file, "--threads", str(args.threads), "--seed", str(seed), "-q", "--no-png",
            "-o", out, "--spp", str(spp if spp else HUGE_SPP)]
     if args.dermis_sampler:
         cmd += ["--sampler", args.dermis_sampler]
     if seconds:
         cmd += ["--time-limit", f"{seconds:g}"]
-    t0 = time.perf_counter()
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    wall = time.perf_counter() - t0
-    if p.returncode != 0:
-        sys.exit(f"failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr}")
-    m = RENDER_RE.search(p.stderr)
+    return cmd
+
+
+def dermis_result(args, cmd, out, returncode, stderr, wall, scene_file, res):
+    """The Run of a finished `dermis render` (its exit status, stderr and wall time)."""
+    if returncode != 0:
+        sys.exit(f"failed ({returncode}): {' '.join(cmd)}\n{stderr}")
+    m = RENDER_RE.search(stderr)
     reported, mrays, samples = float(m.group(1)), float(m.group(2)), int(m.group(3))
-    lm = LIMIT_RE.search(p.stderr)
+    lm = LIMIT_RE.search(stderr)
     npx = res[0] * res[1]
-    warnings = [l for l in p.stderr.splitlines() if "warning" in l]
+    warnings = [l for l in stderr.splitlines() if "warning" in l]
     # `dermis render` prints the render-stage time in milliseconds. Builds before 2026-12-03
     # printed it with 0.1 s resolution: for those, below 2 s, use the process's wall time
     # minus that of loading the same scene (a 1 x 1 pixel, 1 spp render), rough
@@ -127,6 +129,14 @@ def dermis_render(args, scene_file, out, spp=None, seconds=None, seed=1, res=Non
         + (f" [{lm.group(1)}..{lm.group(2)}]" if lm else "") + (f"  {'; '.join(warnings)}" if warnings else ""))
     return Run(out, secs, samples / npx, wall, cmd=" ".join(cmd), warnings=warnings, approx=approx, reported=reported,
                rays_per_sample=mrays * 1e6 * reported / max(samples, 1))
+
+
+def dermis_render(args, scene_file, out, spp=None, seconds=None, seed=1, res=None):
+    cmd = dermis_command(args, scene_file, out, spp, seconds, seed)
+    t0 = time.perf_counter()
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    return dermis_result(args, cmd, out, p.returncode, p.stderr, wall, scene_file, res)
 
 
 class Level:
@@ -174,7 +184,9 @@ def dermis_load_wall(args, scene_file):
 
 def cycles_renders(args, sc, renders, work):
     """All Cycles renders of a scene in one Blender process (the scene is built once;
-    every render re-syncs it, and only Cycles' render_time is used as the cost)."""
+    every render re-syncs it, and only Cycles' render_time is used as the cost). A render's
+    `dermis_before` commands are run by that process just before it (interleaved timing);
+    their exit status, stderr and wall time come back as the fourth value."""
     job = dict(scene=sc, threads=args.threads, root=ROOT, renders=renders,
                result=os.path.join(work, "cycles-result.json"))
     jpath = os.path.join(work, "cycles-job.json")
@@ -213,7 +225,9 @@ def cycles_renders(args, sc, renders, work):
             f"{spp} spp")
         runs.append(run)
     log(f"    (blender process {wall:.1f} s)")
-    return runs, res["info"], " ".join(cmd)
+    # Dermis' renders that the Blender process ran before its own (dermis_before), in order.
+    dermis_runs = [d for r in res["renders"] for d in r.get("dermis", [])]
+    return runs, res["info"], " ".join(cmd), dermis_runs
 
 
 # ------------------------------------------------------------------ measurement
@@ -327,24 +341,41 @@ def run_scene(args, name):
         log(f"  dermis '{label}': {scene_file}")
         halves = [dermis_render(args, scene_file, os.path.join(work, f"dermis-{i}-ref{k}.exr"), spp=rspp, seconds=half,
                                 seed=1000 + k, res=sc["res"]) for k in (1, 2)]
-        sweep = [Level([dermis_render(args, scene_file, os.path.join(work, f"dermis-{i}-{n}spp-s{seed}.exr"), spp=n,
-                                      seed=seed, res=sc["res"]) for seed in range(1, k + 1)])
-                 for n, k in zip(args.spp, args.seeds)]
-        dermis[label] = Family(label, halves, sweep, mask)
-        dermis[label].scene_file = scene_file
+        dermis[label] = (halves, scene_file)
 
-    log("  cycles")
+    # The sweeps of both renderers interleaved: each Cycles render of (spp, seed) is run
+    # right after Dermis' renders of the same (spp, seed), by the Blender process
+    # (blender_scene.py runs them), so that a slow spell of the shared machine falls on
+    # both renderers' times rather than on one's (the fifteenth family run: for unchanged
+    # estimators, one renderer's times moved 0.7-1.4x between runs, timed half a minute
+    # apart). The references, whose times are not compared, are rendered before.
+    log("  cycles, the sweeps of both renderers interleaved")
     renders = [dict(out=os.path.join(work, f"cycles-ref{k}.exr"), spp=rspp or HUGE_SPP, seed=1000 + k,
                     time_limit=half or 0.0) for k in (1, 2)]
-    renders += [dict(out=os.path.join(work, f"cycles-{n}spp-s{seed}.exr"), spp=n, seed=seed)
-                for n, k in zip(args.spp, args.seeds) for seed in range(1, k + 1)]
-    runs, info, cmd = cycles_renders(args, sc, renders, work)
+    for n, k in zip(args.spp, args.seeds):
+        for seed in range(1, k + 1):
+            before = []
+            for i, (label, (_, scene_file)) in enumerate(dermis.items()):
+                out = os.path.join(work, f"dermis-{i}-{n}spp-s{seed}.exr")
+                before.append(dict(label=label, out=out, cmd=dermis_command(args, scene_file, out, spp=n, seed=seed)))
+            renders.append(dict(out=os.path.join(work, f"cycles-{n}spp-s{seed}.exr"), spp=n, seed=seed,
+                                dermis_before=before))
+    runs, info, cmd, dermis_runs = cycles_renders(args, sc, renders, work)
     levels, at = [], 2
     for k in args.seeds:
         levels.append(Level(runs[at:at + k]))
         at += k
     cycles = Family("Cycles", runs[:2], levels, mask)
     cycles.cmd = cmd
+    for label, (halves, scene_file) in list(dermis.items()):
+        sweep, at = [], 0
+        mine = [r for r in dermis_runs if r["label"] == label]
+        for k in args.seeds:
+            sweep.append(Level([dermis_result(args, r["cmd"], r["out"], r["returncode"], r["stderr"], r["wall"],
+                                              scene_file, sc["res"]) for r in mine[at:at + k]]))
+            at += k
+        dermis[label] = Family(label, halves, sweep, mask)
+        dermis[label].scene_file = scene_file
 
     first = next(iter(dermis.values()))
     xc = cross_check(first.ref, cycles.ref, mask)
@@ -564,7 +595,10 @@ def write_report(args, results, info, total, path, image_dir, argv):
       + "; their difference estimates the reference's own variance, which is subtracted from every MSE "
         "(E(A−R)² = Var A + bias² + Var R; the method of `bench/sss_methods.py`).")
     w(f"- **Sweep**: {', '.join(f'{n} samples per pixel with seeds 1–{k}' if k > 1 else f'{n} with seed 1' for n, k in zip(args.spp, args.seeds))}, "
-      "the same seeds in both renderers. **MSE** over the pixels fully "
+      "the same seeds in both renderers, interleaved: each Cycles render of a sample count and seed runs right "
+      "after Dermis' renders of the same (the Blender process runs them), so that a slow spell of the shared machine "
+      "falls on both renderers' times (since the thirty-third session; before, Dermis' whole sweep ran first). "
+      "**MSE** over the pixels fully "
       "covered by the object (a Dermis render of the object as a unit emitter; coverage > 0.999), mean over R, G, B, "
       "against the renderer's OWN reference: it measures noise, not the differences between the renderers' models. "
       "A sample count's MSE is the mean of its seeds' MSEs: an estimate of the expected MSE. One image's MSE reads low "
