@@ -333,7 +333,7 @@ def run_scene(args, name):
     half = args.reference_time * sc["ref_factor"] / 2 if args.reference_time else None
     rspp = int(args.reference_spp * sc["ref_factor"]) // 2 if args.reference_spp else None
 
-    dermis = {}
+    dermis, prepared = {}, {}  # prepared: each variant's references and scene file, before its sweep
     for i, (label, extra) in enumerate(sc["dermis"].items()):
         scene_file = os.path.join(work, f"dermis-{i}.pbrt")
         with open(scene_file, "w") as f:
@@ -341,7 +341,7 @@ def run_scene(args, name):
         log(f"  dermis '{label}': {scene_file}")
         halves = [dermis_render(args, scene_file, os.path.join(work, f"dermis-{i}-ref{k}.exr"), spp=rspp, seconds=half,
                                 seed=1000 + k, res=sc["res"]) for k in (1, 2)]
-        dermis[label] = (halves, scene_file)
+        prepared[label] = (halves, scene_file)
 
     # The sweeps of both renderers interleaved: each Cycles render of (spp, seed) is run
     # right after Dermis' renders of the same (spp, seed), by the Blender process
@@ -355,7 +355,7 @@ def run_scene(args, name):
     for n, k in zip(args.spp, args.seeds):
         for seed in range(1, k + 1):
             before = []
-            for i, (label, (_, scene_file)) in enumerate(dermis.items()):
+            for i, (label, (_, scene_file)) in enumerate(prepared.items()):
                 out = os.path.join(work, f"dermis-{i}-{n}spp-s{seed}.exr")
                 before.append(dict(label=label, out=out, cmd=dermis_command(args, scene_file, out, spp=n, seed=seed)))
             renders.append(dict(out=os.path.join(work, f"cycles-{n}spp-s{seed}.exr"), spp=n, seed=seed,
@@ -367,7 +367,7 @@ def run_scene(args, name):
         at += k
     cycles = Family("Cycles", runs[:2], levels, mask)
     cycles.cmd = cmd
-    for label, (halves, scene_file) in list(dermis.items()):
+    for label, (halves, scene_file) in prepared.items():
         sweep, at = [], 0
         mine = [r for r in dermis_runs if r["label"] == label]
         for k in args.seeds:
