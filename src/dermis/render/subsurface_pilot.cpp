@@ -19,13 +19,15 @@ namespace dermis {
 
 namespace {
 
-// The pilot takes about this share of the samples the render takes where a subsurface
-// object is in view, within the bounds below.
-constexpr double kPilotShare = 0.05;
-// The floor is per strategy measured (96 pixels of two samples each, a little more than
-// the 85 that a floor of 1024 samples gave six strategies), so that offering more
-// strategies does not thin each one's measure where the floor decides (small renders).
-constexpr int64_t kPilotMinSamplesPerStrategy = 192, kPilotMaxSamples = 131072;
+// Per strategy measured, the pilot takes about this share of the samples the render takes
+// where a subsurface object is in view (1/20 over the eight strategies it had before the
+// ninth), within the bounds below, so that offering another strategy does not thin the
+// others' measures: each pilot pixel measures every strategy with the same numbers, and
+// their count, pixels and figures are those of fewer strategies.
+constexpr double kPilotSharePerStrategy = 0.05 / 8;
+// The floor and the ceiling are per strategy measured too (the floor: 96 pixels of two
+// samples each, a little more than the 85 that a floor of 1024 samples gave six strategies).
+constexpr int64_t kPilotMinSamplesPerStrategy = 192, kPilotMaxSamplesPerStrategy = 131072 / 8;
 // Pixels probed for a subsurface object in view (one camera ray each), at most.
 constexpr int64_t kPilotProbes = 262144;
 // Samples per pilot pixel: their difference gives the variance of one sample.
@@ -70,6 +72,13 @@ bool no_strategy_can_gain(const std::vector<StrategyMeasure>& measures, int64_t 
     if (std::log(d / m.variance_cost()) + sigmas * m.log_ratio_se >= std::log(kPilotWorthwhileGain)) return false;
   }
   return true;
+}
+
+double pilot_handicap(const SubsurfaceParams& params, int strategy) {
+  if (params.walk_sampling_given || params.guided_share_given) return 1;  // every strategy has the given share
+  const bool heavier = strategy > 0 && strategy < int(kWalkStrategies.size()) &&
+                       kWalkStrategies[std::size_t(strategy)].p_guided > kWalkStrategies[0].p_guided;
+  return heavier ? kHeavierStrategyHandicap : 1;
 }
 
 bool subsurface_pilot_wanted(const RenderScene& sc) {
@@ -142,8 +151,9 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
 
   // The pilot's pixels: evenly spaced among those.
   const double object_pixels = double(candidates.size()) * double(rendered) / double(probes);
-  const int64_t samples = std::clamp<int64_t>(int64_t(kPilotShare * double(opt.spp) * object_pixels),
-                                              kPilotMinSamplesPerStrategy * strategies, kPilotMaxSamples);
+  const int64_t samples =
+      std::clamp<int64_t>(int64_t(kPilotSharePerStrategy * strategies * double(opt.spp) * object_pixels),
+                          kPilotMinSamplesPerStrategy * strategies, kPilotMaxSamplesPerStrategy * strategies);
   const int64_t count =
       std::clamp<int64_t>(samples / (int64_t(kPilotSamples) * strategies), 1, int64_t(candidates.size()));
   std::vector<PilotPixel> pixels(std::size_t(count) * std::size_t(strategies));
@@ -228,6 +238,7 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
         n += 1, sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b;
       }
       if (s.pixels == 0) continue;
+      s.handicap = pilot_handicap(sc.subsurface[m]->params, offered[std::size_t(v)]);
       s.variance = sum / double(s.pixels);
       s.rays = sum_rays / double(s.pixels);
       if (v > 0 && n > 1 && sa > 0 && sb > 0) {

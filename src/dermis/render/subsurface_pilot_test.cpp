@@ -50,6 +50,34 @@ TEST(SubsurfacePilot, ChoosesTheLeastVarianceTimesCostWhenSignificant) {
             0);
 }
 
+// A strategy with more guided flights than the default is chosen only where its estimate,
+// divided by kHeavierStrategyHandicap (1.1), is still a significant gain: estimated 1.08x
+// the default precisely, it is chosen as any other strategy is, not as a heavier one
+// (0.98x after the handicap); estimated 1.6x, it is (1.45x).
+TEST(SubsurfacePilot, AHeavierTailedStrategyMustBeatItsHandicap) {
+  ASSERT_GT(kHeavierStrategyHandicap, 1.08);
+  StrategyMeasure heavier = measure(1, 10 / 1.08, 0.01);
+  EXPECT_EQ(best_strategy({measure(1, 10, 0), heavier}, 32, 2), 1);
+  heavier.handicap = kHeavierStrategyHandicap;
+  EXPECT_EQ(best_strategy({measure(1, 10, 0), heavier}, 32, 2), 0);
+  EXPECT_TRUE(no_strategy_can_gain({measure(1, 10, 0), heavier}, 32, 2));
+  heavier.rays = 10 / 1.6;
+  EXPECT_EQ(best_strategy({measure(1, 10, 0), heavier}, 32, 2), 1);
+  EXPECT_NEAR(10 / heavier.variance_cost(), 1.6 / kHeavierStrategyHandicap, 1e-12);
+  // Which strategies carry it: those with a larger guided share than the default's, unless
+  // the material's parameters pin the share (then every strategy has it).
+  SubsurfaceParams free_share, pinned_share;
+  pinned_share.guided_share_given = true;
+  int heavier_strategies = 0;
+  for (int v = 0; v < int(kWalkStrategies.size()); ++v) {
+    const bool more_guided = kWalkStrategies[std::size_t(v)].p_guided > kWalkStrategies[0].p_guided;
+    heavier_strategies += more_guided;
+    EXPECT_EQ(pilot_handicap(free_share, v), more_guided ? kHeavierStrategyHandicap : 1.0) << v;
+    EXPECT_EQ(pilot_handicap(pinned_share, v), 1.0) << v;
+  }
+  EXPECT_GE(heavier_strategies, 1);
+}
+
 // The first of the pilot's two stages settles the choice (the default) only where no
 // strategy's gain, two standard errors above its estimate, reaches 5 %.
 TEST(SubsurfacePilot, StopsAfterTheFirstStageOnlyWhereNoStrategyCanGain) {
@@ -158,12 +186,15 @@ TEST(SubsurfacePilot, ChoosesTheSameWhateverTheThreadCount) {
   EXPECT_EQ(0, std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)));
 }
 
-// A dark, dense medium (grey, mfp a fiftieth of the radius) has no strategy that could
-// beat the default by 5 %: the pilot stops after its first stage. The milk sphere's one
+// A dark, dense medium (grey, mfp a fiftieth of the radius) with its guided share given as
+// the default's has no strategy that could beat the default by 5 % (the others differ in
+// their channels, which a grey medium does not tell apart, and one channel per walk
+// loses): the pilot stops after its first stage. (With its share free, the guided share
+// of 0.8 is a contender there: such a medium is where it wins.) The milk sphere's one
 // colour channel per walk is many times faster: both stages, and the switch.
 TEST(SubsurfacePilot, StopsAfterItsFirstStageWhereTheDefaultIsClear) {
-  const std::string dark =
-      R"(Material "subsurface" "rgb reflectance" [0.3 0.3 0.3] "rgb mfp" [0.02 0.02 0.02] "float eta" 1.4)";
+  const std::string dark = R"(Material "subsurface" "rgb reflectance" [0.3 0.3 0.3] "rgb mfp" [0.02 0.02 0.02])"
+                           R"( "float eta" 1.4 "float guidedshare" 0.5)";
   RenderOptions o;
   o.spp = 16;
   o.seed = 1;
