@@ -321,9 +321,13 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
   // large values (a heavy-tailed estimator); the choice stands (its gain is significant),
   // the figure is rough.
   const bool rough = c.gain_se > kRoughGainShare * c.gain;
-  return fmt::format("material {} ({}): {}; {:.2f}x the default's efficiency (+- {:.2f}, estimated on {} pilot pixels{})",
-                     c.material, to_string(m.params.method), what, c.gain, c.gain_se, c.pixels,
-                     rough ? "; a rough figure: the default's samples there are heavy-tailed" : "");
+  const double handicap = pilot_handicap(p, c.strategy);
+  const std::string handicapped =
+      handicap > 1 ? fmt::format(", divided by {:g} for its heavier-tailed weights", handicap) : "";
+  return fmt::format(
+      "material {} ({}): {}; {:.2f}x the default's efficiency (+- {:.2f}, estimated on {} pilot pixels{}{})",
+      c.material, to_string(m.params.method), what, c.gain, c.gain_se, c.pixels, handicapped,
+      rough ? "; a rough figure: the default's samples there are heavy-tailed" : "");
 }
 
 }  // namespace dermis

@@ -2,6 +2,7 @@
 // (each unbiased: the same picture within 4 standard errors), and its determinism.
 #include "dermis/render/subsurface_pilot.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -234,6 +235,18 @@ TEST(SubsurfacePilot, DescribesTheChoiceAndARoughGain) {
   c.gain_se = 900;
   const std::string rough = describe_subsurface_choice(*sc, c);
   EXPECT_NE(rough.find("a rough figure"), std::string::npos) << rough;
+  EXPECT_EQ(rough.find("divided by"), std::string::npos) << rough;
+  // A heavier-tailed strategy's figure is its handicapped estimate, and says so.
+  for (int v = 0; v < int(kWalkStrategies.size()); ++v)
+    if (pilot_handicap(sc->subsurface[0]->params, v) > 1) c.strategy = v;
+  ASSERT_NE(c.strategy, 3);
+  const std::string heavier = describe_subsurface_choice(*sc, c);
+  EXPECT_NE(heavier.find(fmt::format("guided share {:g}, channel preference 0.5; 1000.00x the default's efficiency "
+                                     "(+- 900.00, estimated on 200 pilot pixels, divided by {:g} for its "
+                                     "heavier-tailed weights",
+                                     kWalkStrategies[std::size_t(c.strategy)].p_guided, kHeavierStrategyHandicap)),
+            std::string::npos)
+      << heavier;
   c.strategy = 0;
   EXPECT_NE(describe_subsurface_choice(*sc, c).find("the default: no other strategy is significantly faster"),
             std::string::npos);

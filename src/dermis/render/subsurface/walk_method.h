@@ -43,7 +43,7 @@ namespace dermis {
 // part), nor 0.9 (no clearer a gain: 1.14x on the dark bust against 0.8's 1.24x, 1.39x
 // against 1.24x on the wax sphere). A material whose `walksampling` is given keeps it,
 // whatever the share.
-// The last two give each of the camera's first entry's walks one colour channel
+// The fifth to the eighth give each of the camera's first entry's walks one colour channel
 // (channel_per_walk below); their weights are each channel's own, no heavier.
 struct WalkStrategy {
   float p_guided;
