@@ -75,7 +75,7 @@ bool no_strategy_can_gain(const std::vector<StrategyMeasure>& measures, int64_t 
 }
 
 double pilot_handicap(const SubsurfaceParams& params, int strategy) {
-  if (params.walk_sampling_given || params.guided_share_given) return 1;  // every strategy has the given share
+  if (params.guided_share_pinned()) return 1;  // every strategy has the given share
   const bool heavier = strategy > 0 && strategy < int(kWalkStrategies.size()) &&
                        kWalkStrategies[std::size_t(strategy)].p_guided > kWalkStrategies[0].p_guided;
   return heavier ? kHeavierStrategyHandicap : 1;
@@ -299,7 +299,7 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
   const SubsurfaceMaterial& m = *sc.subsurface[std::size_t(c.material)];
   const WalkStrategy& w = kWalkStrategies[std::size_t(c.strategy)];
   const SubsurfaceParams& p = m.params;
-  const bool share_given = p.walk_sampling_given || p.guided_share_given;
+  const bool share_given = p.guided_share_pinned();
   const std::string what = fmt::format(
       "guided share {:g}{}, {}{}", share_given ? p.guided_share : w.p_guided, share_given ? " (given)" : "",
       m.channel_per_walk(c.strategy)

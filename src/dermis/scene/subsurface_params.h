@@ -62,6 +62,8 @@ struct SubsurfaceParams {
   // (render/subsurface_pilot.h), else it chooses among the walk's strategies.
   float guided_share = 0.5f;
   bool guided_share_given = false;
+  // The share is pinned (given, or `walksampling` given): every strategy of the pilot has it.
+  bool guided_share_pinned() const { return walk_sampling_given || guided_share_given; }
   float channel_preference = 0.5f;
   bool channel_preference_given = false;
   // Random walk: each of the camera's first entry's walks carries one colour channel

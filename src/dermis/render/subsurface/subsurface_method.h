@@ -47,7 +47,7 @@ struct SubsurfaceMaterial {
   // kWalkStrategies, unless its parameters pin one; one for the other methods).
   int strategy_count() const {
     if (!std::holds_alternative<WalkMethod>(method)) return 1;
-    const bool share_given = params.walk_sampling_given || params.guided_share_given;
+    const bool share_given = params.guided_share_pinned();
     // One channel per walk has no channel preference to choose.
     const bool channels_given =
         params.channel_preference_given || (params.channel_per_walk_given && params.channel_per_walk);

@@ -69,8 +69,7 @@ WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture
     sss::WalkSettings& s = settings_[i];
     s.sampling = walk_sampling(params.walk_sampling);
     s.backward_guiding = params.backward_guiding;
-    s.p_guided = params.walk_sampling_given || params.guided_share_given ? params.guided_share
-                                                                          : kWalkStrategies[i].p_guided;
+    s.p_guided = params.guided_share_pinned() ? params.guided_share : kWalkStrategies[i].p_guided;
     s.channel_preference =
         params.channel_preference_given ? params.channel_preference : kWalkStrategies[i].channel_preference;
     steps_.push_back(sss::make_walk_step(medium_, s));
