@@ -91,7 +91,7 @@ struct SubsurfaceChoice {
 
 struct SubsurfacePilotOptions {
   uint64_t seed = 0;
-  int spp = 16;                    // the render's: the pilot takes about 5% of its samples on subsurface objects
+  int spp = 16;                    // the render's: the pilot takes 1/160 of its subsurface samples per strategy
   PixelBounds bounds{0, 0, 0, 0};  // the pixels rendered (the crop window)
   int full_width = 0;              // of the image: pixel indices of the sampler
   const std::atomic<bool>* cancel = nullptr;
