@@ -12,6 +12,7 @@ for the family, over the whole image too).
   /usr/bin/python3 bench/vs_cycles/run.py --set classic           # the seven scenes of issue 15, ~18 min
   /usr/bin/python3 bench/vs_cycles/run.py --set heldout           # eight held-out configurations, ~11 min
   /usr/bin/python3 bench/vs_cycles/run.py --set textured          # six with a checkerboard reflectance, ~9 min
+  /usr/bin/python3 bench/vs_cycles/run.py --set closeup           # the family's twelve framed close, ~20 min
   /usr/bin/python3 bench/vs_cycles/run.py --scenes medium-matched,calibration --spp 16,64
 
 Measurement (as bench/sss_methods.py): E[(A - R)^2] = Var A + bias^2 + Var R, and the
@@ -51,10 +52,12 @@ HUGE_SPP = 1000000
 DOC = {"family": os.path.join(ROOT, "docs", "results-vs-cycles.md"),
        "heldout": os.path.join(ROOT, "docs", "results-vs-cycles-heldout.md"),
        "textured": os.path.join(ROOT, "docs", "results-vs-cycles-textured.md"),
+       "closeup": os.path.join(ROOT, "docs", "results-vs-cycles-closeup.md"),
        "classic": os.path.join(ROOT, "docs", "results-vs-cycles-classic.md")}
 IMAGES = {"family": os.path.join(ROOT, "docs", "images", "vs-cycles"),
           "heldout": os.path.join(ROOT, "docs", "images", "vs-cycles-heldout"),
           "textured": os.path.join(ROOT, "docs", "images", "vs-cycles-textured"),
+          "closeup": os.path.join(ROOT, "docs", "images", "vs-cycles-closeup"),
           "classic": os.path.join(ROOT, "docs", "images", "vs-cycles")}
 
 
@@ -488,13 +491,14 @@ def family_targets(entries):
 def config_set(entries):
     """Which set the entries are: the held-out configurations (h01 ...), the textured ones
     (t01 ...) or the family's."""
-    for prefix, name in (("h", "heldout"), ("t", "textured")):
+    for prefix, name in (("h", "heldout"), ("t", "textured"), ("c", "closeup")):
         if all(e["config"].startswith(prefix) for e in entries):
             return name
     return "family"
 
 
-SET_TITLES = {"family": "scene family", "heldout": "held-out configurations", "textured": "textured configurations"}
+SET_TITLES = {"family": "scene family", "heldout": "held-out configurations", "textured": "textured configurations",
+              "closeup": "close-ups"}
 
 
 def family_chart(entries, path):
@@ -535,6 +539,11 @@ def write_family_section(w, entries, image_dir, rel_images):
         w("The reflectance a 3D checkerboard of the material's and 0.6 × it, the mfp constant, on the family's "
           "geometries and lights (`bench/vs_cycles/scenes.py`, TEXTURED_CONFIGS; Cycles' Subsurface Radius follows "
           "each square's reflectance through a second checker). Never used to tune Dermis.\n")
+    elif config_set(entries) == "closeup":
+        w("## The close-ups: efficiency Dermis ÷ Cycles per configuration\n")
+        w("The family's twelve configurations, each camera's field of view narrowed until the object covers about "
+          "three quarters of the frame (`bench/vs_cycles/scenes.py`, CLOSEUP_FOV): the object's samples are most of "
+          "the time, where in the family most pixels see the sky alone. Never used to tune Dermis.\n")
     else:
         w("## The scene family: efficiency Dermis ÷ Cycles per configuration\n")
     w("Configurations chosen before any tuning (`bench/vs_cycles/scenes.py`, FAMILY_CONFIGS or HELDOUT_CONFIGS), "
@@ -726,12 +735,14 @@ FINDINGS_MARKER = "<!-- findings: written by hand below this line; kept when run
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--set", choices=["family", "heldout", "textured", "classic"], default="family",
+    ap.add_argument("--set", choices=["family", "heldout", "textured", "closeup", "classic"], default="family",
                     help="family (default): the scene family of issue 40, chosen before tuning (scenes.FAMILY); "
                          "heldout: eight other configurations on the family's geometries, never used for tuning "
                          "(scenes.HELDOUT; the family's settings, report docs/results-vs-cycles-heldout.md); "
                          "textured: six configurations whose reflectance is a checkerboard (scenes.TEXTURED; the "
                          "family's settings, report docs/results-vs-cycles-textured.md); "
+                         "closeup: the family's twelve configurations framed close, the object about three quarters "
+                         "of the frame (scenes.CLOSEUP; report docs/results-vs-cycles-closeup.md); "
                          "classic: the seven scenes of issue 15")
     ap.add_argument("--scenes", default="", help=f"comma-separated scene names instead of --set, from "
                     f"{', '.join(S.SCENES)}")
@@ -761,7 +772,7 @@ def main():
     ap.add_argument("--note", default="", help="a sentence for the report (e.g. the state of the machine)")
     args = ap.parse_args()
     argv = sys.argv[1:]
-    family = args.set in ("family", "heldout", "textured") and not args.scenes
+    family = args.set in ("family", "heldout", "textured", "closeup") and not args.scenes
     if not args.spp:
         args.spp = "4,16" if args.quick else "16,64" if family else "16,64,256"
     if not args.seeds:
@@ -789,7 +800,8 @@ def main():
     else:
         sys.exit(f"{args.dermis} not found: build first (make build)")
     names = [n for n in args.scenes.split(",") if n] or list(
-        {"family": S.FAMILY, "heldout": S.HELDOUT, "textured": S.TEXTURED, "classic": S.DEFAULT_SCENES}[args.set])
+        {"family": S.FAMILY, "heldout": S.HELDOUT, "textured": S.TEXTURED, "closeup": S.CLOSEUP,
+         "classic": S.DEFAULT_SCENES}[args.set])
     for n in names:
         if n not in S.SCENES:
             sys.exit(f"unknown scene {n}; known: {', '.join(S.SCENES)}")

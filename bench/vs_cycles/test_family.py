@@ -107,6 +107,20 @@ def test_the_textured_configurations_are_new_and_render(tmp_path):
         renders_without_warning(sc, tmp_path)
 
 
+def test_the_close_ups_are_the_family_framed_close_and_render(tmp_path):
+    """run.py --set closeup: each family configuration again, walk and disk twin, with the
+    same material and lights and the same camera but for a narrower field of view."""
+    assert len(S.CLOSEUP) == 2 * len(S.FAMILY_CONFIGS)
+    for name, sc in sorted(S.CLOSEUP.items()):
+        twin = S.FAMILY["f" + name[1:]]
+        assert sc["material"] == twin["material"] and sc["lights"] == twin["lights"] and sc["sky"] == twin["sky"]
+        assert sc["dermis"] == twin["dermis"]
+        geometry = sc["family"]["geometry"]
+        assert sc["camera"] == dict(twin["camera"], fov=S.CLOSEUP_FOV[geometry])
+        assert sc["camera"]["fov"] < twin["camera"]["fov"]
+        renders_without_warning(sc, tmp_path)
+
+
 def test_the_random_walk_twins_enter_as_cycles_3_4_does():
     """Cycles 3.4's Random Walk enters along a cosine lobe: its Dermis twin says so; the
     Christensen-Burley twins (profile methods) have no entry direction to set."""
