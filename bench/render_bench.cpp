@@ -4,9 +4,11 @@
 // ray casting (shading, sampling, bookkeeping).
 //
 //   ./build/dermis_bench --benchmark_filter='Demo'
+//   DERMIS_BENCH_SCENE=file.pbrt ./build/dermis_bench --benchmark_filter='Demo'   # another scene
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
 
+#include <cstdlib>
 #include <memory>
 
 #include "dermis/core/rng.h"
@@ -24,7 +26,8 @@ struct DemoFixture {
   std::vector<Ray> rays;
 
   DemoFixture() {
-    SceneDesc desc = parse_scene_file(std::string(DERMIS_SOURCE_DIR) + "/scenes/demo.pbrt");
+    const char* file = std::getenv("DERMIS_BENCH_SCENE");
+    SceneDesc desc = parse_scene_file(file ? std::string(file) : std::string(DERMIS_SOURCE_DIR) + "/scenes/demo.pbrt");
     desc.film.xres = kWidth;
     desc.film.yres = kHeight;
     Diagnostics diag;
