@@ -117,6 +117,16 @@ class LightSelection {
     return false;
   }
 
+  // Whether sample() with SkyRule::GivesWay chooses no light anywhere: there is none, or
+  // every light is a uniform sky (known where the bounds are kept: pointwise selection).
+  bool gives_way_leaves_none() const {
+    if (count_ == 0) return true;
+    if (!pointwise_) return false;
+    for (const Bounds& b : bounds_)
+      if (!b.uniform_sky) return false;
+    return true;
+  }
+
   // Whether a ray from o along the unit direction d may meet a finite emitter (an area
   // light: its bounding sphere in front of o, with a margin for round-off); conservative:
   // true whenever the bounds are not kept (more than kPointwiseLightLimit lights).

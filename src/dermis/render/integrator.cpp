@@ -550,6 +550,9 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       // Whether uniform skies are light-sampled at this material's exits (its method's rule,
       // a walk's by its strategy: SubsurfaceMaterial::exit_sky_rule).
       const SkyRule exit_sky = sm.exit_sky_rule(strategy);
+      // Under uniform skies alone that give way at the exits, no light is sampled there:
+      // the exits' light samples are skipped (they would choose none).
+      const bool exit_light_none = exit_sky == SkyRule::GivesWay && sc.light_selection.gives_way_leaves_none();
       // Light sampled through a rough boundary from inside (a walk's exits), on the
       // outside, in the medium the path entered from.
       auto light_through = [&](Vec3 p, Vec3 n, const BSDF& b, Vec3 wo_in, Sampler& smp) {
@@ -561,6 +564,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       };
       // Direct light leaving through the exit lobe sw at a point, from the outside's medium.
       auto light_through_lobe = [&](const SurfaceHit& at, const BSDF& sw, Sampler& smp) {
+        if (exit_light_none) return RGB(0);
         return estimate_direct(
             sc, offset_ray_origin(at.p, at.ng, at.ng), at.ng, medium, smp, counters,
             [&](Vec3 wi) {
@@ -625,7 +629,7 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
       // per exit, whatever its boundary).
       const int first_entry_exits = first_entry ? sm.first_entry_exits(strategy, sc.settings.subsurface_samples) : 0;
       SubsurfaceEntry entry{hit,        wo,        tracer,   irradiance, interior_albedo, light_through,
-                            exit_light, refracted, strategy, first_entry_exits > 0 ? 0 : -1};
+                            exit_light, refracted, strategy, first_entry_exits > 0 ? 0 : -1, exit_light_none};
       if (first_entry && start.subsurface_record && start.subsurface_record->material < 0)
         start.subsurface_record->material = mat.subsurface;
       SubsurfaceExit ex;

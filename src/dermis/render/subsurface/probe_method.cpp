@@ -80,6 +80,8 @@ bool pick_probe_hit(const sss::ProfileRGB& profile, const SubsurfaceEntry& entry
   // min(1, kExitLightShares s_i / S), weighted by its inverse (unbiased): a probe costs
   // at most about kExitLightShares light samples however many times it crosses.
   // Each candidate draws from a region of its own.
+  out.exit_light_gathered = true;
+  if (entry.exit_light_none) return true;  // under a uniform sky alone: nothing to sample
   const uint64_t base = sampler.dimension();
   const Sampler::Position resume = sampler.position();
   for (std::size_t i = 0; i < k; ++i) {
@@ -90,7 +92,6 @@ bool pick_probe_hit(const sss::ProfileRGB& profile, const SubsurfaceEntry& entry
     out.gathered += w[i] * entry.exit_light(hits[i], sampler) * float(1 / keep);
   }
   sampler.restore(resume);
-  out.exit_light_gathered = true;
   return true;
 }
 

@@ -80,6 +80,9 @@ struct SubsurfaceEntry {
   // At the camera's first entry, which of its exits this is (0 .. first_entry_exits - 1:
   // SubsurfaceMaterial::first_entry_exits); -1 at any other entry.
   int exit_index = -1;
+  // exit_light is zero wherever it is asked (no light the exits may sample: the scene's
+  // lights are uniform skies that give way there): a method need not ask it.
+  bool exit_light_none = false;
 };
 
 }  // namespace dermis

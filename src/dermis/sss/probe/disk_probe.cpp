@@ -38,9 +38,24 @@ DiskProbeSampler::DiskProbeSampler(const ProfileRGB& profile, RGB channel_weight
       Strategy& s = strategies_[count_++];
       s.probability = q[c];
       s.channel = &channel;
+      s.burley = channel.get_if<BurleyProfile>();
       s.r_max = channel.r_max();
     }
   }
+  // Channels of one profile shape (a grey material's three, a Gaussian lobe that two
+  // channels share) are one strategy: the same samples and the same density, a third of
+  // the density's terms at every probe hit.
+  int merged = 0;
+  for (int i = 0; i < count_; ++i) {
+    int j = 0;
+    while (j < merged && !strategies_[j].samples_as(strategies_[i])) ++j;
+    if (j < merged) {
+      strategies_[j].probability += strategies_[i].probability;
+      continue;
+    }
+    strategies_[merged++] = strategies_[i];
+  }
+  count_ = merged;
   double total = 0;
   for (int i = 0; i < count_; ++i) {
     if (!(strategies_[i].r_max > 0) || !std::isfinite(strategies_[i].r_max))
@@ -79,16 +94,34 @@ DiskProbeSample DiskProbeSampler::sample(const ProbeFrame& frame, double u_axis,
   return out;
 }
 
+bool DiskProbeSampler::Strategy::samples_as(const Strategy& o) const {
+  if (lobe >= 0 || o.lobe >= 0)
+    return lobe >= 0 && o.lobe >= 0 && lobe_profile.variance() == o.lobe_profile.variance() && r_max == o.r_max;
+  if (burley && o.burley)
+    return burley->shape_length() == o.burley->shape_length() && burley->kept_fraction() == o.burley->kept_fraction();
+  return channel == o.channel;
+}
+
 double DiskProbeSampler::pdf_disk(double r, double d) const {
-  double sum = 0;
+  // Radial pdf to area density on the disk: dA = r dr dphi, phi uniform (King et al. 2013,
+  // eq. 1), r kept off 0 by 1e-12 of each strategy's radius.
+  if (!(r >= 1e-12 * max_radius_)) {
+    double sum = 0;
+    for (int i = 0; i < count_; ++i) {
+      const Strategy& s = strategies_[i];
+      if (d > s.r_max) continue;
+      const double rc = std::max(r, 1e-12 * s.r_max);
+      sum += s.probability * s.pdf_radius(rc) / (2 * kPiD * rc);
+    }
+    return sum;
+  }
+  double sum = 0;  // the same with one division: r >= 1e-12 R_i for every strategy
   for (int i = 0; i < count_; ++i) {
     const Strategy& s = strategies_[i];
     if (d > s.r_max) continue;
-    // Radial pdf to area density on the disk: dA = r dr dphi, phi uniform (King et al. 2013, eq. 1).
-    const double rc = std::max(r, 1e-12 * s.r_max);
-    sum += s.probability * s.pdf_radius(rc) / (2 * kPiD * rc);
+    sum += s.probability * s.pdf_radius(r);
   }
-  return sum;
+  return sum / (2 * kPiD * r);
 }
 
 double DiskProbeSampler::pdf_area(const ProbeFrame& frame, Vec3d x, Vec3d n_x) const {

@@ -79,12 +79,18 @@ class DiskProbeSampler {
     double probability = 0;
     double r_max = 0;
     const RadialProfile* channel = nullptr;  // used when lobe < 0
+    const BurleyProfile* burley = nullptr;   // the channel's, when it is a Burley profile (no variant dispatch)
     GaussianProfile lobe_profile;            // used when lobe >= 0
     int lobe = -1;
     double sample_radius(double u) const {
-      return lobe >= 0 ? lobe_profile.sample_radius(u) : channel->sample_radius(u);
+      return lobe >= 0 ? lobe_profile.sample_radius(u) : burley ? burley->sample_radius(u) : channel->sample_radius(u);
     }
-    double pdf_radius(double r) const { return lobe >= 0 ? lobe_profile.pdf_radius(r) : channel->pdf_radius(r); }
+    double pdf_radius(double r) const {
+      return lobe >= 0 ? lobe_profile.pdf_radius(r) : burley ? burley->pdf_radius(r) : channel->pdf_radius(r);
+    }
+    // Whether this strategy samples radii exactly as `o` does (the same profile shape): two
+    // such strategies are one, with the sum of their probabilities.
+    bool samples_as(const Strategy& o) const;
   };
 
   std::array<Strategy, kMaxStrategies> strategies_{};

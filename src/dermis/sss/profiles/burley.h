@@ -67,6 +67,8 @@ class BurleyProfile {
     GaussianProfile::check_fraction(kept_fraction);
     scale_ = burley_scale(albedo, p);
     d_ = mean_free_path / scale_;
+    inverse_3d_ = 1 / (3 * d_);
+    pdf_factor_ = 1 / (4 * d_ * kept_);
     r_max_ = r_max(kept_fraction);
   }
 
@@ -91,7 +93,7 @@ class BurleyProfile {
   double pdf_radius(double r) const {
     if (r < 0 || r > r_max_) return 0;
     const double u = third_exponential(r);
-    return (u * u * u + u) / (4 * d_ * kept_);
+    return (u * u * u + u) * pdf_factor_;
   }
   // Radial CDF F(r) = 1 - e^{-r/d}/4 - 3 e^{-r/(3d)}/4 (Christensen & Burley 2015, sec. 3).
   double cdf(double r) const {
@@ -112,12 +114,14 @@ class BurleyProfile {
  private:
   // u = e^{-r/(3d)}; the profile's other exponential is e^{-r/d} = u^3: one exp, not two
   // (the probes evaluate R and every strategy's pdf at each hit).
-  double third_exponential(double r) const { return std::exp(-r / (3 * d_)); }
+  double third_exponential(double r) const { return std::exp(-r * inverse_3d_); }
 
   double albedo_ = 0;
   double kept_ = kDefaultKeptFraction;
   double scale_ = 1;
   double d_ = 1;
+  double inverse_3d_ = 1.0 / 3;  // 1 / (3d): the probes evaluate the pdf at every hit, a division each
+  double pdf_factor_ = 1 / (4 * kDefaultKeptFraction);  // 1 / (4 d kept)
   double r_max_ = 1;
 };
 
