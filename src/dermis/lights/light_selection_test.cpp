@@ -276,11 +276,19 @@ TEST(LightSelection, AUniformSkyGivesWayAtASurfaceWhereTheFiniteLightsOutweighIt
 // SkyRule::GivesWay: at a surface point, uniform skies are never chosen and have
 // probability zero, whatever the other lights (none, a dim quad, a sky with an image in
 // their group); the other lights keep their shares. In a medium the rule is the usual one.
+// gives_way_leaves_none says when the rule leaves no light at all: uniform skies alone (or
+// none), not with a finite light or a sky with an image.
 TEST(LightSelection, AUniformSkyAlwaysGivesWayWhereTheCallerAsks) {
   const Vec3 p{0, 0, 0}, up{0, 1, 0};
   float pmf = 1;
   const LightSelection sky_alone({sky(0.1f)}, 10);
   EXPECT_TRUE(sky_alone.has_uniform_sky());
+  EXPECT_TRUE(sky_alone.gives_way_leaves_none());
+  EXPECT_TRUE(LightSelection({}, 10).gives_way_leaves_none());
+  const LightSelection two_skies({sky(0.1f), sky(2)}, 10);
+  EXPECT_TRUE(two_skies.gives_way_leaves_none());
+  for (float u : {0.0f, 0.5f, 0.99f})
+    EXPECT_EQ(two_skies.sample(u, p, up, &pmf, nullptr, 0, nullptr, SkyRule::GivesWay), -1);
   EXPECT_EQ(sky_alone.sample(0.5f, p, up, &pmf, nullptr, 0, nullptr, SkyRule::GivesWay), -1);
   EXPECT_EQ(pmf, 0.0f);
   EXPECT_EQ(sky_alone.pmf(0, p, up, SkyRule::GivesWay), 0.0f);
@@ -292,6 +300,7 @@ TEST(LightSelection, AUniformSkyAlwaysGivesWayWhereTheCallerAsks) {
   const std::vector<Light> quad_and_sky = {triangle({-0.5f, 3, -0.5f}, {0.5f, 3, -0.5f}, {0.5f, 3, 0.5f}, 0.01f),
                                            sky(10)};
   const LightSelection both(quad_and_sky, 10);
+  EXPECT_FALSE(both.gives_way_leaves_none());
   ASSERT_EQ(both.groups(up), 2);
   EXPECT_EQ(both.sample(0.5f, p, up, &pmf, nullptr, 1, nullptr, SkyRule::GivesWay), -1);
   EXPECT_EQ(both.pmf(1, p, up, SkyRule::GivesWay), 0.0f);
@@ -308,8 +317,10 @@ TEST(LightSelection, AUniformSkyAlwaysGivesWayWhereTheCallerAsks) {
   EXPECT_EQ(skies.pmf(1, p, up, SkyRule::GivesWay), 0.0f);
   EXPECT_EQ(skies.sample(0.99f, p, up, &pmf, nullptr, 0, nullptr, SkyRule::GivesWay), 0);
 
+  EXPECT_FALSE(skies.gives_way_leaves_none());
   const LightSelection map_alone({map}, 10);
   EXPECT_FALSE(map_alone.has_uniform_sky());
+  EXPECT_FALSE(map_alone.gives_way_leaves_none());
 }
 
 TEST(LightSelection, ManyLightsUseThePowerDistribution) {
