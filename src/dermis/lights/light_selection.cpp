@@ -50,6 +50,7 @@ LightSelection::LightSelection(const std::vector<Light>& lights, float scene_rad
   power_ = Distribution1D(normalised);
 
   pointwise_ = lights.size() <= kPointwiseLightLimit;
+  gives_way_leaves_none_ = false;
   if (!pointwise_) return;
   split_ = both_groups;
   group_.assign(lights.size(), 0);
@@ -101,6 +102,9 @@ LightSelection::LightSelection(const std::vector<Light>& lights, float scene_rad
   for (const Bounds& b : bounds_) brightest = std::max(brightest, b.emission);
   if (brightest > 0)
     for (Bounds& b : bounds_) b.emission /= brightest;
+  gives_way_leaves_none_ = true;
+  for (const Bounds& b : bounds_)
+    if (!b.uniform_sky) gives_way_leaves_none_ = false;
   infinite_all_uniform_ = split_;
   for (std::size_t i = 0; i < lights.size(); ++i)
     if (group_[i]) {

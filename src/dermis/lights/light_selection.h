@@ -119,13 +119,8 @@ class LightSelection {
 
   // Whether sample() with SkyRule::GivesWay chooses no light anywhere: there is none, or
   // every light is a uniform sky (known where the bounds are kept: pointwise selection).
-  bool gives_way_leaves_none() const {
-    if (count_ == 0) return true;
-    if (!pointwise_) return false;
-    for (const Bounds& b : bounds_)
-      if (!b.uniform_sky) return false;
-    return true;
-  }
+  // Asked at every subsurface entry: known from construction.
+  bool gives_way_leaves_none() const { return gives_way_leaves_none_; }
 
   // Whether a ray from o along the unit direction d may meet a finite emitter (an area
   // light: its bounding sphere in front of o, with a margin for round-off); conservative:
@@ -165,6 +160,7 @@ class LightSelection {
   bool outweighed_sky_gives_way_ = true;
   bool infinite_all_uniform_ = false;  // split_, and every light at infinity is a uniform sky
   float uniform_sky_importance_ = 0;   // their importances at a surface point, summed
+  bool gives_way_leaves_none_ = true;  // no light, or uniform skies alone (pointwise)
 };
 
 }  // namespace dermis
