@@ -5,6 +5,7 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "dermis/render/object_chords.h"
 #include "dermis/render/scene_assembly.h"
 #include "dermis/render/subsurface/coefficients.h"
 
@@ -34,10 +35,13 @@ PreparationReport prepare_scene(RenderScene& sc, const PreparationOptions& optio
       prepare_albedo_inversions(table_params, group);
     }
     sc.subsurface.clear();
-    for (const SubsurfaceParams& p : sc.subsurface_params) {
+    const std::vector<double> chords = subsurface_object_chords(sc);
+    for (std::size_t k = 0; k < sc.subsurface_params.size(); ++k) {
+      const SubsurfaceParams& p = sc.subsurface_params[k];
       check_cancel();
       try {
-        sc.subsurface.push_back(std::make_unique<SubsurfaceMaterial>(make_subsurface_material(p, &sc.textures)));
+        sc.subsurface.push_back(
+            std::make_unique<SubsurfaceMaterial>(make_subsurface_material(p, &sc.textures, chords[k])));
       } catch (const std::invalid_argument& e) {
         throw SceneError(p.loc, fmt::format("subsurface: {}", e.what()));
       }

@@ -300,8 +300,16 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
   const WalkStrategy& w = kWalkStrategies[std::size_t(c.strategy)];
   const SubsurfaceParams& p = m.params;
   const bool share_given = p.guided_share_pinned();
+  // The step's shares per channel (short_walk_guided_shares may raise some).
+  std::string share = fmt::format("{:g}{}", share_given ? p.guided_share : w.p_guided, share_given ? " (given)" : "");
+  if (const auto* walk = std::get_if<WalkMethod>(&m.method)) {
+    const sss::MixtureWalkStep<3>& step = walk->step(c.strategy);
+    if (step.p_guided(0) != w.p_guided || step.p_guided(1) != w.p_guided || step.p_guided(2) != w.p_guided)
+      share = fmt::format("{:g}, {:g}, {:g} (R, G, B: {:g} where the walks are short against the object)",
+                          step.p_guided(0), step.p_guided(1), step.p_guided(2), kShortWalkGuidedShare);
+  }
   const std::string what = fmt::format(
-      "guided share {:g}{}, {}{}", share_given ? p.guided_share : w.p_guided, share_given ? " (given)" : "",
+      "guided share {}, {}{}", share,
       m.channel_per_walk(c.strategy)
           ? fmt::format("one colour channel per walk at the camera's first entry{}",
                         p.channel_per_walk_given ? " (given)" : "")

@@ -10,7 +10,8 @@ namespace dermis {
 
 namespace {
 
-SubsurfaceMethod make_method(const SubsurfaceParams& p, const std::vector<Texture>* textures, float sw_norm) {
+SubsurfaceMethod make_method(const SubsurfaceParams& p, const std::vector<Texture>* textures, float sw_norm,
+                             double object_chord) {
   using Method = SubsurfaceParams::Method;
   switch (p.method) {
     case Method::Disk:
@@ -19,7 +20,7 @@ SubsurfaceMethod make_method(const SubsurfaceParams& p, const std::vector<Textur
     case Method::SphereLinesRetry:
       return SubsurfaceMethod(std::in_place_type<ProbeMethod>, p, textures);
     case Method::RandomWalk:
-      return SubsurfaceMethod(std::in_place_type<WalkMethod>, p, textures);
+      return SubsurfaceMethod(std::in_place_type<WalkMethod>, p, textures, object_chord);
     case Method::PointCloud:
       return SubsurfaceMethod(std::in_place_type<PointCloudMethod>, p, sw_norm, textures);
     case Method::Volumetric:
@@ -30,7 +31,8 @@ SubsurfaceMethod make_method(const SubsurfaceParams& p, const std::vector<Textur
 
 }  // namespace
 
-SubsurfaceMaterial make_subsurface_material(const SubsurfaceParams& params, const std::vector<Texture>* textures) {
+SubsurfaceMaterial make_subsurface_material(const SubsurfaceParams& params, const std::vector<Texture>* textures,
+                                            double object_chord) {
   const bool matched_walk =
       params.method == SubsurfaceParams::Method::RandomWalk && params.boundary == SubsurfaceParams::Boundary::Matched;
   const float entry_eta = matched_walk ? 1 : params.eta;
@@ -45,7 +47,7 @@ SubsurfaceMaterial make_subsurface_material(const SubsurfaceParams& params, cons
   if (roughness.textured()) exit_tables = std::make_shared<const RoughExitTables>(params.eta);
   const float sw_norm = exit_table ? exit_table->norm : subsurface_exit_normalization(params.eta);
   return SubsurfaceMaterial{params,    entry_eta,  params.eta, sw_norm, roughness,
-                            make_method(params, textures, sw_norm), exit_table, exit_tables};
+                            make_method(params, textures, sw_norm, object_chord), exit_table, exit_tables};
 }
 
 }  // namespace dermis

@@ -136,8 +136,10 @@ struct SubsurfaceMaterial {
 // inversion when the user gave reflectance + mfp, which may take seconds the first
 // time). Throws std::invalid_argument for parameters a method cannot use.
 // textures: the scene's, which textured parameters read (must outlive the material).
+// object_chord: the mean chord length of the object it fills (geometry/mean_chord.h; 0:
+// unknown), which the walk's guiding takes (walk_method.h, short_walk_guided_shares).
 SubsurfaceMaterial make_subsurface_material(const SubsurfaceParams& params,
-                                            const std::vector<Texture>* textures = nullptr);
+                                            const std::vector<Texture>* textures = nullptr, double object_chord = 0);
 
 inline bool sample_subsurface_exit(const SubsurfaceMaterial& m, const SubsurfaceEntry& entry, Sampler& sampler,
                                    SubsurfaceExit& out) {

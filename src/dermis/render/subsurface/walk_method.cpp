@@ -55,13 +55,33 @@ sss::WalkMedium walk_medium(const Coefficients& k, float g) {
   return m;
 }
 
+// The step of a strategy: short_walk_guided_shares where the rule applies.
+sss::MixtureWalkStep<3> strategy_step(const sss::WalkMedium& medium, const sss::WalkSettings& settings,
+                                      bool short_walk_rule, double object_chord) {
+  sss::MixtureWalkStep<3> step = sss::make_walk_step(medium, settings);
+  if (!short_walk_rule || !(object_chord > 0)) return step;
+  const std::array<double, 3> shares = short_walk_guided_shares(step, object_chord);
+  for (int c = 0; c < 3; ++c)
+    if (shares[std::size_t(c)] != step.p_guided(c)) return step.with_guided_shares(shares);
+  return step;
+}
+
 }  // namespace
 
-WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures)
+std::array<double, 3> short_walk_guided_shares(const sss::MixtureWalkStep<3>& step, double object_chord) {
+  std::array<double, 3> shares{step.p_guided(0), step.p_guided(1), step.p_guided(2)};
+  if (!(object_chord > 0)) return shares;
+  for (int c = 0; c < 3; ++c)  // every channel's walks' reach against the object's thickness
+    if (!(step.p_guided(c) > 0 && step.importance_length(c) < kShortWalkChordFraction * object_chord)) return shares;
+  shares.fill(kShortWalkGuidedShare);
+  return shares;
+}
+
+WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures, double object_chord)
     : params_(params), textures_(textures), inversions_(params), boundary_(params.boundary), eta_(params.eta),
       roughness_(params, params.boundary == SubsurfaceParams::Boundary::Matched, textures),
       lambertian_entry_(params.lambertian_entry && params.boundary == SubsurfaceParams::Boundary::Diffuse),
-      id_(g_next_method_id++) {
+      object_chord_(object_chord), id_(g_next_method_id++) {
   medium_per_entry_ = textures_ && (params.textured() || (roughness_.textured() && !inversions_.single() &&
                                                           !inversions_.empty()));
   medium_ = walk_medium(coefficients_from(medium_at(params), inversions_, roughness_.constant().x), params.g);
@@ -72,7 +92,9 @@ WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture
     s.p_guided = params.guided_share_pinned() ? params.guided_share : kWalkStrategies[i].p_guided;
     s.channel_preference =
         params.channel_preference_given ? params.channel_preference : kWalkStrategies[i].channel_preference;
-    steps_.push_back(sss::make_walk_step(medium_, s));
+    short_walk_rule_[i] = !params.guided_share_pinned() && s.sampling == sss::WalkSampling::Mis &&
+                          kWalkStrategies[i].p_guided == kWalkStrategies[0].p_guided;
+    steps_.push_back(strategy_step(medium_, s, short_walk_rule_[i], object_chord_));
     channel_per_walk_[i] = params.channel_per_walk_given ? params.channel_per_walk : kWalkStrategies[i].channel_per_walk;
   }
 }
@@ -104,7 +126,8 @@ bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Sub
       last.walkable = true;
       for (int c = 0; c < 3; ++c)
         if (!(m.sigma_t[c] > 0) || !std::isfinite(m.sigma_t[c])) last.walkable = false;  // a texture without extinction
-      if (last.walkable) last.step.emplace(sss::make_walk_step(m, settings_[strategy]));
+      if (last.walkable)
+        last.step.emplace(strategy_step(m, settings_[strategy], short_walk_rule_[strategy], object_chord_));
       last.method = id_, last.strategy = strategy, last.at = at, last.boundary_alpha = boundary_alpha;
     }
     if (!last.walkable) return false;

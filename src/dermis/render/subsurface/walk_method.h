@@ -84,16 +84,36 @@ inline constexpr std::array<WalkStrategy, 9> kWalkStrategies{{{0.5f, 0.5f},
 // Walks per channel-per-walk entry: one per colour channel.
 inline constexpr int kChannelWalks = 3;
 
+// Guiding where the walks are short against the object. Dwivedi's guiding follows the
+// importance of a half-space below the entry plane (Krivanek & d'Eon 2014), exact where
+// the object is flat over the walks' reach; a curved or thin object bends away from that
+// plane within it. So where every channel's importance length 1/(kappa sigma_t)
+// (MixtureWalkStep::importance_length) is below kShortWalkChordFraction of the object's
+// mean chord length 4V/S (geometry/mean_chord.h), strategies whose share is the
+// default's (and not given by the material) guide with kShortWalkGuidedShare. Raising
+// the short channels alone, where a long one shares the walk, did not pay (0.96-1.19x).
+// Measured in docs/rendering.md ("Guiding where the walks are short").
+inline constexpr double kShortWalkGuidedShare = 0.8;
+inline constexpr double kShortWalkChordFraction = 0.1;
+// The guided share of each channel for a step whose share is the default's, inside an
+// object of mean chord length `object_chord` (0: unknown): kShortWalkGuidedShare in
+// every channel where all are short, else the step's own.
+std::array<double, 3> short_walk_guided_shares(const sss::MixtureWalkStep<3>& step, double object_chord);
+
 class WalkMethod {
  public:
   // textures: the scene's (outlives the method). Builds the albedo-inversion table the
   // parameters need (seconds the first time in a process; cached on disk).
-  WalkMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures);
+  // object_chord: the mean chord length of the object the material fills (0: unknown;
+  // short_walk_guided_shares).
+  WalkMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures, double object_chord = 0);
 
   // With the strategy entry.strategy (an index into kWalkStrategies; 0 the default).
   bool sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const;
 
   const sss::WalkMedium& medium() const { return medium_; }
+  // The constant medium's step sampler of a strategy (its per-channel guided shares).
+  const sss::MixtureWalkStep<3>& step(int strategy) const { return steps_.at(std::size_t(strategy)); }
   // Whether the strategy's walks carry one colour channel each at the camera's first
   // entry (WalkStrategy::channel_per_walk, or the material's `channelperwalk`).
   bool channel_per_walk(int strategy) const {
@@ -120,6 +140,10 @@ class WalkMethod {
   std::array<sss::WalkSettings, kWalkStrategies.size()> settings_;
   std::array<bool, kWalkStrategies.size()> channel_per_walk_{};
   std::vector<sss::MixtureWalkStep<3>> steps_;
+  double object_chord_ = 0;
+  // Per strategy: its guided share is the default's, not the material's (the step takes
+  // short_walk_guided_shares).
+  std::array<bool, kWalkStrategies.size()> short_walk_rule_{};
   // This method among all made in the process: the key of a thread's last textured step
   // (walk_method.cpp), which an address, reused by a later method, could not be.
   uint64_t id_;

@@ -18,9 +18,8 @@ struct ChannelStats {
 };
 
 template <class Tracer>
-ChannelStats run_walks(const WalkMedium& medium, const WalkSettings& settings, Vec3 p, Vec3 n, Vec3 dir, int paths,
-                       uint64_t seed, const Tracer& tracer) {
-  const MixtureWalkStep<3> step = make_walk_step(medium, settings);
+ChannelStats run_walks(const MixtureWalkStep<3>& step, const WalkSettings& settings, Vec3 p, Vec3 n, Vec3 dir,
+                       int paths, uint64_t seed, const Tracer& tracer) {
   ChannelStats s;
   Rng rng(seed, uint64_t(settings.sampling));
   WalkResult out;
@@ -33,6 +32,12 @@ ChannelStats run_walks(const WalkMedium& medium, const WalkSettings& settings, V
     for (int c = 0; c < 3; ++c) s.sum[c] += out.weight[c], s.sum_sq[c] += double(out.weight[c]) * out.weight[c];
   }
   return s;
+}
+
+template <class Tracer>
+ChannelStats run_walks(const WalkMedium& medium, const WalkSettings& settings, Vec3 p, Vec3 n, Vec3 dir, int paths,
+                       uint64_t seed, const Tracer& tracer) {
+  return run_walks(make_walk_step(medium, settings), settings, p, n, dir, paths, seed, tracer);
 }
 
 WalkSettings settings_for(WalkSampling sampling) {
@@ -66,6 +71,28 @@ TEST(RandomWalk, HalfspaceAlbedoMatchesChandrasekharPerChannel) {
             << s.stderr_(c);
       }
     }
+}
+
+// Guided shares that differ by channel (MixtureWalkStep::with_guided_shares: the flights
+// drawn in channel c guided with probability P_g,c) keep every channel unbiased: the
+// half-space of the test above against Chandrasekhar, within 4 sigma.
+TEST(RandomWalk, GuidedSharesPerChannelKeepTheHalfspaceAlbedo) {
+  const RGB alpha(0.5f, 0.9f, 0.99f), sigma_t(1.0f, 2.0f, 0.5f);
+  const WalkMedium medium{alpha * sigma_t, sigma_t, 0.0f};
+  const WalkSettings settings = settings_for(WalkSampling::Mis);
+  const MixtureWalkStep<3> step = make_walk_step(medium, settings).with_guided_shares({0.2, 0.95, 0.6});
+  EXPECT_EQ(step.p_guided(0), 0.2);
+  EXPECT_EQ(step.p_guided(1), 0.95);
+  const ChannelStats s = run_walks(step, settings, {0, 0, 0}, {0, 0, 1}, {0, 0, -1}, 60000, 23, HalfspaceTracer{});
+  EXPECT_EQ(s.truncated, 0);
+  for (int c = 0; c < 3; ++c) {
+    const double reference = halfspace_albedo_collimated(HFunction(alpha[c]), 1.0);
+    EXPECT_LT(s.stderr_(c), 6e-3);
+    EXPECT_NEAR(s.mean(c), reference, 4 * s.stderr_(c)) << "channel " << c;
+  }
+  EXPECT_THROW((void)step.with_guided_shares({0.5, 1.5, 0.5}), std::invalid_argument);
+  EXPECT_THROW((void)make_walk_step(medium, settings_for(WalkSampling::Classical)).with_guided_shares({0.5, 0.5, 0.5}),
+               std::invalid_argument);
 }
 
 // A grey medium is the monochromatic case: all channels carry the same weight.

@@ -129,7 +129,9 @@ class MixtureWalkStep {
   // channel_probabilities); throws std::invalid_argument otherwise.
   MixtureWalkStep(const Channels& sigma_t, const Channels& albedo, double g, double p_guided,
                   double channel_preference = 0)
-      : sigma_t_(sigma_t), albedo_(albedo), g_(g), p_guided_(p_guided), p_classical_(1 - p_guided) {
+      : sigma_t_(sigma_t), albedo_(albedo), g_(g), any_guided_(p_guided > 0) {
+    p_guided_.fill(p_guided);
+    p_classical_.fill(1 - p_guided);
     auto fail = [](const std::string& m) { throw std::invalid_argument("random walk: " + m); };
     if (!(g > -1 && g < 1)) fail("HG anisotropy g must be in (-1, 1), got " + std::to_string(g));
     if (!(p_guided >= 0 && p_guided <= 1))
@@ -177,7 +179,36 @@ class MixtureWalkStep {
     return q;
   }
 
-  double p_guided() const { return p_guided_; }
+  // The decay length of channel c's Dwivedi importance exp(-kappa sigma_t D), 1/(kappa
+  // sigma_t): the depth scale over which guided flights pull toward the entry plane (its
+  // walks' reach). Infinite without guides (a classical step) or at kappa = 0.
+  double importance_length(int c) const {
+    const double k = guide_[std::size_t(c)].kappa() * sigma_t_[std::size_t(c)];
+    return any_guided_ && k > 0 ? 1 / k : std::numeric_limits<double>::infinity();
+  }
+
+  // The guided choice probability of a flight drawn in channel c.
+  double p_guided(int c = 0) const { return p_guided_[std::size_t(c)]; }
+
+  // The same step with channel c's flights guided with probability shares[c] instead: a
+  // one-sample mixture whose choice probabilities differ by channel, P_g,c and
+  // P_c,c = 1 - P_g,c in the derivation above (any in [0, 1] keeps the walk unbiased, as
+  // proposal and weights use the same). Only for a step built with a guided share > 0
+  // (its guides exist); throws std::invalid_argument otherwise.
+  MixtureWalkStep with_guided_shares(const Channels& shares) const {
+    if (!any_guided_) throw std::invalid_argument("random walk: per-channel guided shares need a guided step");
+    MixtureWalkStep s = *this;
+    s.any_guided_ = false;
+    for (int c = 0; c < N; ++c) {
+      if (!(shares[c] >= 0 && shares[c] <= 1))
+        throw std::invalid_argument("random walk: guided sampling probability must be in [0, 1], got " +
+                                    std::to_string(shares[c]));
+      s.p_guided_[c] = shares[c];
+      s.p_classical_[c] = 1 - shares[c];
+      s.any_guided_ = s.any_guided_ || shares[c] > 0;
+    }
+    return s;
+  }
   const DwivediGuide& guide(int c) const { return guide_[c]; }
 
   // Backward guiding: with the importance of a point taken as the sum of both planes'
@@ -210,7 +241,7 @@ class MixtureWalkStep {
     f.direction = direction;
     f.cos_axis = dot(direction, axes.front.n);
     if (axes.has_back) f.cos_back = dot(direction, axes.back.n);
-    const bool guided = choose_guided(rng);
+    const bool guided = choose_guided(c, rng);
     const bool back = guided && choose_back(axes, c, rng);
     f.distance = free_path(c, guided, back ? f.cos_back : f.cos_axis, rng);
     return f;
@@ -221,7 +252,7 @@ class MixtureWalkStep {
   FlightProposal propose_scatter(const Vec3d& direction_in, const GuideAxes<N>& axes, const Channels& q,
                                  Random& rng) const {
     const int c = choose_channel(q, rng);
-    const bool guided = choose_guided(rng);
+    const bool guided = choose_guided(c, rng);
     const bool back = guided && choose_back(axes, c, rng);
     FlightProposal f;
     f.scattered = true;
@@ -284,10 +315,11 @@ class MixtureWalkStep {
   }
 
   template <class Random>
-  bool choose_guided(Random& rng) const {
-    if (p_guided_ <= 0) return false;
-    if (p_guided_ >= 1) return true;
-    return rng.uniform_double() < p_guided_;
+  bool choose_guided(int c, Random& rng) const {
+    const double p = p_guided_[std::size_t(c)];
+    if (p <= 0) return false;
+    if (p >= 1) return true;
+    return rng.uniform_double() < p;
   }
 
   // Backward guiding: the back axis with probability back_share[c] (no draw without one).
@@ -333,7 +365,7 @@ class MixtureWalkStep {
   // classical exponentials serve the numerator too.
   Channels weights(const FlightProposal& f, const GuideAxes<N>& axes, double length, bool collision,
                    const Channels& q) const {
-    if (p_guided_ <= 0) {
+    if (!any_guided_) {
       // Classical sampling in one channel c alone (q_c = 1: the walk carries c only, as
       // with one colour channel per walk): the mixture is channel c's own term, which the
       // numerator cancels but for the albedo. The other channels carry nothing: 0.
@@ -357,11 +389,11 @@ class MixtureWalkStep {
     };
     for (int c = 0; c < N; ++c) {
       b_classical[c] = -sigma_t_[c] * length;
-      a_classical[c] = q[c] * p_classical_ * phase * (collision ? sigma_t_[c] : 1.0);
+      a_classical[c] = q[c] * p_classical_[c] * phase * (collision ? sigma_t_[c] : 1.0);
       if (a_classical[c] > 0) b_max = std::max(b_max, b_classical[c]);
-      if (p_guided_ > 0 && q[c] > 0) {
+      if (p_guided_[c] > 0 && q[c] > 0) {
         const double back = axes.has_back ? axes.back_share[c] : 0.0;
-        const double guided = q[c] * p_guided_;
+        const double guided = q[c] * p_guided_[c];
         if (back < 1)
           add_guided(guided * (1 - back) * guided_density(c, f.cos_axis, phase, f.scattered, collision),
                      -sigma_t_[c] * guide_[c].extinction_scale(f.cos_axis) * length);
@@ -393,7 +425,9 @@ class MixtureWalkStep {
   static constexpr double kMinChannelAbsorption = 1e-6;
   Channels sigma_t_, albedo_, channel_preference_;
   std::array<DwivediGuide, N> guide_{};
-  double g_, p_guided_, p_classical_;
+  double g_;
+  Channels p_guided_, p_classical_;  // per channel: P_g,c and P_c,c = 1 - P_g,c
+  bool any_guided_;                  // some P_g,c > 0 (else classical sampling alone)
   double dwivedi_direction_fraction_ = 1;
 };
 
