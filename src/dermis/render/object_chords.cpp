@@ -18,9 +18,15 @@ std::vector<double> subsurface_object_chords(const RenderScene& sc) {
         objects.insert(sc.object_of_shape[i]);
     }
     std::vector<const Shape*> shapes;
+    bool instanced = false;
     for (std::size_t i = 0; i < sc.shapes.size() && i < sc.object_of_shape.size(); ++i)
-      if (objects.count(sc.object_of_shape[i])) shapes.push_back(&sc.shapes[i]);
-    chords[k] = mean_chord_length(shapes);
+      if (objects.count(sc.object_of_shape[i])) {
+        shapes.push_back(&sc.shapes[i]);
+        instanced = instanced || sc.shapes[i].instance >= 0;
+      }
+    // An instanced object's shapes are in its own space, and each instance may scale it
+    // differently, while the walk's lengths are the world's: no thickness.
+    chords[k] = instanced ? 0.0 : mean_chord_length(shapes);
   }
   return chords;
 }

@@ -10,9 +10,9 @@
 
 namespace dermis {
 
-// Per entry of sc.subsurface_params: the mean chord length, in the space of the Embree
-// scene that holds its shapes (an instanced object's own space), or 0 where it has none
-// (no shape, an open surface).
+// Per entry of sc.subsurface_params: the mean chord length in world space, or 0 where it
+// has none (no shape, an open surface) or it is not known (an object seen through
+// instances: its shapes lie in its own space, and each instance may scale it).
 std::vector<double> subsurface_object_chords(const RenderScene& sc);
 
 }  // namespace dermis

@@ -60,6 +60,22 @@ TEST(ShortWalkGuiding, RaisesTheDefaultsShareOnlyWhereEveryChannelsWalksAreShort
       parse_scene_string(sphere(1, R"("rgb reflectance" [0.95 0.28 0.32] "rgb mfp" [0.5 0.01 0.01])")), diag);
   EXPECT_GT(walk_of(*red).step(0).importance_length(0), kShortWalkChordFraction * 4.0 / 3);
   EXPECT_EQ(walk_of(*red).step(0).p_guided(1), double(kWalkStrategies[0].p_guided));
+  // The same sphere seen through an instance (in its own space; an instance may scale it):
+  // no thickness known, no rule.
+  auto instanced = build_render_scene(parse_scene_string(R"(LookAt 0 -4 0  0 0 0  0 0 1
+Camera "perspective" "float fov" 30
+Film "rgb" "integer xresolution" 8 "integer yresolution" 8
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+ObjectBegin "ball"
+Material "subsurface" )" + dark + R"(
+Shape "sphere" "float radius" 1
+ObjectEnd
+ObjectInstance "ball"
+)"),
+                                      diag);
+  EXPECT_EQ(subsurface_object_chords(*instanced)[0], 0.0);
+  EXPECT_EQ(walk_of(*instanced).step(0).p_guided(0), double(kWalkStrategies[0].p_guided));
   // A share the material gives is kept.
   auto given = build_render_scene(parse_scene_string(sphere(1, dark + R"( "float guidedshare" 0.3)")), diag);
   EXPECT_NEAR(walk_of(*given).step(0).p_guided(2), 0.3, 1e-6);
