@@ -9,6 +9,7 @@
 #include "dermis/render/object_chords.h"
 #include "dermis/render/scene_preparation.h"
 #include "dermis/render/subsurface/subsurface_method.h"
+#include "dermis/render/subsurface_pilot.h"
 #include "dermis/scene/parser.h"
 
 namespace dermis {
@@ -52,6 +53,12 @@ TEST(ShortWalkGuiding, RaisesTheDefaultsShareOnlyWhereEveryChannelsWalksAreShort
         kWalkStrategies[v].p_guided == kWalkStrategies[0].p_guided ? kShortWalkGuidedShare : kWalkStrategies[v].p_guided;
     EXPECT_NEAR(w.step(int(v)).p_guided(1), expected, 1e-6) << "strategy " << v;  // 0 stays 0, 0.8 stays 0.8
   }
+  // The pilot's report says which share the default took, and why.
+  SubsurfaceChoice choice;
+  choice.material = 0;
+  EXPECT_NE(describe_subsurface_choice(*thick, choice).find("guided share 0.8 (not 0.5: the walks are short"),
+            std::string::npos)
+      << describe_subsurface_choice(*thick, choice);
   // The same medium in a sphere 100x smaller: the walks reach across it.
   auto thin = build_render_scene(parse_scene_string(sphere(0.01f, dark)), diag);
   EXPECT_EQ(walk_of(*thin).step(0).p_guided(0), double(kWalkStrategies[0].p_guided));

@@ -304,9 +304,11 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
   std::string share = fmt::format("{:g}{}", share_given ? p.guided_share : w.p_guided, share_given ? " (given)" : "");
   if (const auto* walk = std::get_if<WalkMethod>(&m.method)) {
     const sss::MixtureWalkStep<3>& step = walk->step(c.strategy);
-    if (step.p_guided(0) != w.p_guided || step.p_guided(1) != w.p_guided || step.p_guided(2) != w.p_guided)
-      share = fmt::format("{:g}, {:g}, {:g} (R, G, B: {:g} where the walks are short against the object)",
-                          step.p_guided(0), step.p_guided(1), step.p_guided(2), kShortWalkGuidedShare);
+    const bool alike = step.p_guided(0) == step.p_guided(1) && step.p_guided(1) == step.p_guided(2);
+    if (alike && step.p_guided(0) != w.p_guided)
+      share = fmt::format("{:g} (not {:g}: the walks are short against the object)", step.p_guided(0), w.p_guided);
+    else if (!alike)
+      share = fmt::format("{:g}, {:g}, {:g} (R, G, B)", step.p_guided(0), step.p_guided(1), step.p_guided(2));
   }
   const std::string what = fmt::format(
       "guided share {}, {}{}", share,
