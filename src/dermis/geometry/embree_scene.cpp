@@ -346,12 +346,15 @@ bool EmbreeScene::occluded(const Ray& ray) const {
 }
 
 int EmbreeScene::all_hits(const Ray& ray, RawHit* hits, int capacity) const {
+  // An occlusion query whose filter records and rejects every hit: the traversal visits
+  // every node the segment crosses either way (no hit shortens it), and the occlusion
+  // kernel does so without ordering the children by distance or keeping a nearest hit
+  // (as Cycles' local intersection for its subsurface probes). The hits come unordered;
+  // sorted_count sorts them.
   CollectingContext c(hits, capacity);
-  RTCRayHit rh;
-  init_ray(rh.ray, ray);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_, &c.embree, &rh);
+  RTCRay r;
+  init_ray(r, ray);
+  rtcOccluded1(scene_, &c.embree, &r);
   return c.sorted_count();
 }
 

@@ -75,6 +75,12 @@ bool no_strategy_can_gain(const std::vector<StrategyMeasure>& measures, int64_t 
 }
 
 double pilot_handicap(const SubsurfaceParams& params, int strategy) {
+  if (params.method == SubsurfaceParams::Method::Disk)  // fewer probes along T and B: heavier-tailed
+    return strategy > 0 && strategy < int(kDiskNormalAxisShares.size()) &&
+                   kDiskNormalAxisShares[std::size_t(strategy)] > kDiskNormalAxisShares[0]
+               ? kHeavierStrategyHandicap
+               : 1;
+  if (params.method != SubsurfaceParams::Method::RandomWalk) return 1;
   if (params.guided_share_pinned()) return 1;  // every strategy has the given share
   const bool heavier = strategy > 0 && strategy < int(kWalkStrategies.size()) &&
                        kWalkStrategies[std::size_t(strategy)].p_guided > kWalkStrategies[0].p_guided;
@@ -116,11 +122,22 @@ bool camera_sees_subsurface(const RenderScene& sc, Ray ray) {
   return false;
 }
 
+// Whether strategy v of material m renders its own image: every strategy of a method
+// other than the walk; a walk's where it differs from another otherwise than in light-
+// sampling a uniform sky at exits, or where the scene has one.
+bool strategy_differs(const RenderScene& sc, const SubsurfaceMaterial& m, int v) {
+  if (v < 0 || v >= m.strategy_count()) return false;
+  if (v == 0 || !std::holds_alternative<WalkMethod>(m.method)) return true;
+  return kWalkStrategies[std::size_t(v)].exit_sky_sampled || sc.light_selection.has_uniform_sky();
+}
+
 std::vector<int> offered_strategies(const RenderScene& sc, int count) {
   std::vector<int> offered;
-  for (int v = 0; v < count; ++v)
-    if (v == 0 || kWalkStrategies[std::size_t(v)].exit_sky_sampled || sc.light_selection.has_uniform_sky())
-      offered.push_back(v);
+  for (int v = 0; v < count; ++v) {
+    bool differs = v == 0;
+    for (const auto& m : sc.subsurface) differs = differs || (m && strategy_differs(sc, *m, v));
+    if (differs) offered.push_back(v);
+  }
   return offered;
 }
 
@@ -211,19 +228,23 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
     }
     return variance;
   };
-  // The offered strategies material m has (the first ones of `offered`); 0: none to choose.
+  // The places in `offered` of the strategies that differ for material m (the default's
+  // first); empty: none to choose.
   auto strategies_of = [&](std::size_t m) {
-    const int material_count = sc.subsurface[m]->strategy_count();
-    if (material_count < 2) return 0;
-    int n_strategies = 0;
-    while (n_strategies < strategies && offered[std::size_t(n_strategies)] < material_count) ++n_strategies;
-    return n_strategies;
+    std::vector<int> places;
+    if (sc.subsurface[m]->strategy_count() < 2) return places;
+    for (int i = 0; i < strategies; ++i)
+      if (strategy_differs(sc, *sc.subsurface[m], offered[std::size_t(i)])) places.push_back(i);
+    return places;
   };
-  // What material m's strategies measured on the pilot pixels k < `upto` with k % step == 0.
+  // What material m's strategies measured on the pilot pixels k < `upto` with k % step == 0
+  // (in the order of strategies_of(m)).
   auto measure = [&](std::size_t m, int64_t upto, int64_t step) {
-    std::vector<StrategyMeasure> e(static_cast<std::size_t>(strategies_of(m)));
-    for (int v = 0; v < int(e.size()); ++v) {
-      StrategyMeasure& s = e[std::size_t(v)];
+    const std::vector<int> places = strategies_of(m);
+    std::vector<StrategyMeasure> e(places.size());
+    for (int i = 0; i < int(e.size()); ++i) {
+      const int v = places[std::size_t(i)];
+      StrategyMeasure& s = e[std::size_t(i)];
       double sum_rays = 0, sum = 0;
       // Paired with the default: sums of a, b, a^2, b^2, ab over the pixels both measured.
       double n = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
@@ -241,12 +262,12 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
       s.handicap = pilot_handicap(sc.subsurface[m]->params, offered[std::size_t(v)]);
       s.variance = sum / double(s.pixels);
       s.rays = sum_rays / double(s.pixels);
-      if (v > 0 && n > 1 && sa > 0 && sb > 0) {
+      if (i > 0 && n > 1 && sa > 0 && sb > 0) {
         // Delta method: var log(A/B) = (var a / A^2 + var b / B^2 - 2 cov(a, b) / (A B)) / n.
         const double A = sa / n, B = sb / n;
         const double var_a = saa / n - A * A, var_b = sbb / n - B * B, cov = sab / n - A * B;
         s.log_ratio_se = std::sqrt(std::max(0.0, var_a / (A * A) + var_b / (B * B) - 2 * cov / (A * B)) / n);
-      } else if (v > 0) {
+      } else if (i > 0) {
         s.log_ratio_se = std::numeric_limits<double>::infinity();  // not comparable: keep the default
       }
     }
@@ -257,7 +278,8 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
   if (opt.cancel && opt.cancel->load()) return {};
   bool settled = true;  // every material's choice is the default after the first stage
   for (std::size_t m = 0; m < materials && settled; ++m)
-    if (strategies_of(m) > 0) settled = no_strategy_can_gain(measure(m, count, 2), kMinPilotPixels, kPilotSignificance);
+    if (!strategies_of(m).empty())
+      settled = no_strategy_can_gain(measure(m, count, 2), kMinPilotPixels, kPilotSignificance);
   if (!settled) {
     render_stage(1);
     if (opt.cancel && opt.cancel->load()) return {};
@@ -266,13 +288,14 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
 
   std::vector<SubsurfaceChoice> choices;
   for (std::size_t m = 0; m < materials; ++m) {
-    if (strategies_of(m) == 0) continue;
+    const std::vector<int> places = strategies_of(m);
+    if (places.empty()) continue;
     const std::vector<StrategyMeasure> e = measure(m, count, step);
     if (e[0].pixels < kMinPilotPixels) continue;
     SubsurfaceChoice choice;
     choice.material = int(m);
     const int best = settled ? 0 : best_strategy(e, kMinPilotPixels, kPilotSignificance);
-    choice.strategy = offered[std::size_t(best)];
+    choice.strategy = offered[std::size_t(places[std::size_t(best)])];
     const StrategyMeasure& chosen = e[std::size_t(best)];
     choice.pixels = int(chosen.pixels);
     choice.gain = chosen.variance_cost() > 0 ? e[0].variance_cost() / chosen.variance_cost() : 1;
@@ -295,8 +318,42 @@ namespace {
 constexpr double kRoughGainShare = 0.5;
 }  // namespace
 
+namespace {
+// What the choice's strategy is, for a probe material: "probe axes N 0.95, T 0.025, B 0.025".
+std::string describe_probe_strategy(const ProbeMethod& probe, int strategy) {
+  const sss::ProbeAxisProbabilities a = probe.axes(strategy);
+  return fmt::format("probe axes N {:g}, T {:g}, B {:g}", a.normal, a.tangent, a.bitangent);
+}
+
+// The sentence about the choice's gain (or the default's standing), after what it is.
+std::string describe_gain(const SubsurfaceChoice& c, const std::string& method, const std::string& what,
+                          double handicap) {
+  if (c.strategy == 0 && c.first_stage_only)
+    return fmt::format("material {} ({}): {} (the default: no other strategy can be {:.0f} % faster, measured on "
+                       "{} pilot pixels, the first of two stages)",
+                       c.material, method, what, (kPilotWorthwhileGain - 1) * 100, c.pixels);
+  if (c.strategy == 0)
+    return fmt::format("material {} ({}): {} (the default: no other strategy is significantly faster on {} pilot "
+                       "pixels)",
+                       c.material, method, what, c.pixels);
+  // A standard error above half the gain: the default's pilot samples held a few very
+  // large values (a heavy-tailed estimator); the choice stands (its gain is significant),
+  // the figure is rough.
+  const bool rough = c.gain_se > kRoughGainShare * c.gain;
+  const std::string handicapped =
+      handicap > 1 ? fmt::format(", divided by {:g} for its heavier-tailed weights", handicap) : "";
+  return fmt::format(
+      "material {} ({}): {}; {:.2f}x the default's efficiency (+- {:.2f}, estimated on {} pilot pixels{}{})",
+      c.material, method, what, c.gain, c.gain_se, c.pixels, handicapped,
+      rough ? "; a rough figure: the default's samples there are heavy-tailed" : "");
+}
+}  // namespace
+
 std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceChoice& c) {
   const SubsurfaceMaterial& m = *sc.subsurface[std::size_t(c.material)];
+  if (const auto* probe = std::get_if<ProbeMethod>(&m.method))
+    return describe_gain(c, to_string(m.params.method), describe_probe_strategy(*probe, c.strategy),
+                         pilot_handicap(m.params, c.strategy));
   const WalkStrategy& w = kWalkStrategies[std::size_t(c.strategy)];
   const SubsurfaceParams& p = m.params;
   const bool share_given = p.guided_share_pinned();
@@ -319,25 +376,7 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
                                        p.channel_preference_given ? p.channel_preference : w.channel_preference,
                                        p.channel_preference_given ? " (given)" : ""),
       w.exit_sky_sampled ? "" : ", uniform skies not light-sampled at exits");
-  if (c.strategy == 0 && c.first_stage_only)
-    return fmt::format("material {} ({}): {} (the default: no other strategy can be {:.0f} % faster, measured on "
-                       "{} pilot pixels, the first of two stages)",
-                       c.material, to_string(m.params.method), what, (kPilotWorthwhileGain - 1) * 100, c.pixels);
-  if (c.strategy == 0)
-    return fmt::format("material {} ({}): {} (the default: no other strategy is significantly faster on {} pilot "
-                       "pixels)",
-                       c.material, to_string(m.params.method), what, c.pixels);
-  // A standard error above half the gain: the default's pilot samples held a few very
-  // large values (a heavy-tailed estimator); the choice stands (its gain is significant),
-  // the figure is rough.
-  const bool rough = c.gain_se > kRoughGainShare * c.gain;
-  const double handicap = pilot_handicap(p, c.strategy);
-  const std::string handicapped =
-      handicap > 1 ? fmt::format(", divided by {:g} for its heavier-tailed weights", handicap) : "";
-  return fmt::format(
-      "material {} ({}): {}; {:.2f}x the default's efficiency (+- {:.2f}, estimated on {} pilot pixels{}{})",
-      c.material, to_string(m.params.method), what, c.gain, c.gain_se, c.pixels, handicapped,
-      rough ? "; a rough figure: the default's samples there are heavy-tailed" : "");
+  return describe_gain(c, to_string(m.params.method), what, pilot_handicap(p, c.strategy));
 }
 
 }  // namespace dermis

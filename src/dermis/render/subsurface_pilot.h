@@ -1,13 +1,16 @@
-// The render's pilot for its random-walk materials: before the image, a few camera samples
-// measure each material's sampling strategies (the walk's kWalkStrategies: the share of
-// Dwivedi-guided flights and the channel choice), and each material takes the one with
-// the least variance x cost. Every strategy is unbiased, so the choice changes the noise
-// and the time, never the mean.
+// The render's pilot for its random-walk and disk materials: before the image, a few camera
+// samples measure each material's sampling strategies (the walk's kWalkStrategies: the
+// share of Dwivedi-guided flights and the channel choice; the disk's probe axes,
+// kDiskNormalAxisShares), and each material takes the one with the least variance x
+// cost. Every strategy is unbiased, so the choice changes the noise and the time, never
+// the mean.
 //
 // Why: which strategy renders a scene fastest depends on the scene (docs/results-vs-cycles.md,
 // the scene family): guiding toward the entry plane wins on thick, dense objects and loses
 // where light crosses a thin one; k = 1/2 suits skin, k = 0 a milk-like medium under the
-// sky; no single setting wins everywhere. The pilot measures instead of guessing.
+// sky; probes along the normal alone suit a surface flat at the profile's reach, and all
+// three axes an object the profile wraps; no single setting wins everywhere. The pilot
+// measures instead of guessing.
 //
 // Measured: per pilot pixel, two samples with the independent sampler (their difference
 // gives the variance of one sample, R + G + B), the same numbers for every strategy;
@@ -100,10 +103,11 @@ struct SubsurfacePilotOptions {
 // A material's choice needs at least this many pilot pixels (else it keeps the default).
 inline constexpr int64_t kMinPilotPixels = 32;
 
-// The strategies (kWalkStrategies) the pilot measures, of the first `count`: all but those
-// that differ from another only where a uniform sky is light-sampled at exits
-// (WalkStrategy::exit_sky_sampled), when the scene has none (their images would be the
-// other's, their pilot samples wasted).
+// The strategies the pilot measures, of the first `count`: those that render an image of
+// their own for some material of the scene. A walk's strategies (kWalkStrategies) that
+// differ from another only where a uniform sky is light-sampled at exits
+// (WalkStrategy::exit_sky_sampled) do not, when the scene has none (their pilot samples
+// would be wasted); every strategy of the disk (kDiskNormalAxisShares) does.
 std::vector<int> offered_strategies(const RenderScene& scene, int count);
 
 // Whether a material has strategies to choose from and the scene did not turn the pilot off.

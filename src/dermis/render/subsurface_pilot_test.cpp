@@ -258,6 +258,88 @@ TEST(SubsurfacePilot, DescribesTheChoiceAndARoughGain) {
       << describe_subsurface_choice(*sc, c);
 }
 
+// A disk material on the unit sphere: mfp in units of its radius.
+std::string disk_sphere(double mfp, int resolution = 16) {
+  return testing::lit_sphere_header(resolution) +
+         fmt::format(R"(Material "subsurface" "string method" "disk" "rgb reflectance" [0.8 0.6 0.5])"
+                     R"( "rgb mfp" [{0} {1} {2}] "float eta" 1.4)",
+                     mfp, mfp * 0.6, mfp * 0.4) +
+         "\nShape \"sphere\"\n";
+}
+
+// The disk's axis strategies: the probabilities of N, T and B, N's from
+// kDiskNormalAxisShares (0.75 the default; King et al.'s 0.5 among them), the rest shared;
+// the disk alone has them. The strategies with more probes along N are heavier-tailed.
+TEST(SubsurfacePilot, TheDiskOffersItsAxisProbabilities) {
+  Diagnostics diag;
+  auto sc = build_render_scene(parse_scene_string(disk_sphere(0.3)), diag);
+  ASSERT_EQ(sc->subsurface[0]->strategy_count(), int(kDiskNormalAxisShares.size()));
+  EXPECT_TRUE(subsurface_pilot_wanted(*sc));
+  const auto& probe = std::get<ProbeMethod>(sc->subsurface[0]->method);
+  EXPECT_EQ(probe.axes(0).normal, 0.75);
+  bool king = false;
+  for (int v = 0; v < probe.strategy_count(); ++v) {
+    const sss::ProbeAxisProbabilities a = probe.axes(v);
+    EXPECT_EQ(a.normal, kDiskNormalAxisShares[std::size_t(v)]);
+    EXPECT_DOUBLE_EQ(a.tangent, (1 - a.normal) / 2);
+    EXPECT_EQ(a.tangent, a.bitangent);
+    king = king || a.normal == 0.5;
+    EXPECT_EQ(pilot_handicap(sc->subsurface[0]->params, v), a.normal > 0.75 ? kHeavierStrategyHandicap : 1.0);
+  }
+  EXPECT_TRUE(king);
+  EXPECT_EQ(probe.axes(99).normal, 0.75);  // out of range: the default
+  // Every strategy is offered, sky or not (none differs only at sky light samples).
+  EXPECT_EQ(offered_strategies(*sc, probe.strategy_count()).size(), kDiskNormalAxisShares.size());
+  for (const char* other : {"disk-single-axis", "sphere-lines"}) {
+    std::string text = disk_sphere(0.3);
+    text.replace(text.find("\"disk\""), 6, fmt::format("\"{}\"", other));
+    auto o = build_render_scene(parse_scene_string(text), diag);
+    EXPECT_EQ(o->subsurface[0]->strategy_count(), 1) << other;
+    EXPECT_FALSE(subsurface_pilot_wanted(*o)) << other;
+  }
+}
+
+// Every axis strategy renders the same picture as the default (the area density sums
+// over the axes with that strategy's probabilities): 256 independent samples each, region
+// means within 4 standard errors; on a sphere the profile partly wraps, where the hits
+// of T and B probes count.
+TEST(SubsurfacePilot, EveryDiskStrategyGivesTheSameMean) {
+  Diagnostics diag;
+  auto sc = build_render_scene(parse_scene_string(disk_sphere(0.3)), diag);
+  const auto reference = testing::pixel_statistics(*sc, 256, 90);  // strategy 0
+  for (int v = 1; v < int(kDiskNormalAxisShares.size()); ++v) {
+    SCOPED_TRACE(v);
+    const std::vector<int> strategies{v};
+    PathStart start;
+    start.subsurface_strategies = &strategies;
+    testing::expect_same_region_means(reference, testing::pixel_statistics(*sc, 256, 91 + v, start), 4, 4);
+  }
+}
+
+// Where the surface is flat at the profile's reach (mfp a hundredth of the radius), a probe
+// along T or B runs parallel to it and misses: the pilot takes the probes along the normal
+// (the largest share), and says so. Where the profile wraps the object (mfp three times its
+// radius), the hits of T and B probes are needed: it does not.
+TEST(SubsurfacePilot, ProbesAlongTheNormalWhereTheSurfaceIsFlatAtTheProfilesReach) {
+  RenderOptions o;
+  o.spp = 16;
+  o.seed = 3;
+  Diagnostics diag;
+  auto flat = build_render_scene(parse_scene_string(disk_sphere(0.01, 32)), diag);
+  const RenderResult f = render_image(*flat, o);
+  ASSERT_EQ(f.subsurface_choices.size(), 1u);
+  EXPECT_EQ(kDiskNormalAxisShares[std::size_t(f.subsurface_choices[0].strategy)], 0.95)
+      << f.subsurface_choices[0].description;
+  EXPECT_NE(f.subsurface_choices[0].description.find("material 0 (disk): probe axes N 0.95, T 0.025, B 0.025; "),
+            std::string::npos)
+      << f.subsurface_choices[0].description;
+  auto wrapped = build_render_scene(parse_scene_string(disk_sphere(3, 32)), diag);
+  const RenderResult w = render_image(*wrapped, o);
+  ASSERT_EQ(w.subsurface_choices.size(), 1u);
+  EXPECT_LE(kDiskNormalAxisShares[std::size_t(w.subsurface_choices[0].strategy)], 0.75)
+      << w.subsurface_choices[0].description;
+}
+
 TEST(SubsurfacePilot, TheSceneTurnsItOffOrPinsTheStrategy) {
   Diagnostics diag;
   auto off = build_render_scene(parse_scene_string(milk_sphere("", "\"bool subsurfacepilot\" false")), diag);

@@ -101,10 +101,6 @@ double energy_within(const sss::RadialProfile& profile, double rho) {
   return sss::integrate([&](double r) { return profile.eval(r) * 2 * kPiD * r; }, 0, rho, 1e-7);
 }
 
-sss::ProbeAxisProbabilities axes(SubsurfaceParams::Method m) {
-  return m == SubsurfaceParams::Method::Disk ? sss::ProbeAxisProbabilities{} : sss::ProbeAxisProbabilities::single_axis();
-}
-
 }  // namespace
 
 // Channels are chosen in proportion to their albedo times the square root of their
@@ -135,7 +131,8 @@ ProbeMethod::ProbeMethod(const SubsurfaceParams& params, const std::vector<Textu
     : method_(params.method), params_(params), textures_(textures), table_(profile_table(params)),
       profile_(std::make_unique<sss::ProfileRGB>(make_profile(params, medium_at(params), table_))) {
   if (method_ == Method::Disk || method_ == Method::DiskSingleAxis) {
-    disk_ = std::make_unique<sss::DiskProbeSampler>(*profile_, probe_channel_weights(*profile_), axes(method_));
+    for (int v = 0; v < strategy_count(); ++v)
+      disks_.push_back(std::make_unique<sss::DiskProbeSampler>(*profile_, probe_channel_weights(*profile_), axes(v)));
   } else {
     // With textured parameters these are the tables of the textures' mean, stretched
     // per entry point (sphere_lines.h, radius_scale).
@@ -144,12 +141,18 @@ ProbeMethod::ProbeMethod(const SubsurfaceParams& params, const std::vector<Textu
   }
 }
 
-double ProbeMethod::max_radius() const { return disk_ ? disk_->max_radius() : lines_->max_radius(); }
+sss::ProbeAxisProbabilities ProbeMethod::axes(int strategy) const {
+  if (method_ != Method::Disk) return sss::ProbeAxisProbabilities::single_axis();
+  const double normal = kDiskNormalAxisShares[std::size_t(strategy >= 0 && strategy < strategy_count() ? strategy : 0)];
+  return {normal, (1 - normal) / 2, (1 - normal) / 2};
+}
+
+double ProbeMethod::max_radius() const { return !disks_.empty() ? disks_[0]->max_radius() : lines_->max_radius(); }
 
 double ProbeMethod::max_radius(const sss::ProfileRGB& entry_profile) const {
   if (!params_.textured()) return max_radius();
-  return disk_ ? sss::DiskProbeSampler(entry_profile, probe_channel_weights(entry_profile), axes(method_)).max_radius()
-               : lines_at(entry_profile).max_radius();
+  return !disks_.empty() ? sss::DiskProbeSampler(entry_profile, probe_channel_weights(entry_profile), axes(0)).max_radius()
+                         : lines_at(entry_profile).max_radius();
 }
 
 sss::SphereLineSampler ProbeMethod::lines_at(const sss::ProfileRGB& profile) const {
@@ -208,13 +211,14 @@ bool ProbeMethod::sample_lines(const sss::ProfileRGB& profile, const sss::Sphere
 }
 
 bool ProbeMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
+  const int strategy = entry.strategy >= 0 && entry.strategy < strategy_count() ? entry.strategy : 0;
   if (!params_.textured())
-    return disk_ ? sample_disk(*profile_, *disk_, entry, sampler, out)
-                 : sample_lines(*profile_, *lines_, entry, sampler, out);
+    return !disks_.empty() ? sample_disk(*profile_, *disks_[std::size_t(strategy)], entry, sampler, out)
+                           : sample_lines(*profile_, *lines_, entry, sampler, out);
   // The entry point's own parameters: its profile and probe sampler on the stack.
   const sss::ProfileRGB profile = make_profile(params_, medium_at(params_, textures_, texture_context(entry.hit)), table_);
-  if (disk_) {
-    const sss::DiskProbeSampler disk(profile, probe_channel_weights(profile), axes(method_));
+  if (!disks_.empty()) {
+    const sss::DiskProbeSampler disk(profile, probe_channel_weights(profile), axes(strategy));
     return sample_disk(profile, disk, entry, sampler, out);
   }
   return sample_lines(profile, lines_at(profile), entry, sampler, out);

@@ -6,6 +6,7 @@
 // page's retry-until-hit variant ("sphere-lines-retry").
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -24,6 +25,17 @@ namespace dermis {
 // sampling is truncated at, at least 1e-3 (the Neyman allocation; probe_method.cpp).
 RGB probe_channel_weights(const sss::ProfileRGB& profile);
 
+// The disk's sampling strategies (SubsurfaceEntry::strategy): the probability of probing
+// along the normal, the tangent and the bitangent sharing the rest. Strategy 0, the
+// default, probes along the normal with 0.75; the render's pilot (render/subsurface_pilot.h)
+// measures the others: 0.95, and King et al. 2013's 0.5, 0.25, 0.25 (as Cycles). Why: a
+// probe along T or B runs parallel to a surface that is flat at the profile's reach and
+// misses it, so half of King et al.'s probes find nothing there, while an object that the
+// profile's reach wraps (a sphere smaller than the mean free path) needs them
+// (docs/probe-sampling.md, "The probes' axes"). Any probabilities keep the estimate
+// unbiased: the area density sums over the axes with them.
+inline constexpr std::array<double, 3> kDiskNormalAxisShares{0.75, 0.95, 0.5};
+
 // Textured parameters: the profile and its probe sampler are made at each entry point
 // from the parameters there, on the stack (no allocation), and the exit is weighted
 // with that profile. The disk sampler is closed-form; the sphere lines stretch the
@@ -34,6 +46,12 @@ class ProbeMethod {
   ProbeMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures);
 
   bool sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const;
+
+  // The sampling strategies the render's pilot may choose among: the disk's axis
+  // probabilities (kDiskNormalAxisShares); one for the other probes.
+  int strategy_count() const { return method_ == Method::Disk ? int(kDiskNormalAxisShares.size()) : 1; }
+  // The probe axes' probabilities of a strategy (its index clamped to the default, 0).
+  sss::ProbeAxisProbabilities axes(int strategy) const;
 
   const sss::ProfileRGB& profile() const { return *profile_; }
   // The sphere-line sampler (sphere-lines, sphere-lines-retry), else null.
@@ -57,7 +75,8 @@ class ProbeMethod {
   const std::vector<Texture>* textures_;
   std::shared_ptr<const sss::ProfileTable> table_;  // the tabulated profile's
   std::unique_ptr<sss::ProfileRGB> profile_;        // the constant parameters' profile
-  std::unique_ptr<sss::DiskProbeSampler> disk_;                // disk, disk-single-axis
+  // disk (one per strategy), disk-single-axis (one): empty for the sphere lines.
+  std::vector<std::unique_ptr<sss::DiskProbeSampler>> disks_;
   std::unique_ptr<sss::SphereLineTablesRGB> line_tables_;      // sphere-lines(-retry)
   std::unique_ptr<sss::SphereLineSampler> lines_;
 };

@@ -44,8 +44,10 @@ struct SubsurfaceMaterial {
   // A textured roughness: the tables at alpha nodes, blended at each exit point.
   std::shared_ptr<const RoughExitTables> exit_tables;
   // The method's sampling strategies that differ (SubsurfaceEntry::strategy: the walk's
-  // kWalkStrategies, unless its parameters pin one; one for the other methods).
+  // kWalkStrategies, unless its parameters pin one; the disk's axis probabilities,
+  // kDiskNormalAxisShares; one for the other methods).
   int strategy_count() const {
+    if (const auto* probe = std::get_if<ProbeMethod>(&method)) return probe->strategy_count();
     if (!std::holds_alternative<WalkMethod>(method)) return 1;
     const bool share_given = params.guided_share_pinned();
     // One channel per walk has no channel preference to choose.
