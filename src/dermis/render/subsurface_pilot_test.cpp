@@ -290,6 +290,21 @@ TEST(SubsurfacePilot, TheDiskOffersItsAxisProbabilities) {
   EXPECT_EQ(probe.axes(99).normal, 0.75);  // out of range: the default
   // Every strategy is offered, sky or not (none differs only at sky light samples).
   EXPECT_EQ(offered_strategies(*sc, probe.strategy_count()).size(), kDiskNormalAxisShares.size());
+  // Given, the axes are the material's: nothing to choose.
+  std::string given = disk_sphere(0.3);
+  given.replace(given.find("\"float eta\""), 0, "\"float normalaxis\" 0.5 ");
+  auto pinned = build_render_scene(parse_scene_string(given), diag);
+  EXPECT_EQ(pinned->subsurface[0]->strategy_count(), 1);
+  EXPECT_FALSE(subsurface_pilot_wanted(*pinned));
+  const sss::ProbeAxisProbabilities given_axes = std::get<ProbeMethod>(pinned->subsurface[0]->method).axes(0);
+  EXPECT_EQ(given_axes.normal, 0.5);
+  EXPECT_EQ(given_axes.tangent, 0.25);
+  EXPECT_EQ(given_axes.bitangent, 0.25);
+  for (const char* bad : {"0", "1", "-0.5", "1.5"}) {
+    std::string text = disk_sphere(0.3);
+    text.replace(text.find("\"float eta\""), 0, fmt::format("\"float normalaxis\" {} ", bad));
+    EXPECT_THROW(parse_scene_string(text), SceneError) << bad;
+  }
   for (const char* other : {"disk-single-axis", "sphere-lines"}) {
     std::string text = disk_sphere(0.3);
     text.replace(text.find("\"disk\""), 6, fmt::format("\"{}\"", other));

@@ -78,6 +78,7 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"guidedshare", "float", "0.5", "random walk (mis): the share of guided flights, in [0, 1] (unset: the render's pilot chooses)"},
     {"channelpreference", "float", "0.5", "random walk: the exponent k of the channel choice, throughput (1 - albedo)^-k, in [0, 8] (unset: the render's pilot chooses)"},
     {"channelperwalk", "bool", "false", "random walk: the camera's first entry takes 3 walks, each carrying one colour channel (unset: the render's pilot chooses)"},
+    {"normalaxis", "float", "0.75", "disk: the probability of probing along the normal, in (0, 1); the tangent and the bitangent share the rest (unset: the render's pilot chooses 0.75, 0.95 or King et al.'s 0.5)"},
     {"albedoinversion", "string", "exact", "(reflectance, mfp) to coefficients: exact or fit"},
     {"pointdensity", "float", "1", "point cloud: points per mean free path squared (with the local disk: the most)"},
     {"illuminationerror", "float", "0.02", "point cloud with the local disk: the relative error to which the points must represent the irradiance (0: the density, up to maxpoints)"},
@@ -149,6 +150,7 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
   float scale = 1;
   const ParsedParam *sigma_a = nullptr, *sigma_s = nullptr, *reflectance = nullptr, *mfp = nullptr, *name = nullptr;
   const ParsedParam* entry = nullptr;
+  const ParsedParam* normal_axis = nullptr;
   bool profile_given = false;
   std::optional<float> roughness, uroughness, vroughness;
   for (const ParsedParam& item : pl.items()) {
@@ -207,6 +209,15 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
       if (!(v >= 0 && v <= 8)) throw SceneError(p.value_loc, "\"channelpreference\" must be in [0, 8]");
       s.channel_preference = v;
       s.channel_preference_given = true;
+    }
+    else if (n == "normalaxis") {
+      const float v = read_float(p);
+      if (!(v > 0 && v < 1))
+        throw SceneError(p.value_loc, "\"normalaxis\" must be in (0, 1) (the probes along the tangent and the "
+                                      "bitangent share the rest; none along one of them would miss its hits)");
+      s.normal_axis = v;
+      s.normal_axis_given = true;
+      normal_axis = &p;
     }
     else if (n == "channelperwalk") {
       s.channel_per_walk = read_bool(p);
@@ -285,6 +296,11 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
     diag.warn(entry->param.loc, fmt::format("subsurface: \"entry\" applies to the random walk only; ignored by \"{}\"",
                                             to_string(s.method)));
     s.lambertian_entry = false;
+  }
+  if (normal_axis && s.method != SubsurfaceParams::Method::Disk) {
+    diag.warn(normal_axis->param.loc,
+              fmt::format("subsurface: \"normalaxis\" applies to the disk only; ignored by \"{}\"", to_string(s.method)));
+    s.normal_axis_given = false;
   }
   // The point cloud's profile is the dipole by default, as in Jensen & Buehler 2002.
   if (s.method == SubsurfaceParams::Method::PointCloud && !profile_given) s.profile = SubsurfaceParams::Profile::Dipole;

@@ -71,6 +71,11 @@ struct SubsurfaceParams {
   // keeps it.
   bool channel_per_walk = false;
   bool channel_per_walk_given = false;
+  // Disk: the probability of probing along the normal, T and B sharing the rest
+  // (render/subsurface/probe_method.h, kDiskNormalAxisShares); given, the render's pilot
+  // keeps it, else it chooses among the disk's strategies (0.75 without the pilot).
+  float normal_axis = 0.75f;
+  bool normal_axis_given = false;
   // Random walk: also guide toward the object's far side (sss/walk/random_walk.h).
   bool backward_guiding = false;
   // (reflectance, mfp) -> coefficients: the exact half-space table, or the van de Hulst

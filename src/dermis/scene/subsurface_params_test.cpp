@@ -112,6 +112,8 @@ TEST(SubsurfaceParams, BadInputIsAnErrorAtItsLocation) {
     }
   };
   expect_error("Material \"subsurface\" \"string method\" \"magic\"", "unknown subsurface method \"magic\"");
+  expect_error("Material \"subsurface\" \"string method\" \"disk\" \"float normalaxis\" 1",
+               "\"normalaxis\" must be in (0, 1)");
   expect_error("Material \"subsurface\" \"string profile\" \"gauss\"", "unknown profile");
   expect_error("Material \"subsurface\" \"string name\" \"Skin9\"", "unknown subsurface preset");
   expect_error("Material \"subsurface\" \"rgb reflectance\" [0.5 0.5 0.5]", "needs \"mfp\"");
@@ -140,6 +142,25 @@ TEST(SubsurfaceParams, LambertianEntry) {
   ASSERT_EQ(disk.diagnostics.warnings.size(), 1u);
   EXPECT_NE(disk.diagnostics.warnings[0].find("\"entry\" applies to the random walk only"), std::string::npos)
       << disk.diagnostics.warnings[0];
+}
+
+// The disk's probability of probing along the normal: unset, the pilot chooses (0.75 by
+// default); given, in (0, 1) (else an error at its location: above); another method
+// ignores it, with a warning.
+TEST(SubsurfaceParams, NormalAxis) {
+  const SubsurfaceParams unset = params_of("Material \"subsurface\" \"string method\" \"disk\"");
+  EXPECT_FALSE(unset.normal_axis_given);
+  EXPECT_EQ(unset.normal_axis, 0.75f);
+  const SubsurfaceParams given = params_of("Material \"subsurface\" \"string method\" \"disk\" \"float normalaxis\" 0.9");
+  EXPECT_TRUE(given.normal_axis_given);
+  EXPECT_EQ(given.normal_axis, 0.9f);
+  const SceneDesc walk = parse_scene_string(std::string(kHeader) +
+                                            "Material \"subsurface\" \"float normalaxis\" 0.5\nShape \"sphere\"\n");
+  EXPECT_FALSE(walk.materials.at(0).subsurface.normal_axis_given);
+  ASSERT_EQ(walk.diagnostics.warnings.size(), 1u);
+  EXPECT_NE(walk.diagnostics.warnings[0].find("\"normalaxis\" applies to the disk only; ignored by \"randomwalk\""),
+            std::string::npos)
+      << walk.diagnostics.warnings[0];
 }
 
 TEST(SubsurfaceVolumetric, IsExactlyAMediumInsideADielectric) {

@@ -143,7 +143,9 @@ ProbeMethod::ProbeMethod(const SubsurfaceParams& params, const std::vector<Textu
 
 sss::ProbeAxisProbabilities ProbeMethod::axes(int strategy) const {
   if (method_ != Method::Disk) return sss::ProbeAxisProbabilities::single_axis();
-  const double normal = kDiskNormalAxisShares[std::size_t(strategy >= 0 && strategy < strategy_count() ? strategy : 0)];
+  const double normal = params_.normal_axis_given
+                            ? double(params_.normal_axis)
+                            : kDiskNormalAxisShares[std::size_t(strategy >= 0 && strategy < strategy_count() ? strategy : 0)];
   return {normal, (1 - normal) / 2, (1 - normal) / 2};
 }
 

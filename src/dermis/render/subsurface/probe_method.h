@@ -48,9 +48,13 @@ class ProbeMethod {
   bool sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const;
 
   // The sampling strategies the render's pilot may choose among: the disk's axis
-  // probabilities (kDiskNormalAxisShares); one for the other probes.
-  int strategy_count() const { return method_ == Method::Disk ? int(kDiskNormalAxisShares.size()) : 1; }
-  // The probe axes' probabilities of a strategy (its index clamped to the default, 0).
+  // probabilities (kDiskNormalAxisShares), unless its parameters give them; one for the
+  // other probes.
+  int strategy_count() const {
+    return method_ == Method::Disk && !params_.normal_axis_given ? int(kDiskNormalAxisShares.size()) : 1;
+  }
+  // The probe axes' probabilities of a strategy (its index clamped to the default, 0;
+  // the given `normalaxis` for every strategy).
   sss::ProbeAxisProbabilities axes(int strategy) const;
 
   const sss::ProfileRGB& profile() const { return *profile_; }
