@@ -1,6 +1,8 @@
 // Diffusion profiles sampled with probe rays (seed 002 and King et al. 2013): a
 // segment or line is drawn near the entry point, its hits on the object are the
-// candidate exits, one is chosen uniformly and weighted profile / area pdf. Probes:
+// candidate exits, one is chosen in proportion to its profile / area pdf and weighted so
+// that the estimate is their sum (pick_probe_hit, probe_method.cpp; the retry variant
+// chooses uniformly, as the Cycles page does). Probes:
 // disk projection with axis and channel MIS ("disk"), the same along the normal only
 // ("disk-single-axis"), random lines through a sphere ("sphere-lines"), and the Cycles
 // page's retry-until-hit variant ("sphere-lines-retry").
