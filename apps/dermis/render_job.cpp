@@ -91,7 +91,7 @@ void add_render_options(CLI::App& cmd, RenderArgs& args) {
       ->check(CLI::IsMember({"sobol", "independent"}));
   cmd.add_option("-o,--output", args.output, "output image (.exr, .png, ...; default: the Film's filename)");
   cmd.add_option("--res", args.res, "resolution WIDTHxHEIGHT, overriding the Film's");
-  cmd.add_option("--time-limit", args.time_limit, "stop after this many seconds, keeping the samples taken")
+  cmd.add_option("--time-limit", args.time_limit, "stop after this many seconds (never before every pixel has a sample), keeping the samples taken")
       ->check(kNonNegative);
   cmd.add_option("--noise-threshold", args.noise_threshold,
                  "adaptive sampling: pixels stop once the estimated error of their value (the standard error over the "

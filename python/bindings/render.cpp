@@ -203,7 +203,7 @@ seed: the random seed (default: scene.seed). The same seed gives the same image,
 threads: worker threads (0: all cores).
 time_limit: stop after this many seconds (0: none), keeping the samples finished; the
   render takes samples in passes of 1, 1, 2, 4, ... 16 per pixel, so every pixel then has
-  about the same number.
+  about the same number, and never stops before every pixel has one.
 sampler: 'sobol' (Owen-scrambled Sobol') or 'independent' (default: the scene's).
 progress: a callable progress(done, total) of pixel samples, called on this thread
   about every 50 ms and once at the end.

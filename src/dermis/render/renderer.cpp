@@ -215,6 +215,9 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
       break;
     }
     const auto pass_start = Clock::now();
+    // The time limit stops a pass only once every pixel has a sample: an image with
+    // unrendered tiles is no picture (Ctrl-C stops anywhere).
+    const bool time_may_stop = fewest_samples() >= 1;
     arena.execute([&] {
       tbb::parallel_for(std::size_t(0), tiles.size(), [&](std::size_t i) {
         if (stop.load(std::memory_order_relaxed)) return;
@@ -223,7 +226,7 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
           interrupted = true;
           return;
         }
-        if (out_of_time()) {
+        if (time_may_stop && out_of_time()) {
           stop = true;
           time_limited = true;
           return;

@@ -105,6 +105,21 @@ TEST(Renderer, CancelStopsEarlyWithAConsistentImage) {
   for (float v : r.rgb) EXPECT_EQ(v, 0.0f);
 }
 
+// A time limit spent before the first pass (a slow pilot, a loaded machine) still gives
+// every pixel one sample, and then stops: an image with unrendered tiles is no picture.
+TEST(Renderer, TimeLimitStopsOnlyOnceEveryPixelHasASample) {
+  Diagnostics diag;
+  auto sc = build_render_scene(small_scene(), diag);
+  RenderOptions o;
+  o.spp = 64;
+  o.threads = 2;
+  o.time_limit = 1e-9;
+  RenderResult r = render_image(*sc, o);
+  EXPECT_TRUE(r.time_limited);
+  EXPECT_EQ(r.min_spp, 1u);
+  EXPECT_EQ(r.max_spp, 1u);  // the second pass renders no tile
+}
+
 // A render continued from a saved film is bit-identical to one never stopped: from the
 // state at the end of a shorter render (resumed to more samples), and from a film
 // interrupted mid-pass, whose tiles hold different numbers of samples.
