@@ -504,8 +504,11 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
         reflected.first_dimension = Sampler::region(resume, 0x5e1fu);
         reflected.split_budget = &split_budget;
         reflected.subsurface_strategies = start.subsurface_strategies;
-        if (const float q = reflects ? reflection_survival(reflected_ray, F, reflected) : 0.0f; q > 0)
-          L += beta * (F / q) * trace_path(sc, reflected_ray, medium, sampler, counters, reflected);
+        if (const float q = reflects ? reflection_survival(reflected_ray, F, reflected) : 0.0f; q > 0) {
+          const RGB Lr = beta * (F / q) * trace_path(sc, reflected_ray, medium, sampler, counters, reflected);
+          L += Lr;
+          if (start.subsurface_record) start.subsurface_record->camera_reflection += Lr;
+        }
         sampler.set_dimension(resume);
         beta *= 1 - F;
       } else {
@@ -798,8 +801,11 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
           rs.first_dimension = Sampler::region(resume, 0x5e1fu);
           rs.subsurface_strategies = start.subsurface_strategies;
           if (const float q = reflects ? reflection_survival(reflected_ray, F * reflected->weight.max(), rs) : 0.0f;
-              q > 0)
-            L += beta * reflected->weight * (F / q) * trace_path(sc, reflected_ray, medium, sampler, counters, rs);
+              q > 0) {
+            const RGB Lr = beta * reflected->weight * (F / q) * trace_path(sc, reflected_ray, medium, sampler, counters, rs);
+            L += Lr;
+            if (start.subsurface_record) start.subsurface_record->camera_reflection += Lr;
+          }
           sampler.set_dimension(resume);
           beta *= 1 - F;
           u_lobe = 1.0f;  // the transmission below (u_lobe >= F)

@@ -43,6 +43,11 @@ inline constexpr uint64_t kStratifiedVertices = 6;
 // points.
 struct SubsurfaceEntryRecord {
   int material = -1;  // RenderScene::subsurface index; -1: the path entered no subsurface object
+  // The radiance of the reflection split off at the camera's first hit (a subsurface entry
+  // or smooth glass), included in the path's: the same for every strategy (with the same
+  // numbers; but where it meets a subsurface object again), so the pilot leaves it out of
+  // what it measures.
+  RGB camera_reflection{0};
 };
 
 struct PathStart {

@@ -201,7 +201,12 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
         const RGB L = trace_path(sc, ray, sc.camera_medium, sampler, counters, start);
         out.finite = out.finite && L.is_finite();
         out.material[std::size_t(s)] = record.material;
-        out.radiance[std::size_t(s)] = L;
+        // Less the reflection split off at the camera's first hit, which every strategy
+        // shares with the same numbers: a small light's highlight at a pixel's edge, seen by
+        // one of its two samples, made the pixel's variance far larger than anything the
+        // strategies change, the ratio of their variances near 1, and the strategy with the
+        // fewest rays the choice (docs/rendering.md, "The subsurface pilot").
+        out.radiance[std::size_t(s)] = L - record.camera_reflection;
       }
       out.rays = counters.rays;
     }
