@@ -322,7 +322,8 @@ TEST(SubsurfacePilot, RecordsTheCameraReflectionApart) {
   std::string text = disk_sphere(0.3);
   const std::size_t light = text.find("AttributeBegin\n  AreaLightSource");
   ASSERT_NE(light, std::string::npos);
-  text.erase(light, text.find("AttributeEnd\n", light) + 13 - light);
+  const std::string end = "AttributeEnd\n";
+  text.erase(light, text.find(end, light) + end.size() - light);
   Diagnostics diag;
   auto sc = build_render_scene(parse_scene_string(text), diag);
   ASSERT_EQ(sc->lights.size(), 1u);
