@@ -14,6 +14,11 @@ preparation, so render enough samples that those are small), or with --time rend
 render-stage time `dermis render` prints in milliseconds (wall time of the tiles alone: what a
 change of the per-sample cost moves; builds before 2026-12-03 print 0.1 s steps).
 Efficiency = 1 / (variance x time).
+With --mask-dir DIR the variance is taken over the pixels an object covers fully instead (the
+convention of bench/vs_cycles: silhouettes, whose noise is mostly the pixel's coverage, left
+out): DIR holds coverage images (1 where the object covers a pixel, e.g. the object rendered as
+a unit emitter, as bench/vs_cycles/pbrt_writer.py mask_text writes it), and a scene's is the one
+whose name (without .exr) is the longest prefix of the scene file's name; pixels above 0.999.
 The mean images of the two builds are compared too: |mean difference| in standard errors,
 averaged over those pixels (≈ 0.8 for two unbiased builds of the same estimand; a build that
 changed the image shows much more).
@@ -49,6 +54,21 @@ def render(binary, scene, seed, args, out):
     return img, cpu
 
 
+def coverage(mask_dir, scene, shape):
+    """The coverage image of `scene` in mask_dir (the longest prefix of its name), one channel."""
+    base = os.path.basename(scene)
+    names = [f[:-4] for f in os.listdir(mask_dir) if f.endswith(".exr") and base.startswith(f[:-4])]
+    if not names:
+        raise SystemExit(f"{mask_dir}: no coverage image for {base} (its name must begin with the image's)")
+    inp = oiio.ImageInput.open(os.path.join(mask_dir, max(names, key=len) + ".exr"))
+    img = inp.read_image(format="float")[:, :, :3].mean(axis=2)
+    inp.close()
+    if img.shape != shape:
+        raise SystemExit(f"{base}: the coverage image is {img.shape[1]}x{img.shape[0]}, the renders "
+                         f"{shape[1]}x{shape[0]}")
+    return img
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("old")
@@ -60,6 +80,7 @@ def main():
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--time", choices=["cpu", "render"], default="cpu",
                     help="process CPU time (default) or the printed render-stage time")
+    ap.add_argument("--mask-dir", help="coverage images: variance over the fully covered pixels only")
     args = ap.parse_args()
     work = tempfile.mkdtemp(prefix="dermis-efficiency-")
     print(f"| scene | variance new/old | {'CPU' if args.time == 'cpu' else 'render time'} new/old | **efficiency new/old** | mean diff (std. errors) |")
@@ -78,6 +99,8 @@ def main():
             a = np.array(images[name])
             stats[name] = (a.mean(axis=0), a.var(axis=0, ddof=1))
         covered = (stats["old"][0].mean(axis=2) > 0) & (stats["new"][0].mean(axis=2) > 0)
+        if args.mask_dir:
+            covered = covered & (coverage(args.mask_dir, scene, covered.shape) > 0.999)
         var = {k: stats[k][1].mean(axis=2)[covered].mean() for k in stats}
         t = {k: statistics.median(cpu[k]) for k in cpu}
         se = np.sqrt((stats["old"][1] + stats["new"][1]) / args.seeds).mean(axis=2)[covered]

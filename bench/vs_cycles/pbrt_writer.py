@@ -96,6 +96,20 @@ def scene_text(sc, variant_label, extra):
     return header(sc, f"Dermis variant '{variant_label}'") + pre + lights(sc) + obj
 
 
+def highlight_text(sc, spp):
+    """The object as a smooth mirror with the Fresnel reflectance of its boundary, lit by the
+    scene's quad lights alone: non-zero where the object shows a light's mirror image (the
+    specular highlights, whose pixel-area noise both renderers share). None where the object
+    has no reflecting boundary (an index-matched medium) or the scene no quad light."""
+    mat = sc["material"]
+    if not sc["lights"] or (mat["kind"] == "medium" and mat["boundary"] == "matched"):
+        return None
+    eta = mat.get("eta", 1.0)
+    obj = (f'\nAttributeBegin\n  Material "conductor" "rgb eta" [ {eta:g} {eta:g} {eta:g} ] "rgb k" [ 0 0 0 ]'
+           f' "float roughness" 0\n  {shape_text(sc["shape"])}\nAttributeEnd\n')
+    return header(sc, "specular highlights", spp) + lights(dict(sc, sky=None)) + obj
+
+
 def mask_text(sc):
     """The object alone as a unit emitter, black, no other light: 1 where it covers a pixel
     (as bench/sss_methods.py)."""

@@ -131,3 +131,39 @@ def test_the_random_walk_twins_enter_as_cycles_3_4_does():
         for label, extra in sc["dermis"].items():
             text = pbrt_writer.scene_text(sc, label, extra)
             assert ('"string entry" "lambertian"' in text) == (m["method"] == "randomwalk"), (name, label)
+
+
+def test_the_highlight_scene_shows_only_the_quad_lights_mirror_image(tmp_path):
+    """run.py's third convention leaves out the pixels where the object shows a light's
+    mirror image: pbrt_writer.highlight_text renders the object as a smooth mirror with its
+    boundary's Fresnel reflectance under the quad lights alone. None without a quad light or
+    a reflecting boundary; on the key-lit sphere, a few pixels of the object light up, and
+    they are the brightest of the scene's own reference."""
+    assert pbrt_writer.highlight_text(S.FAMILY["f02-sphere-sky-0.1-milk-walk"], 16) is None  # the sky alone
+    assert pbrt_writer.highlight_text(S.FAMILY["f13-medium-matched"], 16) is None  # no boundary
+    sc = S.FAMILY["f03-sphere-key-0.1-jade-walk"]
+    text = pbrt_writer.highlight_text(sc, 256)
+    assert 'LightSource "infinite"' not in text and '"conductor" "rgb eta" [ 1.4 1.4 1.4 ] "rgb k" [ 0 0 0 ]' in text
+    dermis = os.environ.get("DERMIS")
+    if not dermis:
+        pytest.skip("DERMIS (the dermis binary) not set")
+    import numpy as np
+    import OpenImageIO as oiio
+
+    def render(name, body, spp):
+        path = tmp_path / f"{name}.pbrt"
+        path.write_text(body)
+        out = tmp_path / f"{name}.exr"
+        p = subprocess.run([dermis, "render", str(path), "--res", "64x48", "--spp", str(spp), "--threads", "1", "-q",
+                            "--no-png", "-o", str(out)], capture_output=True, text=True, timeout=120)
+        assert p.returncode == 0, p.stderr
+        inp = oiio.ImageInput.open(str(out))
+        img = inp.read_image(format="float")[:, :, :3].max(axis=2)
+        inp.close()
+        return img
+
+    covered = render("mask", pbrt_writer.mask_text(sc), 16) > 0.999
+    lit = render("highlights", text, 256) > 0
+    assert covered.sum() > 500 and 0 < (lit & covered).sum() < 0.02 * covered.sum()
+    scene = render("scene", pbrt_writer.scene_text(sc, *next(iter(sc["dermis"].items()))), 64)
+    assert scene[lit & covered].max() >= scene[covered].max()  # the brightest pixel is a highlight
