@@ -327,7 +327,7 @@ def make_highlights(args, sc, work, mask):
     pbrt_writer.highlight_text; 1024 spp), widened by one pixel. Such a pixel's noise is the
     share of its area the mirror image covers, whatever the subsurface method: in the
     twenty-second family run, the 17 highlight pixels of the key-lit spheres (of 3710) held
-    13-53 % of Dermis' squared error over the object at 64 spp and 58-91 % of Cycles', and 3
+    12-53 % of Dermis' squared error over the object at 64 spp and 58-91 % of Cycles', and 3
     of the fin's 2310 held 96 % of Dermis' on f12's disk (docs/results-vs-cycles.md, the
     findings of the thirty-ninth session). None where the object shows no light's image.
     """
@@ -502,7 +502,7 @@ def family_entries(results):
             out.append(dict(fam, scene=r["name"], label=label, kind=variant_kind(label),
                             default=(i == 0 and variant_kind(label) != "disk"),  # the walk; a medium's first
                             obj=gmean(obj), obj_min=min(obj), img=gmean(img), img_min=min(img),
-                            sub=gmean(sub), sub_min=min(sub), highlights=r.get("highlights", 0),
+                            sub=gmean(sub), highlights=r.get("highlights", 0),
                             cost=gmean(cost), mse=gmean(mse), rays=float(np.median(rays)) if rays else float("nan")))
     return out
 
