@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <string_view>
+#include <utility>
 
 #include "dermis/core/rng.h"
 #include "dermis/core/sobol.h"
@@ -50,6 +51,17 @@ class Sampler {
   static uint64_t pixel_key(uint64_t seed, uint64_t pixel) { return mix64(seed ^ mix64(pixel + 0x5ab1e5eedull)); }
 
   SamplerKind kind() const { return kind_; }
+  // The k-th of `count` draws that one pixel sample makes from the same dimensions (the
+  // exits of a subsurface entry): Sobol' index count x i + k instead of i, so that the
+  // count x N draws of a pixel's N samples are one stratified sequence (a (0,2)-sequence
+  // in each pair of dimensions) rather than `count` independent ones. set_split(0, 1)
+  // ends it. Callers give every split its own dimensions per `count` (two splits of
+  // different counts in the same dimensions would share indices). The sample's PCG32
+  // stream and sample_hash keep the sample's own index; the independent sampler ignores it.
+  void set_split(uint32_t k, uint32_t count) {
+    const bool fits = count >= 1 && k < count && index_ <= (~uint32_t(0) - k) / count;
+    reversed_index_ = reverse_bits(fits ? index_ * count + k : index_);
+  }
   // The next number is taken from dimension d (and d + 1 for get2d), and so on.
   void set_dimension(uint64_t d) {
     dim_ = d;
@@ -98,13 +110,19 @@ class Sampler {
   // Two dimensions jointly stratified (Sobol' dimensions 0 and 1 of one shuffled index).
   Vec2 get2d() {
     if (kind_ == SamplerKind::Independent || dim_ + 1 >= stratified_end_) return {get1d(), get1d()};
-    const uint32_t seed = dimension_seed(dim_);
-    dim_ += 2;
-    const uint32_t i = shuffled_index(seed);
-    const uint32_t x = reverse_bits(laine_karras_permutation(i, hash_combine(seed, 0x0b1c0u)));
-    // nested_uniform_scramble(sobol_sample(i, 1), ...), the point's reversal from a table.
-    const uint32_t y = reverse_bits(laine_karras_permutation(sobol_sample_reversed(i, 1), hash_combine(seed, 0x0b1c1u)));
+    const auto [x, y] = next_pair();
     return {fraction_to_float(x), fraction_to_float(y)};
+  }
+
+  // The same in double precision (32-bit fractions): for a number that is cut into a
+  // discrete choice and what is left of it (DiskProbeSampler::sample).
+  Vec2d get2d_double() {
+    if (kind_ == SamplerKind::Independent || dim_ + 1 >= stratified_end_) {
+      const double x = uniform_double();
+      return {x, uniform_double()};
+    }
+    const auto [x, y] = next_pair();
+    return {fraction_to_double(x), fraction_to_double(y)};
   }
 
   // The interface of Rng, so that code written for a random stream (the sss library)
@@ -122,7 +140,19 @@ class Sampler {
     if (!stream_seeded_) rng_ = Rng(seed_, pixel_, index_), stream_seeded_ = true;
     return rng_;
   }
-  // nested_uniform_scramble(index_, seed), the index's reversal kept from the constructor.
+  // Sobol' dimensions 0 and 1 of one shuffled index, scrambled: the next two dimensions
+  // as a pair of 32-bit fractions.
+  std::pair<uint32_t, uint32_t> next_pair() {
+    const uint32_t seed = dimension_seed(dim_);
+    dim_ += 2;
+    const uint32_t i = shuffled_index(seed);
+    const uint32_t x = reverse_bits(laine_karras_permutation(i, hash_combine(seed, 0x0b1c0u)));
+    // nested_uniform_scramble(sobol_sample(i, 1), ...), the point's reversal from a table.
+    const uint32_t y = reverse_bits(laine_karras_permutation(sobol_sample_reversed(i, 1), hash_combine(seed, 0x0b1c1u)));
+    return {x, y};
+  }
+  // nested_uniform_scramble(index_, seed), the index's reversal kept from the constructor
+  // (or the split's, set_split).
   uint32_t shuffled_index(uint32_t seed) const { return reverse_bits(laine_karras_permutation(reversed_index_, seed)); }
   // The seed of dimension d in this pixel: one multiply-xorshift-multiply round of
   // (pixel key ^ d), its high half. Distinct dimensions of a pixel give distinct 64-bit

@@ -132,6 +132,52 @@ TEST(Sampler, SobolPixelSamplesAreStratifiedInEveryDimension) {
   }
 }
 
+// The exits of a subsurface entry draw as one sequence (Sampler::set_split): draw k of K of
+// the pixel's sample i is Sobol' index K i + k, so the K 2^m draws of 2^m samples are a
+// (0, m + log2 K, 2)-net, as 2^m samples would be alone; set_split(0, 1) gives the
+// sample's own numbers back, and its stream and hash never change.
+TEST(Sampler, SplitDrawsOfAPixelsSamplesFormOneNet) {
+  const int m = 6;
+  const uint64_t first = Sampler::region(100, 0x5e170002u);
+  for (uint64_t pixel : {0ull, 123456ull}) {
+    for (uint32_t count : {2u, 4u}) {
+      std::vector<uint32_t> x, y;
+      for (uint32_t i = 0; i < (1u << m); ++i) {
+        Sampler s(SamplerKind::Sobol, 42, pixel, i);
+        for (uint32_t k = 0; k < count; ++k) {
+          s.set_dimension(first);
+          s.set_split(k, count);
+          const Vec2d u = s.get2d_double();  // (x + 1/2) 2^-32: back to the 32-bit fraction
+          x.push_back(uint32_t(u.x * 0x1p32));
+          y.push_back(uint32_t(u.y * 0x1p32));
+        }
+        s.set_split(0, 1);
+        Sampler fresh(SamplerKind::Sobol, 42, pixel, i);
+        s.set_dimension(first), fresh.set_dimension(first);
+        EXPECT_EQ(s.next_fraction(), fresh.next_fraction());
+        EXPECT_EQ(s.sample_hash(7), fresh.sample_hash(7));
+      }
+      EXPECT_TRUE(is_02_net(x, y, m + (count == 2 ? 1 : 2))) << pixel << " " << count;
+    }
+  }
+  // Each draw alone is uniform across pixels (the scrambles' randomness): the first of two
+  // falls below 1/2 in half of 40000 pixels, within 4 sigma.
+  int below = 0;
+  const int pixels = 40000;
+  for (int p = 0; p < pixels; ++p) {
+    Sampler s(SamplerKind::Sobol, 42, uint64_t(p), 3);
+    s.set_dimension(first);
+    s.set_split(0, 2);
+    below += s.get2d_double().x < 0.5;
+  }
+  EXPECT_NEAR(below, pixels / 2, 4 * std::sqrt(pixels * 0.25));
+  // The split leaves the sample's PCG32 stream alone.
+  Sampler a(SamplerKind::Sobol, 3, 11, 5), b(SamplerKind::Sobol, 3, 11, 5);
+  a.set_dimension(1000, 0), b.set_dimension(1000, 0);
+  a.set_split(1, 2);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(a.next_fraction(), b.next_fraction());
+}
+
 // Across pixels, one sample's dimensions a and b are independent uniforms: a 2D
 // histogram of (dim a, dim b) over 40000 pixels, chi-square against uniform.
 TEST(Sampler, DimensionsAndPixelsAreDecorrelated) {

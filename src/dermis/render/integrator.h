@@ -33,6 +33,9 @@ inline constexpr uint64_t kVertexDimensions = 32;
 // of the walk left the variance unchanged (x1.79 below independent either way) and
 // cost a fifth more render time in hashing.
 inline constexpr uint32_t kStratifiedExitDimensions = 8;
+// The region tag of the camera's first entry's exits drawn as one sequence
+// (Sampler::set_split), plus the exit count: each count its own dimensions.
+inline constexpr uint32_t kSplitExitsTag = 0x5e170000u;
 // Vertices past the first 6 of a path take the sample's PCG32 stream: deep in a medium
 // the hashing of Sobol' dimensions cost a quarter of the render time (a medium in glass)
 // for no measurable gain.

@@ -73,13 +73,31 @@ DiskProbeSampler::DiskProbeSampler(const ProfileRGB& profile, RGB channel_weight
 
 DiskProbeSample DiskProbeSampler::sample(const ProbeFrame& frame, double u_axis, double u_strategy,
                                          double u_radius, double u_angle) const {
-  DiskProbeSample out;
-  out.axis = u_axis < axis_probability_[0] ? 0 : (u_axis < axis_probability_[0] + axis_probability_[1] ? 1 : 2);
-  while (axis_probability_[out.axis] == 0) out.axis = (out.axis + 2) % 3;  // rounding at the last edge
-  int i = int(std::upper_bound(cumulative_.begin(), cumulative_.begin() + count_, u_strategy) - cumulative_.begin());
+  int axis = u_axis < axis_probability_[0] ? 0 : (u_axis < axis_probability_[0] + axis_probability_[1] ? 1 : 2);
+  while (axis_probability_[axis] == 0) axis = (axis + 2) % 3;  // rounding at the last edge
+  const int i = int(std::upper_bound(cumulative_.begin(), cumulative_.begin() + count_, u_strategy) - cumulative_.begin());
+  return sample_chosen(frame, axis, std::min(i, count_ - 1), u_radius, u_angle);
+}
+
+DiskProbeSample DiskProbeSampler::sample(const ProbeFrame& frame, double u, double u_angle) const {
+  // What is left of u in [lo, lo + p), rescaled to [0, 1) (kept below 1 against rounding).
+  auto rest = [](double u, double lo, double p) { return std::clamp((u - lo) / p, 0.0, 0x1.fffffffffffffp-1); };
+  int axis = u < axis_probability_[0] ? 0 : (u < axis_probability_[0] + axis_probability_[1] ? 1 : 2);
+  while (axis_probability_[axis] == 0) axis = (axis + 2) % 3;
+  const double axis_lo = axis == 0 ? 0.0 : axis == 1 ? axis_probability_[0] : axis_probability_[0] + axis_probability_[1];
+  u = rest(u, axis_lo, axis_probability_[axis]);
+  int i = int(std::upper_bound(cumulative_.begin(), cumulative_.begin() + count_, u) - cumulative_.begin());
   i = std::min(i, count_ - 1);
-  out.strategy = i;
-  const Strategy& s = strategies_[i];
+  const double strategy_lo = i == 0 ? 0.0 : cumulative_[i - 1];
+  return sample_chosen(frame, axis, i, rest(u, strategy_lo, cumulative_[i] - strategy_lo), u_angle);
+}
+
+DiskProbeSample DiskProbeSampler::sample_chosen(const ProbeFrame& frame, int axis, int strategy, double u_radius,
+                                                double u_angle) const {
+  DiskProbeSample out;
+  out.axis = axis;
+  out.strategy = strategy;
+  const Strategy& s = strategies_[strategy];
 
   // The disk perpendicular to V, spanned by the two other frame axes.
   const Vec3d v = frame.axis(out.axis);

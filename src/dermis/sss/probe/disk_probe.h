@@ -57,6 +57,13 @@ class DiskProbeSampler {
   // Four uniforms in [0, 1): axis, strategy, radius, angle.
   DiskProbeSample sample(const ProbeFrame& frame, double u_axis, double u_strategy, double u_radius,
                          double u_angle) const;
+  // Two: u chooses the axis, what is left of it (rescaled to [0, 1)) the strategy, and what
+  // is left of that the radius; u_angle the angle. The same density as the four-number
+  // form; where u is stratified over a pixel's samples (the renderer's Sobol' points), so
+  // is every (axis, strategy)'s set of radii, jointly with its angles (Cycles'
+  // subsurface_disk remaps its disk number for the axis choice alike), where independent
+  // numbers for the choices would give each strategy a random subset of the radii.
+  DiskProbeSample sample(const ProbeFrame& frame, double u, double u_angle) const;
 
   // Area density of finding x (surface normal n_x, unit length, either orientation) with
   // one probe, summed over axes and strategies (see the file comment). Zero outside the
@@ -92,6 +99,10 @@ class DiskProbeSampler {
     // such strategies are one, with the sum of their probabilities.
     bool samples_as(const Strategy& o) const;
   };
+
+  // The probe of a chosen axis and strategy from the radius and angle numbers.
+  DiskProbeSample sample_chosen(const ProbeFrame& frame, int axis, int strategy, double u_radius,
+                                double u_angle) const;
 
   std::array<Strategy, kMaxStrategies> strategies_{};
   std::array<double, kMaxStrategies> cumulative_{};

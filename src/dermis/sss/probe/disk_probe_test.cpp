@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <functional>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -183,8 +185,9 @@ TEST(DiskProbe, AreaPdfIntegratesToTheHitProbabilityOnTiltedPlanes) {
 
 // Chi-square of the hit positions on a plane, bins in polar coordinates about the foot of
 // P, plus one bin for probes that miss.
+// folded: the two-number form (one number cut into the axis, the strategy and the radius).
 void expect_plane_hits_match_pdf(const DiskProbeSampler& sampler, const ProbeFrame& f, const TestPlane& plane,
-                                 const std::string& what, uint64_t seed) {
+                                 const std::string& what, uint64_t seed, bool folded) {
   const double h = std::abs(dot(f.p - plane.origin, plane.normal));
   const double s_max = std::sqrt(std::max(0.0, sampler.max_radius() * sampler.max_radius() - h * h));
   constexpr int kRadial = 10, kAngular = 8, kProbes = 100000;
@@ -206,8 +209,9 @@ void expect_plane_hits_match_pdf(const DiskProbeSampler& sampler, const ProbeFra
   expected.back() = (1 - hit_total) * kProbes;
   Rng rng(seed, 1);
   for (int n = 0; n < kProbes; ++n) {
-    const auto smp = sampler.sample(f, rng.uniform_double(), rng.uniform_double(), rng.uniform_double(),
-                                    rng.uniform_double());
+    const double u0 = rng.uniform_double(), u1 = rng.uniform_double();
+    const auto smp = folded ? sampler.sample(f, u0, u1)
+                            : sampler.sample(f, u0, u1, rng.uniform_double(), rng.uniform_double());
     Vec3d x;
     if (!testing::intersect(smp.segment, plane, &x)) {
       observed.back() += 1;
@@ -232,11 +236,43 @@ TEST(DiskProbe, HitsOnPlanesMatchTheAreaPdf) {
     const auto& [name, profile, weights] = profiles[k];
     for (auto axes : {ProbeAxisProbabilities{}, ProbeAxisProbabilities::single_axis()}) {
       const DiskProbeSampler sampler(profile, weights, axes);
-      const std::string what = name + (axes.normal == 1 ? " single axis" : " three axes");
-      expect_plane_hits_match_pdf(sampler, f, TestPlane(f.p, tilted_normal(f, 0.9)), what + " tilted plane", ++seed);
-      const Vec3d n = tilted_normal(f, 0.5);
-      expect_plane_hits_match_pdf(sampler, f, TestPlane(f.p - n * (0.25 * sampler.max_radius()), n),
-                                  what + " offset plane", ++seed);
+      for (bool folded : {false, true}) {
+        const std::string what = name + (axes.normal == 1 ? " single axis" : " three axes") + (folded ? " folded" : "");
+        expect_plane_hits_match_pdf(sampler, f, TestPlane(f.p, tilted_normal(f, 0.9)), what + " tilted plane", ++seed,
+                                    folded);
+        const Vec3d n = tilted_normal(f, 0.5);
+        expect_plane_hits_match_pdf(sampler, f, TestPlane(f.p - n * (0.25 * sampler.max_radius()), n),
+                                    what + " offset plane", ++seed, folded);
+      }
+    }
+  }
+}
+
+// The two-number form cuts one number into the axis, the strategy and the radius: from
+// 4096 evenly spaced numbers each (axis, strategy) takes its share (within one) and its
+// radii grow with the number, one contiguous run of it each, so a stratified number gives
+// every strategy stratified radii. The angle is the second number's, untouched.
+TEST(DiskProbe, OneNumberCutIntoTheChoicesStratifiesEachStrategysRadii) {
+  const ProbeFrame f = test_frame();
+  for (const auto& [name, profile, weights] : test_profiles()) {
+    const DiskProbeSampler sampler(profile, weights, ProbeAxisProbabilities{0.75, 0.125, 0.125});
+    constexpr int kNumbers = 4096;
+    std::map<std::pair<int, int>, std::vector<double>> radii;  // in the order of the number
+    int last_cell = -1;
+    std::set<int> cells_seen;
+    for (int j = 0; j < kNumbers; ++j) {
+      const auto smp = sampler.sample(f, (j + 0.5) / kNumbers, 0.3);
+      const int cell = smp.axis * DiskProbeSampler::kMaxStrategies + smp.strategy;
+      if (cell != last_cell) {
+        EXPECT_TRUE(cells_seen.insert(cell).second) << name << ": one run per choice";
+        last_cell = cell;
+      }
+      radii[{smp.axis, smp.strategy}].push_back(smp.disk_radius);
+    }
+    for (const auto& [choice, r] : radii) {
+      const double share = sampler.axis_probability(choice.first) * sampler.strategy_probability(choice.second);
+      EXPECT_NEAR(double(r.size()), share * kNumbers, 1.0) << name << " axis " << choice.first << " strategy " << choice.second;
+      EXPECT_TRUE(std::is_sorted(r.begin(), r.end())) << name << " axis " << choice.first << " strategy " << choice.second;
     }
   }
 }

@@ -1,5 +1,6 @@
 #include "dermis/sss/probe/sphere_lines.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -109,6 +110,15 @@ SphereLineSample SphereLineSampler::sample(Vec3d p, double u_channel, double u_r
   const double len = length(b - a);
   out.segment = {a, len > 0 ? (b - a) / len : Vec3d(0, 0, 1), len};
   return out;
+}
+
+SphereLineSample SphereLineSampler::sample(Vec3d p, double u, Vec2d u_first, Vec2d u_second) const {
+  int c = u < q_[0] ? 0 : (u < q_[0] + q_[1] ? 1 : 2);
+  while (q_[c] == 0) c = (c + 2) % 3;
+  const double lo = c == 0 ? 0.0 : c == 1 ? q_[0] : q_[0] + q_[1];
+  const double rest = std::clamp((u - lo) / q_[c], 0.0, 0x1.fffffffffffffp-1);
+  // The channel's own interval's midpoint chooses it again in the four-number form.
+  return sample(p, lo + q_[c] / 2, rest, u_first, u_second);
 }
 
 double SphereLineSampler::pdf_area(Vec3d p, Vec3d x) const {

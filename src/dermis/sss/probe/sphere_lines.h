@@ -106,6 +106,10 @@ class SphereLineSampler {
 
   // u_channel, u_radius in [0, 1); u_first, u_second in [0, 1)^2 pick the chord's ends.
   SphereLineSample sample(Vec3d p, double u_channel, double u_radius, Vec2d u_first, Vec2d u_second) const;
+  // The same with one number cut into the channel and, what is left of it rescaled to
+  // [0, 1), the radius: a stratified u gives every channel stratified radii
+  // (DiskProbeSampler::sample's two-number form).
+  SphereLineSample sample(Vec3d p, double u, Vec2d u_first, Vec2d u_second) const;
 
   // Area density of crossings at a surface point x (any orientation): sum_c q_c q_c(|x - P|).
   double pdf_area(Vec3d p, Vec3d x) const;

@@ -221,21 +221,38 @@ TEST(SphereLines, FlatPlaneEstimatorRecoversTheKeptEnergy) {
     const SphereLineSampler sampler(tables, weights);
     const Vec3d n = normalize(Vec3d(0.2, 0.1, -1.0));
     const TestPlane plane(kP, n);
-    MeanAndError estimate[3];
-    Rng rng(++seed, 7);
-    for (int k = 0; k < 40000; ++k) {
-      const auto smp = sampler.sample(kP, rng.uniform_double(), rng.uniform_double(),
-                                      Vec2d(rng.uniform_double(), rng.uniform_double()),
-                                      Vec2d(rng.uniform_double(), rng.uniform_double()));
-      Vec3d x;
-      const bool hit = testing::intersect(smp.segment, plane, &x);
-      for (int c = 0; c < 3; ++c)
-        estimate[c].add(hit ? profile[c].eval(length(x - kP)) / sampler.pdf_area(kP, x) : 0.0);
+    for (bool folded : {false, true}) {  // the four-number form, and one number for channel and radius
+      MeanAndError estimate[3];
+      Rng rng(++seed, 7);
+      for (int k = 0; k < 40000; ++k) {
+        const double u0 = rng.uniform_double();
+        const auto smp = folded ? sampler.sample(kP, u0, Vec2d(rng.uniform_double(), rng.uniform_double()),
+                                                 Vec2d(rng.uniform_double(), rng.uniform_double()))
+                                : sampler.sample(kP, u0, rng.uniform_double(),
+                                                 Vec2d(rng.uniform_double(), rng.uniform_double()),
+                                                 Vec2d(rng.uniform_double(), rng.uniform_double()));
+        Vec3d x;
+        const bool hit = testing::intersect(smp.segment, plane, &x);
+        for (int c = 0; c < 3; ++c)
+          estimate[c].add(hit ? profile[c].eval(length(x - kP)) / sampler.pdf_area(kP, x) : 0.0);
+      }
+      for (int c = 0; c < 3; ++c) {
+        const double kept = energy_within(profile[c], sampler.max_radius());
+        EXPECT_NEAR(estimate[c].mean(), kept, 4 * estimate[c].error())
+            << name << (folded ? " folded" : "") << " channel " << c << " kept/A " << kept / profile[c].albedo();
+      }
+    }
+    // Folded, evenly spaced numbers give each channel its share (within one) and radii that
+    // grow with the number: every channel's radii are stratified.
+    constexpr int kNumbers = 3000;
+    std::vector<double> radii[3];
+    for (int j = 0; j < kNumbers; ++j) {
+      const auto smp = sampler.sample(kP, (j + 0.5) / kNumbers, Vec2d(0.3, 0.6), Vec2d(0.7, 0.2));
+      radii[smp.channel].push_back(smp.sphere_radius);
     }
     for (int c = 0; c < 3; ++c) {
-      const double kept = energy_within(profile[c], sampler.max_radius());
-      EXPECT_NEAR(estimate[c].mean(), kept, 4 * estimate[c].error())
-          << name << " channel " << c << " kept/A " << kept / profile[c].albedo();
+      EXPECT_NEAR(double(radii[c].size()), sampler.channel_probability(c) * kNumbers, 1.0) << name << " channel " << c;
+      EXPECT_TRUE(std::is_sorted(radii[c].begin(), radii[c].end())) << name << " channel " << c;
     }
   }
 }
