@@ -635,13 +635,14 @@ RGB trace_path(const RenderScene& sc, Ray ray, int medium, Sampler& sampler, Pat
                             exit_light, refracted, strategy, first_entry_exits > 0 ? 0 : -1, exit_light_none};
       if (first_entry && start.subsurface_record && start.subsurface_record->material < 0)
         start.subsurface_record->material = mat.subsurface;
-      // The camera's first entry's exits are one stratified sequence of the pixel's samples:
-      // exit k of sample i draws Sobol' index K i + k of dimensions of their own (one set per
-      // exit count K: Sampler::set_split). Against K independent regions, variance
-      // 0.84-0.89x with the disk's two exits (docs/probe-sampling.md, "The exits as one
-      // sequence").
-      const uint64_t exits_region = Sampler::region(after_exit, kSplitExitsTag + uint32_t(first_entry_exits));
-      const bool split_exits = first_entry_exits > 1;
+      // The probes' exits at the camera's first entry are one stratified sequence of the
+      // pixel's samples: exit k of sample i draws Sobol' index K i + k of dimensions of their
+      // own (one set per exit count K: Sampler::set_split). Against K independent regions,
+      // variance 0.84-0.89x with the disk's two exits (docs/probe-sampling.md, "The exits as
+      // one sequence"); a walk's keep their regions (SubsurfaceMaterial::exits_as_one_sequence).
+      const bool split_exits = first_entry_exits > 1 && sm.exits_as_one_sequence();
+      const uint64_t exits_region =
+          split_exits ? Sampler::region(after_exit, kSplitExitsTag + uint32_t(first_entry_exits)) : 0;
       if (split_exits) {
         sampler.set_dimension(exits_region, kStratifiedExitDimensions);
         sampler.set_split(0, uint32_t(first_entry_exits));

@@ -89,6 +89,12 @@ struct SubsurfaceMaterial {
     return requested;
   }
 
+  // Whether the camera's first entry's exits are drawn as one Sobol' sequence
+  // (Sampler::set_split): the probes', whose variance is much their first numbers'
+  // (0.84-0.89x with the disk's two exits). Not a walk's: its variance is not in its first
+  // eight numbers, and on the sky-lit fins it rose 1.08x (docs/probe-sampling.md).
+  bool exits_as_one_sequence() const { return std::holds_alternative<ProbeMethod>(method); }
+
   // Its exits leave through the exit lobe Sw (SubsurfaceExit::Kind::ThroughLobe): the probe
   // methods, and the walk with the diffuse boundary.
   bool exits_through_lobe() const {
