@@ -71,23 +71,29 @@ DiskProbeSampler::DiskProbeSampler(const ProfileRGB& profile, RGB channel_weight
   cumulative_[count_ - 1] = 1;
 }
 
+int DiskProbeSampler::axis_of(double u) const {
+  int axis = u < axis_probability_[0] ? 0 : (u < axis_probability_[0] + axis_probability_[1] ? 1 : 2);
+  while (axis_probability_[axis] == 0) axis = (axis + 2) % 3;  // rounding at the last edge
+  return axis;
+}
+
+int DiskProbeSampler::strategy_of(double u) const {
+  const int i = int(std::upper_bound(cumulative_.begin(), cumulative_.begin() + count_, u) - cumulative_.begin());
+  return std::min(i, count_ - 1);
+}
+
 DiskProbeSample DiskProbeSampler::sample(const ProbeFrame& frame, double u_axis, double u_strategy,
                                          double u_radius, double u_angle) const {
-  int axis = u_axis < axis_probability_[0] ? 0 : (u_axis < axis_probability_[0] + axis_probability_[1] ? 1 : 2);
-  while (axis_probability_[axis] == 0) axis = (axis + 2) % 3;  // rounding at the last edge
-  const int i = int(std::upper_bound(cumulative_.begin(), cumulative_.begin() + count_, u_strategy) - cumulative_.begin());
-  return sample_chosen(frame, axis, std::min(i, count_ - 1), u_radius, u_angle);
+  return sample_chosen(frame, axis_of(u_axis), strategy_of(u_strategy), u_radius, u_angle);
 }
 
 DiskProbeSample DiskProbeSampler::sample(const ProbeFrame& frame, double u, double u_angle) const {
   // What is left of u in [lo, lo + p), rescaled to [0, 1) (kept below 1 against rounding).
   auto rest = [](double u, double lo, double p) { return std::clamp((u - lo) / p, 0.0, 0x1.fffffffffffffp-1); };
-  int axis = u < axis_probability_[0] ? 0 : (u < axis_probability_[0] + axis_probability_[1] ? 1 : 2);
-  while (axis_probability_[axis] == 0) axis = (axis + 2) % 3;
+  const int axis = axis_of(u);
   const double axis_lo = axis == 0 ? 0.0 : axis == 1 ? axis_probability_[0] : axis_probability_[0] + axis_probability_[1];
   u = rest(u, axis_lo, axis_probability_[axis]);
-  int i = int(std::upper_bound(cumulative_.begin(), cumulative_.begin() + count_, u) - cumulative_.begin());
-  i = std::min(i, count_ - 1);
+  const int i = strategy_of(u);
   const double strategy_lo = i == 0 ? 0.0 : cumulative_[i - 1];
   return sample_chosen(frame, axis, i, rest(u, strategy_lo, cumulative_[i] - strategy_lo), u_angle);
 }

@@ -100,6 +100,9 @@ class DiskProbeSampler {
     bool samples_as(const Strategy& o) const;
   };
 
+  // The axis and the strategy a number in [0, 1) chooses (by the cumulative probabilities).
+  int axis_of(double u) const;
+  int strategy_of(double u) const;
   // The probe of a chosen axis and strategy from the radius and angle numbers.
   DiskProbeSample sample_chosen(const ProbeFrame& frame, int axis, int strategy, double u_radius,
                                 double u_angle) const;
