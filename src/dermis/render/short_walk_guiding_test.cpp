@@ -88,5 +88,44 @@ ObjectInstance "ball"
   EXPECT_NEAR(walk_of(*given).step(0).p_guided(2), 0.3, 1e-6);
 }
 
+// The pilot's strategies that guide backward too (WalkStrategy::backward_guiding) are
+// measured only where they change the walks: where the far side is within the walks'
+// reach (by the same test as above), and the material leaves backward guiding to the
+// pilot; `backwardguiding` given, every strategy has it (or none does).
+TEST(ShortWalkGuiding, OffersBackwardGuidingOnlyWhereTheFarSideIsInReach) {
+  std::vector<int> backward, not_backward;
+  for (std::size_t v = 0; v < kWalkStrategies.size(); ++v)
+    (kWalkStrategies[v].backward_guiding ? backward : not_backward).push_back(int(v));
+  ASSERT_FALSE(backward.empty());
+  const int all = int(kWalkStrategies.size());
+  Diagnostics diag;
+  auto offered = [&](const std::string& material, float radius) {
+    auto sc = build_render_scene(parse_scene_string(sphere(radius, material)), diag);
+    return std::pair{walk_of(*sc).backward_strategies_differ(), offered_strategies(*sc, all)};
+  };
+  // Dark and dense in a sphere of radius 1: the walks stay near their entry.
+  const std::string dark = R"("rgb reflectance" [0.3 0.28 0.32] "rgb mfp" [0.01 0.01 0.01])";
+  const auto [dark_differs, dark_offered] = offered(dark, 1);
+  EXPECT_FALSE(dark_differs);
+  EXPECT_EQ(dark_offered, not_backward);
+  // The same medium 100x smaller, and a milk-like one: the far side is in reach.
+  const std::string milk = R"("rgb reflectance" [0.95 0.9 0.75] "rgb mfp" [0.6 0.4 0.2])";
+  for (const auto& [material, radius] : {std::pair{dark, 0.01f}, std::pair{milk, 1.0f}}) {
+    const auto [differs, list] = offered(material, radius);
+    EXPECT_TRUE(differs) << material;
+    EXPECT_EQ(int(list.size()), all) << material;
+  }
+  // Given either way: every strategy as given, none offered for it.
+  for (const char* given : {"true", "false"}) {
+    auto sc = build_render_scene(parse_scene_string(sphere(1, milk + " \"bool backwardguiding\" " + given)), diag);
+    EXPECT_FALSE(walk_of(*sc).backward_strategies_differ()) << given;
+    EXPECT_EQ(offered_strategies(*sc, all), not_backward) << given;
+    for (int v = 0; v < all; ++v) EXPECT_EQ(walk_of(*sc).backward_guiding(v), std::string(given) == "true") << v;
+  }
+  // Left to the pilot: the backward strategies alone guide backward.
+  auto free = build_render_scene(parse_scene_string(sphere(1, milk)), diag);
+  for (int v = 0; v < all; ++v) EXPECT_EQ(walk_of(*free).backward_guiding(v), kWalkStrategies[std::size_t(v)].backward_guiding) << v;
+}
+
 }  // namespace
 }  // namespace dermis

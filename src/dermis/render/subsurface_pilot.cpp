@@ -81,10 +81,14 @@ double pilot_handicap(const SubsurfaceParams& params, int strategy) {
                ? kHeavierStrategyHandicap
                : 1;
   if (params.method != SubsurfaceParams::Method::RandomWalk) return 1;
+  if (strategy <= 0 || strategy >= int(kWalkStrategies.size())) return 1;
+  const WalkStrategy& w = kWalkStrategies[std::size_t(strategy)];
+  // Backward guiding's far-side terms cost arithmetic at every step that the pilot's ray
+  // count does not see (6-7 % more time per ray), and its estimates read 1.03-1.32x what
+  // the strategy rendered with (kBackwardGuidingHandicap).
+  if (w.backward_guiding && !params.backward_guiding_given) return kBackwardGuidingHandicap;
   if (params.guided_share_pinned()) return 1;  // every strategy has the given share
-  const bool heavier = strategy > 0 && strategy < int(kWalkStrategies.size()) &&
-                       kWalkStrategies[std::size_t(strategy)].p_guided > kWalkStrategies[0].p_guided;
-  return heavier ? kHeavierStrategyHandicap : 1;
+  return w.p_guided > kWalkStrategies[0].p_guided ? kHeavierStrategyHandicap : 1;
 }
 
 bool subsurface_pilot_wanted(const RenderScene& sc) {
@@ -124,11 +128,15 @@ bool camera_sees_subsurface(const RenderScene& sc, Ray ray) {
 
 // Whether strategy v of material m renders its own image: every strategy of a method
 // other than the walk; a walk's where it differs from another otherwise than in light-
-// sampling a uniform sky at exits, or where the scene has one.
+// sampling a uniform sky at exits, or where the scene has one, and otherwise than in
+// guiding backward, or where that changes the walks (WalkMethod::backward_strategies_differ).
 bool strategy_differs(const RenderScene& sc, const SubsurfaceMaterial& m, int v) {
   if (v < 0 || v >= m.strategy_count()) return false;
-  if (v == 0 || !std::holds_alternative<WalkMethod>(m.method)) return true;
-  return kWalkStrategies[std::size_t(v)].exit_sky_sampled || sc.light_selection.has_uniform_sky();
+  const auto* walk = std::get_if<WalkMethod>(&m.method);
+  if (v == 0 || !walk) return true;
+  const WalkStrategy& w = kWalkStrategies[std::size_t(v)];
+  if (w.backward_guiding && !walk->backward_strategies_differ()) return false;
+  return w.exit_sky_sampled || sc.light_selection.has_uniform_sky();
 }
 
 std::vector<int> offered_strategies(const RenderScene& sc, int count) {
@@ -332,7 +340,7 @@ std::string describe_probe_strategy(const ProbeMethod& probe, int strategy) {
 
 // The sentence about the choice's gain (or the default's standing), after what it is.
 std::string describe_gain(const SubsurfaceChoice& c, const std::string& method, const std::string& what,
-                          double handicap) {
+                          double handicap, const char* handicap_reason = "its heavier-tailed weights") {
   if (c.strategy == 0 && c.first_stage_only)
     return fmt::format("material {} ({}): {} (the default: no other strategy can be {:.0f} % faster, measured on "
                        "{} pilot pixels, the first of two stages)",
@@ -346,7 +354,7 @@ std::string describe_gain(const SubsurfaceChoice& c, const std::string& method, 
   // the figure is rough.
   const bool rough = c.gain_se > kRoughGainShare * c.gain;
   const std::string handicapped =
-      handicap > 1 ? fmt::format(", divided by {:g} for its heavier-tailed weights", handicap) : "";
+      handicap > 1 ? fmt::format(", divided by {:g} for {}", handicap, handicap_reason) : "";
   return fmt::format(
       "material {} ({}): {}; {:.2f}x the default's efficiency (+- {:.2f}, estimated on {} pilot pixels{}{})",
       c.material, method, what, c.gain, c.gain_se, c.pixels, handicapped,
@@ -372,16 +380,22 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
     else if (!alike)
       share = fmt::format("{:g}, {:g}, {:g} (R, G, B)", step.p_guided(0), step.p_guided(1), step.p_guided(2));
   }
+  const auto* walk = std::get_if<WalkMethod>(&m.method);
+  const bool walk_guides_backward = walk && walk->backward_guiding(c.strategy);
   const std::string what = fmt::format(
-      "guided share {}, {}{}", share,
+      "guided share {}, {}{}{}", share,
       m.channel_per_walk(c.strategy)
           ? fmt::format("one colour channel per walk at the camera's first entry{}",
                         p.channel_per_walk_given ? " (given)" : "")
                          : fmt::format("channel preference {:g}{}",
                                        p.channel_preference_given ? p.channel_preference : w.channel_preference,
                                        p.channel_preference_given ? " (given)" : ""),
-      w.exit_sky_sampled ? "" : ", uniform skies not light-sampled at exits");
-  return describe_gain(c, to_string(m.params.method), what, pilot_handicap(p, c.strategy));
+      w.exit_sky_sampled ? "" : ", uniform skies not light-sampled at exits",
+      walk_guides_backward ? fmt::format(", guided toward the far side too{}", p.backward_guiding_given ? " (given)" : "")
+                           : "");
+  return describe_gain(c, to_string(m.params.method), what, pilot_handicap(p, c.strategy),
+                       w.backward_guiding && !p.backward_guiding_given ? "what its far-side terms cost per ray"
+                                                                      : "its heavier-tailed weights");
 }
 
 }  // namespace dermis

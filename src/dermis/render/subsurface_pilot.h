@@ -57,9 +57,20 @@ struct StrategyMeasure {
 // not catch this; a handicap of 1.1 still let estimates of 1.16-1.24 through on the
 // ketchup bust of the held-out set, which then rendered at 0.91x (64 spp, 16 seeds).
 inline constexpr double kHeavierStrategyHandicap = 1.25;
+// The pilot's estimate of a walk strategy that guides backward too (WalkStrategy::
+// backward_guiding) is divided by this before the choice. Its far-side terms cost
+// arithmetic at every step that the pilot's count of rays does not see (6-7 % more time
+// per ray, measured on six configurations of bench/vs_cycles), and its estimated gains
+// over the choice without it read 1.03-1.32x what it rendered with on the held-out and
+// textured sets (h06, t06, and h01, h04 where it then lost: 0.95x, 0.85x; 64 spp, 8
+// seeds): with this handicap the pilot keeps it on the two fins under the sky alone
+// (docs/rendering.md, "Backward guiding as a strategy").
+inline constexpr double kBackwardGuidingHandicap = kHeavierStrategyHandicap;
 // The handicap of walk strategy `strategy` (kWalkStrategies) for a material: the one above
-// where it has more guided flights than the default, unless the material's parameters pin
-// the share (every strategy then has it); else 1.
+// where it guides backward (unless the material gives `backwardguiding`: then every
+// strategy does or none), kHeavierStrategyHandicap where it has more guided flights than
+// the default, unless the material's parameters pin the share (every strategy then has
+// it); else 1.
 double pilot_handicap(const SubsurfaceParams& params, int strategy);
 
 // Of the strategies whose estimated gain over the default (0) is significant (log(gain)

@@ -69,16 +69,26 @@ TEST(SubsurfacePilot, AHeavierTailedStrategyMustBeatItsHandicap) {
   EXPECT_NEAR(10 / heavier.variance_cost(), 1.6 / kHeavierStrategyHandicap, 1e-12);
   // Which strategies carry it: those with a larger guided share than the default's, unless
   // the material's parameters pin the share (then every strategy has it).
-  SubsurfaceParams free_share, pinned_share;
+  // The strategies that guide backward carry kBackwardGuidingHandicap (what their far-side
+  // terms cost per ray), unless the material gives `backwardguiding` (every strategy then
+  // guides as given).
+  SubsurfaceParams free_share, pinned_share, backward_given;
   pinned_share.guided_share_given = true;
-  int heavier_strategies = 0;
+  backward_given.backward_guiding_given = true;
+  int heavier_strategies = 0, backward_strategies = 0;
   for (int v = 0; v < int(kWalkStrategies.size()); ++v) {
     const bool more_guided = kWalkStrategies[std::size_t(v)].p_guided > kWalkStrategies[0].p_guided;
+    const bool backward = kWalkStrategies[std::size_t(v)].backward_guiding;
     heavier_strategies += more_guided;
-    EXPECT_EQ(pilot_handicap(free_share, v), more_guided ? kHeavierStrategyHandicap : 1.0) << v;
-    EXPECT_EQ(pilot_handicap(pinned_share, v), 1.0) << v;
+    backward_strategies += backward;
+    EXPECT_EQ(pilot_handicap(free_share, v),
+              backward ? kBackwardGuidingHandicap : more_guided ? kHeavierStrategyHandicap : 1.0)
+        << v;
+    EXPECT_EQ(pilot_handicap(pinned_share, v), backward ? kBackwardGuidingHandicap : 1.0) << v;
+    EXPECT_EQ(pilot_handicap(backward_given, v), more_guided ? kHeavierStrategyHandicap : 1.0) << v;
   }
   EXPECT_GE(heavier_strategies, 1);
+  EXPECT_GE(backward_strategies, 1);
 }
 
 // The first of the pilot's two stages settles the choice (the default) only where no
@@ -240,8 +250,9 @@ TEST(SubsurfacePilot, DescribesTheChoiceAndARoughGain) {
   EXPECT_EQ(rough.find("divided by"), std::string::npos) << rough;
   // A heavier-tailed strategy's figure is its handicapped estimate, and says so.
   for (int v = 0; v < int(kWalkStrategies.size()); ++v)
-    if (pilot_handicap(sc->subsurface[0]->params, v) > 1) c.strategy = v;
+    if (kWalkStrategies[std::size_t(v)].p_guided > kWalkStrategies[0].p_guided) c.strategy = v;
   ASSERT_NE(c.strategy, 3);
+  ASSERT_GT(pilot_handicap(sc->subsurface[0]->params, c.strategy), 1);
   const std::string heavier = describe_subsurface_choice(*sc, c);
   EXPECT_NE(heavier.find(fmt::format("guided share {:g}, channel preference 0.5; 1000.00x the default's efficiency "
                                      "(+- 900.00, estimated on 200 pilot pixels, divided by {:g} for its "
@@ -249,6 +260,16 @@ TEST(SubsurfacePilot, DescribesTheChoiceAndARoughGain) {
                                      kWalkStrategies[std::size_t(c.strategy)].p_guided, kHeavierStrategyHandicap)),
             std::string::npos)
       << heavier;
+  // One that guides backward says so, and why its figure was divided.
+  for (int v = 0; v < int(kWalkStrategies.size()); ++v)
+    if (kWalkStrategies[std::size_t(v)].backward_guiding) c.strategy = v;
+  ASSERT_TRUE(kWalkStrategies[std::size_t(c.strategy)].backward_guiding);
+  const std::string backward = describe_subsurface_choice(*sc, c);
+  EXPECT_NE(backward.find("guided toward the far side too"), std::string::npos) << backward;
+  EXPECT_NE(backward.find(fmt::format("divided by {:g} for what its far-side terms cost per ray",
+                                      kBackwardGuidingHandicap)),
+            std::string::npos)
+      << backward;
   c.strategy = 0;
   EXPECT_NE(describe_subsurface_choice(*sc, c).find("the default: no other strategy is significantly faster"),
             std::string::npos);

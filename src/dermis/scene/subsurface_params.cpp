@@ -197,7 +197,10 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
       if (!(e >= 0 && e <= 1)) throw SceneError(p.value_loc, "\"illuminationerror\" must be in [0, 1] (0: off)");
       s.illumination_error = e;
     }
-    else if (n == "backwardguiding") s.backward_guiding = read_bool(p);
+    else if (n == "backwardguiding") {
+      s.backward_guiding = read_bool(p);
+      s.backward_guiding_given = true;
+    }
     else if (n == "guidedshare") {
       const float v = read_float(p);
       if (!(v >= 0 && v <= 1)) throw SceneError(p.value_loc, "\"guidedshare\" must be in [0, 1]");

@@ -76,8 +76,11 @@ struct SubsurfaceParams {
   // keeps it, else it chooses among the disk's strategies (0.75 without the pilot).
   float normal_axis = 0.75f;
   bool normal_axis_given = false;
-  // Random walk: also guide toward the object's far side (sss/walk/random_walk.h).
+  // Random walk: also guide toward the object's far side (sss/walk/random_walk.h); given,
+  // the render's pilot keeps it, else it measures it among the walk's strategies
+  // (WalkStrategy::backward_guiding).
   bool backward_guiding = false;
+  bool backward_guiding_given = false;
   // (reflectance, mfp) -> coefficients: the exact half-space table, or the van de Hulst
   // fit (g = 0, index-matched) for comparison.
   bool albedo_inversion_fit = false;

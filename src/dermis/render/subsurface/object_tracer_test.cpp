@@ -146,6 +146,41 @@ TEST(WalkMethodOnItsOwn, ExitsCarryTheirOwnSurfaceCoordinates) {
   EXPECT_GT(far, 50);  // exits away from the entry, whose coordinates differ
 }
 
+// Backward guiding finds the object's far side below the entry point with one ray (from
+// the entry point against its normal, unbounded); the entry keeps it, so that its other
+// walks (three with one colour channel per walk) do not trace it again.
+TEST(WalkMethodOnItsOwn, TracesTheFarSideOncePerEntry) {
+  Spheres s({sphere({0, 0, 0}, 1)});
+  const std::vector<int> objects{0};
+  SubsurfaceParams p;
+  p.method = SubsurfaceParams::Method::RandomWalk;
+  p.sigma_a = RGB(0.1f);
+  p.sigma_s = RGB(2);
+  p.backward_guiding = p.backward_guiding_given = true;
+  p.channel_per_walk = p.channel_per_walk_given = true;
+  const SubsurfaceMaterial m = make_subsurface_material(p);
+  std::vector<Ray> rays;
+  PathCounters counters;
+  counters.recorded_rays = &rays;
+  const SurfaceHit entry = hit_from(s.embree, {0, 0, 5}, {0, 0, -1});
+  const ObjectTracer tracer(s.embree, objects, entry, counters);
+  SubsurfaceEntry e = bare_entry(entry, tracer);
+  EXPECT_FALSE(e.far_side.has_value());
+  for (int k = 0; k < 3; ++k) {
+    e.exit_index = k;
+    Sampler sampler(SamplerKind::Independent, 3, uint64_t(k), 0);
+    SubsurfaceExit ex;
+    sample_subsurface_exit(m, e, sampler, ex);
+    ASSERT_TRUE(e.far_side.has_value());
+    EXPECT_TRUE(e.far_side->hit);
+    EXPECT_NEAR(e.far_side->p.z, -1, 1e-4f);  // the sphere's bottom, facing down
+    EXPECT_NEAR(e.far_side->n.z, -1, 1e-4f);
+  }
+  const auto far_rays = std::count_if(rays.begin(), rays.end(), [](const Ray& r) { return std::isinf(r.tmax); });
+  EXPECT_EQ(far_rays, 1);
+  EXPECT_GT(rays.size(), 3u);  // and the walks' own flights
+}
+
 // A probe exit on a sphere lies on the sphere, with a finite, non-negative weight.
 TEST(ProbeMethodOnItsOwn, ExitsLieOnTheObject) {
   Spheres s({sphere({0, 0, 0}, 1), sphere({0, 0, -1.5f}, 0.3f)});

@@ -11,6 +11,7 @@
 #include "dermis/geometry/ray.h"
 #include "dermis/materials/bsdf.h"
 #include "dermis/render/subsurface/object_tracer.h"
+#include "dermis/sss/walk/boundary_hit.h"
 
 namespace dermis {
 
@@ -83,6 +84,11 @@ struct SubsurfaceEntry {
   // exit_light is zero wherever it is asked (no light the exits may sample: the scene's
   // lights are uniform skies that give way there): a method need not ask it.
   bool exit_light_none = false;
+  // The object's far side below the entry point, where a ray from hit.p along -hit.ng
+  // leaves it (the walk's backward guiding: sss/walk/random_walk.h make_walk_guide):
+  // traced by the entry's first walk that asks and kept for its other exits, which would
+  // trace the same ray (three per entry with one colour channel per walk).
+  mutable std::optional<sss::BoundaryHit> far_side = {};
 };
 
 }  // namespace dermis

@@ -88,7 +88,7 @@ WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture
   for (std::size_t i = 0; i < kWalkStrategies.size(); ++i) {
     sss::WalkSettings& s = settings_[i];
     s.sampling = walk_sampling(params.walk_sampling);
-    s.backward_guiding = params.backward_guiding;
+    s.backward_guiding = params.backward_guiding_given ? params.backward_guiding : kWalkStrategies[i].backward_guiding;
     s.p_guided = params.guided_share_pinned() ? params.guided_share : kWalkStrategies[i].p_guided;
     s.channel_preference =
         params.channel_preference_given ? params.channel_preference : kWalkStrategies[i].channel_preference;
@@ -97,6 +97,21 @@ WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture
     steps_.push_back(strategy_step(medium_, s, short_walk_rule_[i], object_chord_));
     channel_per_walk_[i] = params.channel_per_walk_given ? params.channel_per_walk : kWalkStrategies[i].channel_per_walk;
   }
+  // Every channel's importance length against the object's chord (short_walk_guided_shares'
+  // test; infinite for an unguided step: its walks are not pulled back toward the entry).
+  if (object_chord_ > 0) {
+    const sss::MixtureWalkStep<3> guided = sss::make_walk_step(medium_, sss::WalkSettings{});
+    bool all_short = true;
+    for (int c = 0; c < 3; ++c)
+      all_short = all_short && guided.importance_length(c) < kShortWalkChordFraction * object_chord_;
+    far_side_in_reach_ = !all_short;
+  }
+  bool guided = false;
+  for (std::size_t i = 0; i < kWalkStrategies.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      guided = guided || (kWalkStrategies[i].backward_guiding && settings_[i].sampling != sss::WalkSampling::Classical &&
+                          steps_[i].p_guided(c) > 0);
+  backward_strategies_differ_ = !params.backward_guiding_given && guided && far_side_in_reach_;
 }
 
 bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
@@ -182,7 +197,12 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
     b.t = length(last.p - o);
     return b;
   };
-  const sss::WalkGuide guide = sss::make_walk_guide(settings, in.p, in.ng, tracer);
+  // The far side's ray, once per entry (SubsurfaceEntry::far_side).
+  auto far_side_tracer = [&](Vec3 o, Vec3 d, double max_t) {
+    if (!entry.far_side) entry.far_side = tracer(o, d, max_t);
+    return *entry.far_side;
+  };
+  const sss::WalkGuide guide = sss::make_walk_guide(settings, in.p, in.ng, far_side_tracer);
   RGB weight = initial;  // a channel that starts at 0 stays 0 (random_walk.h: its flights are never drawn)
   for (int reflections = 0; reflections < kMaxInternalReflections; ++reflections) {
     sss::WalkResult res;

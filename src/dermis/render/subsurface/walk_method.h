@@ -71,16 +71,29 @@ struct WalkStrategy {
   // measures these two only where the scene has a uniform sky
   // (subsurface_pilot.cpp, offered_strategies).
   bool exit_sky_sampled = true;
+  // Guided flights also follow the importance of the object's far side below the entry
+  // point (sss/walk/random_walk.h, backward guiding; the material's `backwardguiding`).
+  // Where light enters a thin part from both faces (a fin under the sky) a walk's way out
+  // through either face is worth the same, and guiding toward the entry face alone fights
+  // half of it; elsewhere the far side's terms cost time for nothing. Given to every
+  // strategy, on the 27 walk configurations of bench/vs_cycles' three sets, efficiency
+  // 2.00x on the held-out fin under the sky (h06) and 1.37x on the textured one (t06),
+  // 0.55-0.95x on the other 25 (docs/rendering.md, "Backward guiding as a strategy"): so
+  // two strategies, the channel-per-walk ones the pilot takes on those fins, and only
+  // where the far side is within the walks' reach (WalkMethod::far_side_in_reach).
+  bool backward_guiding = false;
 };
-inline constexpr std::array<WalkStrategy, 9> kWalkStrategies{{{0.5f, 0.5f},
-                                                               {0.0f, 0.5f},
-                                                               {0.5f, 0.0f},
-                                                               {0.0f, 0.0f},
-                                                               {0.5f, 0.0f, true},
-                                                               {0.0f, 0.0f, true},
-                                                               {0.5f, 0.0f, true, false},
-                                                               {0.0f, 0.0f, true, false},
-                                                               {0.8f, 0.5f}}};
+inline constexpr std::array<WalkStrategy, 11> kWalkStrategies{{{0.5f, 0.5f},
+                                                                {0.0f, 0.5f},
+                                                                {0.5f, 0.0f},
+                                                                {0.0f, 0.0f},
+                                                                {0.5f, 0.0f, true},
+                                                                {0.0f, 0.0f, true},
+                                                                {0.5f, 0.0f, true, false},
+                                                                {0.0f, 0.0f, true, false},
+                                                                {0.8f, 0.5f},
+                                                                {0.5f, 0.0f, true, true, true},
+                                                                {0.5f, 0.0f, true, false, true}}};
 // Walks per channel-per-walk entry: one per colour channel.
 inline constexpr int kChannelWalks = 3;
 
@@ -119,6 +132,21 @@ class WalkMethod {
   bool channel_per_walk(int strategy) const {
     return strategy >= 0 && strategy < int(kWalkStrategies.size()) && channel_per_walk_[std::size_t(strategy)];
   }
+  // Whether the strategy's guided flights also follow the object's far side
+  // (WalkStrategy::backward_guiding, or the material's `backwardguiding`).
+  bool backward_guiding(int strategy) const {
+    return strategy >= 0 && strategy < int(kWalkStrategies.size()) &&
+           settings_[std::size_t(strategy)].backward_guiding;
+  }
+  // Whether a walk may reach the object's far side: not where every channel's importance
+  // length is below kShortWalkChordFraction of the object's mean chord (the walks are
+  // short against the object: short_walk_guided_shares), measured on the material's
+  // constant parameters; true where the chord is unknown.
+  bool far_side_in_reach() const { return far_side_in_reach_; }
+  // Whether the strategies that guide backward (WalkStrategy::backward_guiding) render
+  // images of their own: the material leaves backward guiding to the pilot, their walks
+  // are guided, and the far side is within reach. Else they are their twins' images.
+  bool backward_strategies_differ() const { return backward_strategies_differ_; }
 
  private:
   // initial: the throughput the walk starts with (1, or one channel's).
@@ -141,6 +169,8 @@ class WalkMethod {
   std::array<bool, kWalkStrategies.size()> channel_per_walk_{};
   std::vector<sss::MixtureWalkStep<3>> steps_;
   double object_chord_ = 0;
+  bool far_side_in_reach_ = true;
+  bool backward_strategies_differ_ = false;
   // Per strategy: its guided share is the default's, not the material's (the step takes
   // short_walk_guided_shares).
   std::array<bool, kWalkStrategies.size()> short_walk_rule_{};

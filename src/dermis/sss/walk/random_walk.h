@@ -17,6 +17,7 @@
 #include "dermis/core/rgb.h"
 #include "dermis/core/rng.h"
 #include "dermis/core/vec.h"
+#include "dermis/sss/walk/boundary_hit.h"
 #include "dermis/sss/walk/walk_step.h"
 
 namespace dermis::sss {
@@ -38,19 +39,17 @@ struct WalkSettings {
   // of the object's far side below the entry point, found by one ray against the entry
   // normal; the share of each side follows the depths (MixtureWalkStep::back_shares).
   bool backward_guiding = false;
-  int max_steps = 1024;  // scattering events before the walk is stopped (truncated)
+  // Scattering events before the walk is stopped (truncated: its energy is lost, counted
+  // and reported). At 1024, 45 of the walks of bench/vs_cycles' wax sphere (f04, single-
+  // scattering albedo near 1, one colour channel per walk) were truncated at 16 spp: a red
+  // walk lives about 2300 steps before its throughput reaches the roulette threshold. At
+  // 8192 none were, for the same variance and render time (docs/random-walk.md).
+  int max_steps = 8192;
   // Russian roulette when the largest channel of the throughput drops below this.
   float roulette_threshold = 0.1f;
   // The exponent k of the channel choice, throughput_c (1 - albedo_c)^-k
   // (MixtureWalkStep::channel_probabilities); 0: in proportion to the throughput.
   float channel_preference = 0.5f;
-};
-
-// The boundary seen from inside: the first hit of a ray, n the OUTWARD normal there.
-struct BoundaryHit {
-  bool hit = false;
-  float t = 0;
-  Vec3 p, n;
 };
 
 struct WalkResult {
@@ -122,16 +121,16 @@ bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, c
   GuideAxes<3> axes{Framed(guide.entry_n)};
   if (guide.has_far) axes.back = Framed(guide.far_n), axes.has_back = true;
   // The back share depends on where a flight starts (depths below both planes).
-  auto update_back_shares = [&](const Vec3d& x) {
+  auto update_back_shares = [&](const Vec3d& x, const std::array<double, 3>& q) {
     if (axes.has_back)
-      axes.back_share = step.back_shares(dot(guide.entry_p - x, guide.entry_n), dot(guide.far_p - x, guide.far_n));
+      axes.back_share = step.back_shares(dot(guide.entry_p - x, guide.entry_n), dot(guide.far_p - x, guide.far_n), q);
   };
   const double roulette = settings.roulette_threshold;
   std::array<double, 3> throughput{initial[0], initial[1], initial[2]};
   if (!(throughput[0] + throughput[1] + throughput[2] > 0)) return false;
   Vec3d position(start_p);
   std::array<double, 3> q = step.channel_probabilities(throughput);
-  update_back_shares(position);
+  update_back_shares(position, q);
   FlightProposal flight = step.propose_flight(normalize(Vec3d(dir_in)), axes, q, rng);
   for (int steps = 0;;) {
     const BoundaryHit hit = tracer(Vec3(position), Vec3(flight.direction), flight.distance);
@@ -160,7 +159,7 @@ bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, c
       for (double& t : throughput) t *= roulette / m;
     }
     q = step.channel_probabilities(throughput);
-    update_back_shares(position);
+    update_back_shares(position, q);
     flight = step.propose_scatter(flight.direction, axes, q, rng);
   }
   return false;

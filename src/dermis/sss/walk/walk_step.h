@@ -222,13 +222,17 @@ class MixtureWalkStep {
   // Shares below 1/1000 are set to 0 (the back term would be at most 1/2000 of the
   // mixture, next to 1/2 for classical sampling): the walk then skips the back terms,
   // which cost a third of a step's exponentials. Any share keeps the walk unbiased, as
-  // proposal and weight use the same one.
-  Channels back_shares(double depth_front, double depth_back) const {
+  // proposal and weight use the same one: so it is computed in single precision, and only
+  // for the channels a flight may be drawn in (q_c > 0; the others' are never read: with
+  // one colour channel per walk, one of three).
+  Channels back_shares(double depth_front, double depth_back, const Channels& q) const {
     Channels b{};
     for (int c = 0; c < N; ++c) {
+      if (!(q[c] > 0)) continue;
       const double x = guide_[c].kappa() * sigma_t_[c] * (depth_back - depth_front);
       if (x > kNegligibleBackExponent) continue;  // b = 0
-      b[c] = x >= 0 ? std::exp(-x) / (1 + std::exp(-x)) : 1 / (1 + std::exp(x));  // logistic, no overflow
+      const float e = std::exp(-float(std::abs(x)));  // the logistic without overflow
+      b[c] = x >= 0 ? double(e / (1 + e)) : double(1 / (1 + e));
     }
     return b;
   }
@@ -322,10 +326,11 @@ class MixtureWalkStep {
     return rng.uniform_double() < p;
   }
 
-  // Backward guiding: the back axis with probability back_share[c] (no draw without one).
+  // Backward guiding: the back axis with probability back_share[c] (no draw without one,
+  // nor where the share is 0: far from the far side, most of a walk's flights).
   template <class Random>
   static bool choose_back(const GuideAxes<N>& axes, int c, Random& rng) {
-    return axes.has_back && rng.uniform_double() < axes.back_share[c];
+    return axes.has_back && axes.back_share[c] > 0 && rng.uniform_double() < axes.back_share[c];
   }
 
   // Exponential free path -ln(1 - xi)/sigma (Beer-Lambert), sigma = sigma_t classically

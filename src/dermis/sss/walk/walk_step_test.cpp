@@ -168,27 +168,32 @@ TEST(WalkStep, ScatterPassageWeightsMatchQuadrature) {
 }
 
 // The back share is the far plane's part of the summed importance exp(-kappa sigma_t D):
-// the closed form, one half at equal depths, complementary when the depths swap, and
-// finite for depths far beyond the range of exp.
+// the closed form (in single precision: 1e-6), one half at equal depths, complementary
+// when the depths swap, finite for depths far beyond the range of exp, and 0 for a
+// channel no flight is drawn in.
 TEST(WalkStep, BackSharesFollowTheImportanceOfBothPlanes) {
-  const std::array<double, 3> sigma_t{1.0, 2.0, 0.5}, albedo{0.5, 0.9, 1.0};
+  const std::array<double, 3> sigma_t{1.0, 2.0, 0.5}, albedo{0.5, 0.9, 1.0}, q{0.2, 0.3, 0.5};
   const MixtureWalkStep<3> step(sigma_t, albedo, 0.0, 0.5);
   for (auto [front, back] : {std::pair{0.2, 1.5}, {3.0, 0.1}, {1.0, 1.0}, {0.5, 5.0}}) {
-    const auto b = step.back_shares(front, back), swapped = step.back_shares(back, front);
+    const auto b = step.back_shares(front, back, q), swapped = step.back_shares(back, front, q);
     for (int c = 0; c < 3; ++c) {
       const double k = step.guide(c).kappa() * sigma_t[c];
       const double i_front = std::exp(-k * front), i_back = std::exp(-k * back);
-      EXPECT_NEAR(b[c], i_back / (i_front + i_back), 1e-15) << c;
-      EXPECT_NEAR(b[c] + swapped[c], 1.0, 1e-15) << c;
+      EXPECT_NEAR(b[c], i_back / (i_front + i_back), 1e-6) << c;
+      EXPECT_NEAR(b[c] + swapped[c], 1.0, 1e-6) << c;
     }
+    const auto only_green = step.back_shares(front, back, {0.0, 1.0, 0.0});
+    EXPECT_EQ(only_green[0], 0.0);
+    EXPECT_EQ(only_green[1], b[1]);
+    EXPECT_EQ(only_green[2], 0.0);
   }
   // Below 1/1000 the share is dropped (exactly 0: no back terms), above it kept.
   const double k0 = step.guide(0).kappa() * sigma_t[0];
-  EXPECT_EQ(step.back_shares(0.0, std::log(1001.0) / k0)[0], 0.0);
-  EXPECT_GT(step.back_shares(0.0, std::log(999.0) / k0)[0], 0.0);
-  EXPECT_EQ(step.back_shares(0.0, 1e6)[0], 0.0);
-  EXPECT_EQ(step.back_shares(1e6, 0.0)[0], 1.0);
-  EXPECT_EQ(step.back_shares(0.0, 5.0)[2], 0.5);  // albedo 1: kappa = 0, no preference
+  EXPECT_EQ(step.back_shares(0.0, std::log(1001.0) / k0, q)[0], 0.0);
+  EXPECT_GT(step.back_shares(0.0, std::log(999.0) / k0, q)[0], 0.0);
+  EXPECT_EQ(step.back_shares(0.0, 1e6, q)[0], 0.0);
+  EXPECT_EQ(step.back_shares(1e6, 0.0, q)[0], 1.0);
+  EXPECT_EQ(step.back_shares(0.0, 5.0, q)[2], 0.5);  // albedo 1: kappa = 0, no preference
 }
 
 // q_c is proportional to throughput_c (1 - albedo_c)^-k, sums to one, and leaves a
