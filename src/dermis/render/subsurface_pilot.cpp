@@ -372,7 +372,8 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
   const bool share_given = p.guided_share_pinned();
   // The step's shares per channel (short_walk_guided_shares may raise some).
   std::string share = fmt::format("{:g}{}", share_given ? p.guided_share : w.p_guided, share_given ? " (given)" : "");
-  if (const auto* walk = std::get_if<WalkMethod>(&m.method)) {
+  const auto* walk = std::get_if<WalkMethod>(&m.method);
+  if (walk) {
     const sss::MixtureWalkStep<3>& step = walk->step(c.strategy);
     const bool alike = step.p_guided(0) == step.p_guided(1) && step.p_guided(1) == step.p_guided(2);
     if (alike && step.p_guided(0) != w.p_guided)
@@ -380,7 +381,6 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
     else if (!alike)
       share = fmt::format("{:g}, {:g}, {:g} (R, G, B)", step.p_guided(0), step.p_guided(1), step.p_guided(2));
   }
-  const auto* walk = std::get_if<WalkMethod>(&m.method);
   const bool walk_guides_backward = walk && walk->backward_guiding(c.strategy);
   const std::string what = fmt::format(
       "guided share {}, {}{}{}", share,

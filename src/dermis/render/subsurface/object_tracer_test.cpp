@@ -117,16 +117,22 @@ TEST(WalkMethodOnItsOwn, ConservesEnergyInANonAbsorbingSphere) {
   }
 }
 
+// A random walk in a medium of extinction 2.1 per unit and single-scattering albedo 0.95.
+SubsurfaceParams scattering_walk() {
+  SubsurfaceParams p;
+  p.method = SubsurfaceParams::Method::RandomWalk;
+  p.sigma_a = RGB(0.1f);
+  p.sigma_s = RGB(2);
+  return p;
+}
+
 // A walk's exit is a hit of its own: its surface coordinates are those of the exit point
 // (where a textured roughness is read), not the entry's: against a direct intersection
 // of the sphere at the exit point.
 TEST(WalkMethodOnItsOwn, ExitsCarryTheirOwnSurfaceCoordinates) {
   Spheres s({sphere({0, 0, 0}, 1)});
   const std::vector<int> objects{0};
-  SubsurfaceParams p;
-  p.method = SubsurfaceParams::Method::RandomWalk;
-  p.sigma_a = RGB(0.1f);
-  p.sigma_s = RGB(2);
+  SubsurfaceParams p = scattering_walk();
   const SubsurfaceMaterial m = make_subsurface_material(p);
   PathCounters counters;
   const SurfaceHit entry = hit_from(s.embree, {0, 0, 5}, {0, 0, -1});
@@ -152,10 +158,7 @@ TEST(WalkMethodOnItsOwn, ExitsCarryTheirOwnSurfaceCoordinates) {
 TEST(WalkMethodOnItsOwn, TracesTheFarSideOncePerEntry) {
   Spheres s({sphere({0, 0, 0}, 1)});
   const std::vector<int> objects{0};
-  SubsurfaceParams p;
-  p.method = SubsurfaceParams::Method::RandomWalk;
-  p.sigma_a = RGB(0.1f);
-  p.sigma_s = RGB(2);
+  SubsurfaceParams p = scattering_walk();
   p.backward_guiding = p.backward_guiding_given = true;
   p.channel_per_walk = p.channel_per_walk_given = true;
   const SubsurfaceMaterial m = make_subsurface_material(p);
