@@ -286,7 +286,8 @@ class MixtureWalkStep {
   }
 
   // Per-channel weight f_k / q of a flight that ends in a collision after f.distance;
-  // axes and q as given to the proposal.
+  // axes and q as given to the proposal. A channel with q_c = 0 gets 0: it must carry no
+  // throughput (as with channel_probabilities, where q_c is proportional to it).
   Channels collision_weights(const FlightProposal& f, const GuideAxes<N>& axes, const Channels& q) const {
     return weights(f, axes, f.distance, true, q);
   }
@@ -410,15 +411,19 @@ class MixtureWalkStep {
     Channels w;
     w.fill(0.0);
     if (!std::isfinite(b_max)) return w;  // no strategy could have sampled this flight
+    // A channel no flight is drawn in (q_c = 0) carries no throughput (q_c is proportional
+    // to it: channel_probabilities): its weight is left 0, its exponential not taken (with
+    // one colour channel per walk, two of a step's three).
     double mixture = 0, e[N];
     for (int c = 0; c < N; ++c) {
-      e[c] = exp_ratio(b_classical[c] - b_max);
+      e[c] = q[c] > 0 ? exp_ratio(b_classical[c] - b_max) : 0.0;
       mixture += a_classical[c] * e[c];
     }
     for (int i = 0; i < guided_terms; ++i) mixture += a_guided[i] * exp_ratio(b_guided[i] - b_max);
     if (!(mixture > 0)) return w;
     for (int c = 0; c < N; ++c)
-      w[c] = (f.scattered ? albedo_[c] * phase : 1.0) * (collision ? sigma_t_[c] : 1.0) * e[c] / mixture;
+      if (q[c] > 0)
+        w[c] = (f.scattered ? albedo_[c] * phase : 1.0) * (collision ? sigma_t_[c] : 1.0) * e[c] / mixture;
     return w;
   }
 
