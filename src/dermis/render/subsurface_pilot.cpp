@@ -74,6 +74,16 @@ bool no_strategy_can_gain(const std::vector<StrategyMeasure>& measures, int64_t 
   return true;
 }
 
+namespace {
+// Whether walk strategy `strategy` guides backward by the pilot's choice (not because the
+// material gives `backwardguiding`): it carries kBackwardGuidingHandicap.
+bool backward_by_choice(const SubsurfaceParams& params, int strategy) {
+  return params.method == SubsurfaceParams::Method::RandomWalk && strategy > 0 &&
+         strategy < int(kWalkStrategies.size()) && kWalkStrategies[std::size_t(strategy)].backward_guiding &&
+         !params.backward_guiding_given;
+}
+}  // namespace
+
 double pilot_handicap(const SubsurfaceParams& params, int strategy) {
   if (params.method == SubsurfaceParams::Method::Disk)  // fewer probes along T and B: heavier-tailed
     return strategy > 0 && strategy < int(kDiskNormalAxisShares.size()) &&
@@ -82,13 +92,12 @@ double pilot_handicap(const SubsurfaceParams& params, int strategy) {
                : 1;
   if (params.method != SubsurfaceParams::Method::RandomWalk) return 1;
   if (strategy <= 0 || strategy >= int(kWalkStrategies.size())) return 1;
-  const WalkStrategy& w = kWalkStrategies[std::size_t(strategy)];
   // Backward guiding's far-side terms cost arithmetic at every step that the pilot's ray
   // count does not see (6-7 % more time per ray), and its estimates read 1.03-1.32x what
   // the strategy rendered with (kBackwardGuidingHandicap).
-  if (w.backward_guiding && !params.backward_guiding_given) return kBackwardGuidingHandicap;
+  if (backward_by_choice(params, strategy)) return kBackwardGuidingHandicap;
   if (params.guided_share_pinned()) return 1;  // every strategy has the given share
-  return w.p_guided > kWalkStrategies[0].p_guided ? kHeavierStrategyHandicap : 1;
+  return kWalkStrategies[std::size_t(strategy)].p_guided > kWalkStrategies[0].p_guided ? kHeavierStrategyHandicap : 1;
 }
 
 bool subsurface_pilot_wanted(const RenderScene& sc) {
@@ -394,8 +403,8 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
       walk_guides_backward ? fmt::format(", guided toward the far side too{}", p.backward_guiding_given ? " (given)" : "")
                            : "");
   return describe_gain(c, to_string(m.params.method), what, pilot_handicap(p, c.strategy),
-                       w.backward_guiding && !p.backward_guiding_given ? "what its far-side terms cost per ray"
-                                                                      : "its heavier-tailed weights");
+                       backward_by_choice(p, c.strategy) ? "what its far-side terms cost per ray"
+                                                         : "its heavier-tailed weights");
 }
 
 }  // namespace dermis
