@@ -475,9 +475,12 @@ def gmean(v):
 
 
 def variant_kind(label):
-    """walk, disk or volumetric: the method family of a Dermis variant's label."""
+    """walk, disk, lines (the sphere lines) or volumetric: the method family of a Dermis
+    variant's label."""
     if label.startswith("volpath") or label == "volumetric":
         return "volumetric"
+    if label.startswith("sphere-lines"):
+        return "lines"
     return "walk" if label.startswith("randomwalk") else "disk"
 
 
@@ -525,6 +528,18 @@ def family_targets(entries, convention="obj"):
     return t
 
 
+def probe_cost_targets(entries):
+    """Item 2 of issue 40: each probe method's cost per camera sample at or below Cycles'
+    Christensen-Burley (render stage), on every configuration: the highest ratio."""
+    t = []
+    for kind, name in (("disk", "disk"), ("lines", "sphere lines")):
+        cost = [e["cost"] for e in entries if e["kind"] == kind]
+        if cost:
+            t.append((f"{name}: cost per sample <= Cycles' on every configuration (highest; lowest {min(cost):.3g})",
+                      max(cost), max(cost) <= 1))
+    return t
+
+
 def config_set(entries):
     """Which set the entries are: the held-out configurations (h01 ...), the textured ones
     (t01 ...) or the family's."""
@@ -547,7 +562,7 @@ def family_chart(entries, path):
              f"{e['albedo']} — {e['kind']}" for e in entries]
     y = np.arange(len(entries))[::-1]
     fig, ax = plt.subplots(figsize=(8.5, 0.28 * len(entries) + 1.4))
-    colors = {"walk": "#3b7dd8", "disk": "#e08a2e", "volumetric": "#4aa35a"}
+    colors = {"walk": "#3b7dd8", "disk": "#e08a2e", "lines": "#b05cc4", "volumetric": "#4aa35a"}
     ax.barh(y + 0.2, [e["obj"] for e in entries], height=0.38, color=[colors[e["kind"]] for e in entries],
             label="object pixels, render-stage time")
     ax.barh(y - 0.2, [e["img"] for e in entries], height=0.38, color=[colors[e["kind"]] for e in entries],
@@ -562,7 +577,7 @@ def family_chart(entries, path):
     ax.set_xlabel("efficiency Dermis ÷ Cycles, 1 / (MSE × time), geometric mean over the sweep")
     ax.legend(fontsize=7, loc="lower right")
     ax.set_title(f"Dermis vs Cycles on the {SET_TITLES[config_set(entries)]} "
-                 "(solid: walk blue, disk orange, volumetric green)", fontsize=9)
+                 "(solid: walk blue, disk orange, sphere lines purple, volumetric green)", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -608,6 +623,8 @@ def write_family_section(w, entries, image_dir, rel_images):
     w("")
     w("Targets of issue 40 (object convention):\n")
     for name, value, ok in family_targets(entries):
+        w(f"- {name}: **{value:.3g}** — {'met' if ok else 'not met'}")
+    for name, value, ok in probe_cost_targets(entries):
         w(f"- {name}: **{value:.3g}** — {'met' if ok else 'not met'}")
     img = [e["img"] for e in entries if e["default"]]
     if img:

@@ -238,11 +238,14 @@ def _family_lights(g, balance):
     return sky, lights
 
 
-def _family_scenes(configs=None, materials=None, prefix="f", kind="Family", media=True, checker=None, fov=None):
+def _family_scenes(configs=None, materials=None, prefix="f", kind="Family", media=True, checker=None, fov=None,
+                   lines=False):
     """The family's scenes (walk and disk twin of each configuration, then the media), or
     another set of configurations on the same geometries and lights (the held-out set).
     checker: the reflectance a checkerboard alternates with (textured_material).
-    fov: per geometry, a field of view instead of its camera's (the close-up set)."""
+    fov: per geometry, a field of view instead of its camera's (the close-up set).
+    lines: the disk twin also renders Dermis' other probe method, the sphere lines, with
+    the same profile against the same Cycles renders (issue 40, item 2 names both)."""
     configs = FAMILY_CONFIGS if configs is None else configs
     materials = FAMILY_MATERIALS if materials is None else materials
     out = {}
@@ -263,11 +266,15 @@ def _family_scenes(configs=None, materials=None, prefix="f", kind="Family", medi
             if checker:
                 material["checker"] = dict(cell=g["checker_cell"],
                                            reflectance=[checker * a for a in m["reflectance"]])
+            variants = {label: extra}
+            if lines and method == "burley":
+                variants[LINES_LABEL] = LINES_EXTRA
             sc = scene(name, geom, material,
                        f"{kind} configuration {info['config']}: {geo}, light {balance}, mfp/size {scale:g} "
                        f"(mfp {', '.join(f'{x:.3g}' for x in mfp)} mm), albedo {mat}"
                        + (f" in a 3D checkerboard with {checker:g} x it (cells {g['checker_cell']:g} mm)" if checker else "")
-                       + f"; Dermis `{label}` vs Cycles {cycles}.", {label: extra}, sky=sky, res=FAMILY_RES)
+                       + f"; Dermis `{' and `'.join(v + '`' for v in variants)} vs Cycles {cycles}.", variants,
+                       sky=sky, res=FAMILY_RES)
             sc["family"] = dict(info, method="walk" if method == "randomwalk" else "disk")
             out[name] = sc
     if not media:
@@ -286,7 +293,13 @@ def _family_scenes(configs=None, materials=None, prefix="f", kind="Family", medi
     return out
 
 
-FAMILY = _family_scenes()
+# The sphere lines (random lines through a sphere, the Cycles design) with the disk's
+# profile: a second Dermis variant of the family's disk twins (since the forty-second
+# session), against the same Cycles Christensen-Burley renders.
+LINES_LABEL = "sphere-lines burley"
+LINES_EXTRA = '"string method" "sphere-lines" "string profile" "burley"'
+
+FAMILY = _family_scenes(lines=True)
 SCENES.update(FAMILY)
 
 # Held-out configurations, for checking that what was measured on the family generalises:

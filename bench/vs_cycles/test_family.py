@@ -27,6 +27,11 @@ def test_the_family_spans_light_scale_geometry_albedo_and_media():
     # Every subsurface configuration has its walk and its disk twin, with one method each.
     methods = sorted(sc["family"]["method"] for sc in S.FAMILY.values() if sc["material"]["kind"] == "subsurface")
     assert methods == ["disk"] * len(S.FAMILY_CONFIGS) + ["walk"] * len(S.FAMILY_CONFIGS)
+    # The disk twins also render the other probe method (item 2 names both), after the disk.
+    for sc in S.FAMILY.values():
+        if sc["family"]["method"] == "disk":
+            assert list(sc["dermis"]) == ["disk burley", S.LINES_LABEL]
+            assert '"string method" "sphere-lines"' in pbrt_writer.scene_text(sc, S.LINES_LABEL, S.LINES_EXTRA)
 
 
 def test_scale_is_the_mean_mfp_over_the_smallest_extent():
@@ -114,7 +119,7 @@ def test_the_close_ups_are_the_family_framed_close_and_render(tmp_path):
     for name, sc in sorted(S.CLOSEUP.items()):
         twin = S.FAMILY["f" + name[1:]]
         assert sc["material"] == twin["material"] and sc["lights"] == twin["lights"] and sc["sky"] == twin["sky"]
-        assert sc["dermis"] == twin["dermis"]
+        assert sc["dermis"] == {k: v for k, v in twin["dermis"].items() if k != S.LINES_LABEL}
         geometry = sc["family"]["geometry"]
         assert sc["camera"] == dict(twin["camera"], fov=S.CLOSEUP_FOV[geometry])
         assert sc["camera"]["fov"] < twin["camera"]["fov"]
