@@ -8,7 +8,7 @@ image is measured against its own renderer's reference over the object's pixels 
 for the family, over the whole image too).
 
   /usr/bin/python3 bench/vs_cycles/run.py --quick                 # the family, smoke test, ~3 min
-  /usr/bin/python3 bench/vs_cycles/run.py                         # the family (issue 40), ~19 min on 2 cores
+  /usr/bin/python3 bench/vs_cycles/run.py                         # the family (issue 40), ~22 min on 2 cores
   /usr/bin/python3 bench/vs_cycles/run.py --set classic           # the seven scenes of issue 15, ~18 min
   /usr/bin/python3 bench/vs_cycles/run.py --set heldout           # eight held-out configurations, ~11 min
   /usr/bin/python3 bench/vs_cycles/run.py --set textured          # six with a checkerboard reflectance, ~9 min
