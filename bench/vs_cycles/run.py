@@ -12,7 +12,7 @@ for the family, over the whole image too).
   /usr/bin/python3 bench/vs_cycles/run.py --set classic           # the seven scenes of issue 15, ~18 min
   /usr/bin/python3 bench/vs_cycles/run.py --set heldout           # eight held-out configurations, ~11 min
   /usr/bin/python3 bench/vs_cycles/run.py --set textured          # six with a checkerboard reflectance, ~9 min
-  /usr/bin/python3 bench/vs_cycles/run.py --set closeup           # the family's twelve framed close, ~20 min
+  /usr/bin/python3 bench/vs_cycles/run.py --set closeup           # the family's twelve framed close, ~25 min
   /usr/bin/python3 bench/vs_cycles/run.py --scenes medium-matched,calibration --spp 16,64
 
 Measurement (as bench/sss_methods.py): E[(A - R)^2] = Var A + bias^2 + Var R, and the

@@ -358,7 +358,7 @@ SCENES.update(TEXTURED)
 # never used to tune.
 CLOSEUP_FOV = {"sphere": 11.0, "bust": 8.0, "fin": 13.0}
 CLOSEUP = _family_scenes(FAMILY_CONFIGS, FAMILY_MATERIALS, prefix="c", kind="Close-up", media=False,
-                         fov=CLOSEUP_FOV)
+                         fov=CLOSEUP_FOV, lines=True)
 SCENES.update(CLOSEUP)
 
 # ---------------------------------------------------------------- parameter conversions

@@ -119,7 +119,7 @@ def test_the_close_ups_are_the_family_framed_close_and_render(tmp_path):
     for name, sc in sorted(S.CLOSEUP.items()):
         twin = S.FAMILY["f" + name[1:]]
         assert sc["material"] == twin["material"] and sc["lights"] == twin["lights"] and sc["sky"] == twin["sky"]
-        assert sc["dermis"] == {k: v for k, v in twin["dermis"].items() if k != S.LINES_LABEL}
+        assert sc["dermis"] == twin["dermis"]
         geometry = sc["family"]["geometry"]
         assert sc["camera"] == dict(twin["camera"], fov=S.CLOSEUP_FOV[geometry])
         assert sc["camera"]["fov"] < twin["camera"]["fov"]
