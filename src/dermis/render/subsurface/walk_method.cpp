@@ -186,7 +186,7 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
   auto tracer = [&](Vec3 o, Vec3 d, double max_t) {
     sss::BoundaryHit b;
     Ray r{o, d};
-    if (o == start) r.o = offset_ray_origin(start, start_n, d);  // leave the surface we stand on
+    if (o == start) r.o = offset_ray_origin(start, start_n, d);  // leave the surface we stand on (the far side's ray)
     // Bounded by the flight's distance (random_walk.h), padded so that every crossing
     // within max_t of o is found from the offset origin: the walk compares t itself.
     if (std::isfinite(max_t)) r.tmax = float(max_t) * 1.0001f + length(r.o - o);
@@ -206,7 +206,13 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
   RGB weight = initial;  // a channel that starts at 0 stays 0 (random_walk.h: its flights are never drawn)
   for (int reflections = 0; reflections < kMaxInternalReflections; ++reflections) {
     sss::WalkResult res;
-    if (!sss::random_walk(step, settings, guide, start, dir, sampler, tracer, res, weight)) {
+    // The walk starts where its first ray does, off the surface it stands on: from the
+    // surface point itself, along a line that its ray (offset along the normal) does not
+    // follow, a grazing walk saw the far side where the offset line meets it, farther
+    // than its own line does, and a first collision between the two fell outside the
+    // object (WalkMethodOnItsOwn.StaysInsideTheObjectAtAGrazingEntry).
+    const Vec3 walk_start = offset_ray_origin(start, start_n, dir);
+    if (!sss::random_walk(step, settings, guide, walk_start, dir, sampler, tracer, res, weight)) {
       out.truncated = res.truncated;
       return false;
     }
