@@ -25,6 +25,9 @@ sss::WalkSampling walk_sampling(SubsurfaceParams::WalkSampling s) {
 }
 
 constexpr int kMaxInternalReflections = 256;
+// A walk leaving the surface at a smaller cosine to its normal starts off the surface
+// (WalkMethod::walk): along its line, the surface offset's depth lies up to ten offsets on.
+constexpr float kGrazingCos = 0.1f;
 
 std::atomic<uint64_t> g_next_method_id{0};
 
@@ -186,7 +189,15 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
   auto tracer = [&](Vec3 o, Vec3 d, double max_t) {
     sss::BoundaryHit b;
     Ray r{o, d};
-    if (o == start) r.o = offset_ray_origin(start, start_n, d);  // leave the surface we stand on (the far side's ray)
+    // Leave the surface we stand on along the flight's own line, to the depth at which
+    // offset_ray_origin would start it (the walk's first flight; the far side's ray).
+    // From that point moved along the normal instead, the ray follows a line parallel to
+    // the walk's, which meets the far side farther on where the flight grazes the surface
+    // (the chord of a convex part grows as the line moves in), and a collision between
+    // the two crossings fell outside the object, where the walk wandered until its step
+    // cap (bench/vs_cycles' milk configurations: a few paths per image;
+    // WalkMethodOnItsOwn.StaysInsideTheObjectAtAGrazingEntry).
+    if (o == start) r.o = start + d * (surface_offset(start) / std::abs(dot(d, start_n)));
     // Bounded by the flight's distance (random_walk.h), padded so that every crossing
     // within max_t of o is found from the offset origin: the walk compares t itself.
     if (std::isfinite(max_t)) r.tmax = float(max_t) * 1.0001f + length(r.o - o);
@@ -206,12 +217,13 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
   RGB weight = initial;  // a channel that starts at 0 stays 0 (random_walk.h: its flights are never drawn)
   for (int reflections = 0; reflections < kMaxInternalReflections; ++reflections) {
     sss::WalkResult res;
-    // The walk starts where its first ray does, off the surface it stands on: from the
-    // surface point itself, along a line that its ray (offset along the normal) does not
-    // follow, a grazing walk saw the far side where the offset line meets it, farther
-    // than its own line does, and a first collision between the two fell outside the
-    // object (WalkMethodOnItsOwn.StaysInsideTheObjectAtAGrazingEntry).
-    const Vec3 walk_start = offset_ray_origin(start, start_n, dir);
+    // A flight that all but grazes the surface (|cos| < kGrazingCos) would reach that
+    // depth only beyond the far side of a convex part as thin as depth / cos^2: that
+    // walk starts where its ray does, moved off the surface along the normal (its
+    // lines agree; it starts that depth below the surface, a bias of the order of that
+    // depth over the mean free path for the few walks that graze).
+    const bool grazing = std::abs(dot(dir, start_n)) < kGrazingCos;
+    const Vec3 walk_start = grazing ? offset_ray_origin(start, start_n, dir) : start;
     if (!sss::random_walk(step, settings, guide, walk_start, dir, sampler, tracer, res, weight)) {
       out.truncated = res.truncated;
       return false;
