@@ -118,17 +118,18 @@ TEST(WalkMethodOnItsOwn, ConservesEnergyInANonAbsorbingSphere) {
 }
 
 // A walk stays inside its object however grazing its entry. The tracer moves a flight
-// that starts on the surface off it (offset_ray_origin: along the normal, 1e-4 of |p|);
-// a walk that starts its first flight from the surface point itself while its ray starts
-// from the offset one sees the far side where that parallel line does, farther than along
-// its own line where the entry is grazing (the sphere's chord grows as the line moves in),
-// and a collision between the two lands outside: the walk then wandered outside until its
-// step cap (bench/vs_cycles' milk configurations: a few paths per image). Here the
-// entry's direction is 0.03 from the tangent plane (a matched boundary enters along the
-// ray) and the first flight's window between the chords is about a tenth of a unit: a
-// few per cent of the walks fell in it. Every flight must start inside the sphere (to
-// float rounding, 1e-7 of the radius per operation) and, in a medium that does not
-// absorb, every walk leaves it at its surface.
+// that starts on the surface off it (offset_ray_origin: along the normal, 1e-4 of |p|).
+// A walk that started its first flight from the surface point itself while its ray
+// started from the point moved along the normal saw the far side where that parallel line
+// does, farther than along its own line where the entry grazes (the sphere's chord grows
+// as the line moves in), and a collision between the two landed outside: the walk then
+// wandered outside until its step cap (bench/vs_cycles' milk configurations: a few paths
+// per image). Here a matched boundary enters along the ray, (0, 0, -1), at cosines 0.03
+// and 0.2 to the surface (the walk's two ways of leaving it: WalkMethod::walk, kGrazingCos
+// 0.1); at 0.03 the window between the chords was about a tenth of a unit and a few per
+// cent of the walks fell in it. Every flight must start inside the sphere (to float
+// rounding, 1e-7 of the radius per operation) and, in a medium that does not absorb,
+// every walk leaves it at its surface.
 TEST(WalkMethodOnItsOwn, StaysInsideTheObjectAtAGrazingEntry) {
   const float radius = 20;
   Spheres s({sphere({0, 0, 0}, radius)});
@@ -142,27 +143,25 @@ TEST(WalkMethodOnItsOwn, StaysInsideTheObjectAtAGrazingEntry) {
   std::vector<Ray> rays;
   PathCounters counters;
   counters.recorded_rays = &rays;
-  // Entries whose direction (0, 0, -1) meets the surface at cosines 0.03 and 0.2 (the
-  // walk's two ways of leaving the surface: WalkMethod::walk, kGrazingCos 0.1).
   for (const float x : {19.99f, 19.596f}) {
-  const SurfaceHit entry = hit_from(s.embree, {x, 0, 50}, {0, 0, -1});
-  ASSERT_LT(std::abs(entry.ng.z), 0.21f);
-  const ObjectTracer tracer(s.embree, objects, entry, counters);
-  const SubsurfaceEntry e = bare_entry(entry, tracer);  // wo = (0, 0, 1): the walk enters along -z
-  const int n = 4000;
-  int exited = 0, outside = 0;
-  for (int i = 0; i < n; ++i) {
-    rays.clear();
-    Sampler sampler(SamplerKind::Independent, 11, uint64_t(i), 0);
-    SubsurfaceExit ex;
-    if (sample_subsurface_exit(m, e, sampler, ex)) {
-      ++exited;
-      EXPECT_NEAR(length(ex.hit.p), radius, 1e-4f * radius) << i;
+    const SurfaceHit entry = hit_from(s.embree, {x, 0, 50}, {0, 0, -1});
+    ASSERT_LT(std::abs(entry.ng.z), 0.21f);
+    const ObjectTracer tracer(s.embree, objects, entry, counters);
+    const SubsurfaceEntry e = bare_entry(entry, tracer);  // wo = (0, 0, 1): the walk enters along -z
+    const int n = 4000;
+    int exited = 0, outside = 0;
+    for (int i = 0; i < n; ++i) {
+      rays.clear();
+      Sampler sampler(SamplerKind::Independent, 11, uint64_t(i), 0);
+      SubsurfaceExit ex;
+      if (sample_subsurface_exit(m, e, sampler, ex)) {
+        ++exited;
+        EXPECT_NEAR(length(ex.hit.p), radius, 1e-4f * radius) << i;
+      }
+      for (const Ray& r : rays) outside += length(r.o) > radius * (1 + 4e-7f);
     }
-    for (const Ray& r : rays) outside += length(r.o) > radius * (1 + 4e-7f);
-  }
-  EXPECT_EQ(outside, 0) << "entry cosine " << entry.ng.z;
-  EXPECT_EQ(exited, n) << "entry cosine " << entry.ng.z;
+    EXPECT_EQ(outside, 0) << "entry cosine " << entry.ng.z;
+    EXPECT_EQ(exited, n) << "entry cosine " << entry.ng.z;
   }
 }
 
