@@ -14,13 +14,13 @@ SANITIZE_BUILD ?= build-asan
 # A compiler launcher for the sanitizer build (e.g. CCACHE=ccache); none by default.
 CCACHE ?=
 # Left out of the sanitizer run, each for a reason (docs/robustness.md):
-#   python_module  CPython is not built with ASan: the extension would need libasan
+#   python.*       CPython is not built with ASan: the extension would need libasan
 #                  preloaded into /usr/bin/python3 (LD_PRELOAD) and LeakSanitizer would
 #                  judge the interpreter's own allocations alive at exit; the module's C++
 #                  is the library that dermis_tests runs under ASan, its bindings are not.
 #   bench\.        Python only (the Cycles harness loads); no Dermis code.
 #   mpi\.          dermis-mpi (Open MPI) is not built in the sanitizer run.
-SANITIZE_EXCLUDE ?= ^(python_module|bench\.|mpi\.)
+SANITIZE_EXCLUDE ?= ^(python\.|bench\.|mpi\.)
 SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/fuzz/lsan.supp:print_suppressions=0

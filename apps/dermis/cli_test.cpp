@@ -356,14 +356,15 @@ Shape "sphere"
 
 TEST_F(Cli, InterruptWritesThePartialImageAndSaysSo) {
   std::string scene = write("s.pbrt", kSmallScene);
-  // SIGINT half a second into the rendering of a render that would take minutes. Sent
-  // only once rendering has begun (its header line is in the log): a background job of
-  // sh starts with SIGINT ignored until dermis installs its handler, and on a loaded
-  // machine the start-up alone can take over a second (then the signal would be lost).
-  const std::string log = path("render.log");
+  // SIGINT to a render that would take minutes, sent once it has finished a pass: its first
+  // checkpoint (written after each pass past 1 ms) exists. Whatever the machine's speed, the
+  // signal then lands in the render loop with samples done (a background job of sh starts
+  // with SIGINT ignored until dermis installs its handler: a signal sent before would be lost).
+  const std::string log = path("render.log"), checkpoint = path("i.ckpt");
   std::string cmd = "sh -c '" + std::string(DERMIS_BINARY) + " render " + scene + " --spp 1000000 --res 64x64 -o " +
-                    path("i.exr") + " > " + log + " 2>&1 & pid=$!; i=0; while ! grep -q \"spp,\" " + log +
-                    " && [ $i -lt 600 ]; do sleep 0.1; i=$((i+1)); done; sleep 0.5; kill -INT $pid; wait $pid; "
+                    path("i.exr") + " --checkpoint " + checkpoint + " --checkpoint-interval 0.001 > " + log +
+                    " 2>&1 & pid=$!; i=0; while [ ! -e " + checkpoint +
+                    " ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; kill -INT $pid; wait $pid; "
                     "echo rc=$?; cat " + log + "'";
   FILE* p = popen(cmd.c_str(), "r");
   ASSERT_NE(p, nullptr);
@@ -379,6 +380,37 @@ TEST_F(Cli, InterruptWritesThePartialImageAndSaysSo) {
   float sum = 0;
   for (float v : img.pixels) sum += v;
   EXPECT_GT(sum, 0.0f);  // the samples finished before the interrupt are in the image
+}
+
+// A cache that cannot be written (its folder cannot be made, even by root: it would lie under
+// a file) never fails a render: the tables are built, used and not kept. The photon-beam
+// table is always written when built; the walk's albedo table when it took a second or more.
+TEST_F(Cli, AnUnwritableCacheNeverFailsARender) {
+  const std::string scene = write("tables.pbrt", R"(LookAt 0 0 -4  0 0 0  0 1 0
+Camera "perspective" "float fov" 40
+Film "rgb" "integer xresolution" 16 "integer yresolution" 8
+WorldBegin
+LightSource "infinite" "rgb L" [0.5 0.5 0.5]
+AttributeBegin
+  Translate -1.1 0 0
+  Material "subsurface" "rgb reflectance" [0.8 0.5 0.3] "rgb mfp" [0.2 0.2 0.2] "float eta" 1.37
+    "string method" "randomwalk"
+  Shape "sphere"
+AttributeEnd
+AttributeBegin
+  Translate 1.1 0 0
+  Material "subsurface" "rgb reflectance" [0.8 0.5 0.3] "rgb mfp" [0.2 0.2 0.2] "float eta" 1.37
+    "string method" "disk" "string profile" "photonbeam"
+  Shape "sphere"
+AttributeEnd
+)");
+  for (const char* env : {"XDG_CACHE_HOME=/dev/null/cache ", "XDG_CACHE_HOME= HOME=/dev/null "}) {
+    SCOPED_TRACE(env);
+    const CommandResult r = run_dermis("render " + scene + " -q --spp 2 --no-png -o " + path("t.exr"), env);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(fs::exists(path("t.exr")));
+    fs::remove(path("t.exr"));
+  }
 }
 
 TEST_F(Cli, CompareReportsDifferences) {

@@ -1,8 +1,25 @@
 """Shared fixtures of the module's tests: a small subsurface scene, the dermis binary."""
+import atexit
 import os
+import shutil
 import sys
+import tempfile
 
 import pytest
+
+# Never the user's cache (~/.cache/dermis): ctest gives each test file a fresh folder of its
+# own ($XDG_CACHE_HOME, under DERMIS_TEST_CACHE_ROOT); pytest run by hand gets a temporary
+# one, removed at exit. Tests of the cache itself choose their own.
+if not os.environ.get("DERMIS_TEST_CACHE_ROOT"):
+    _cache = tempfile.mkdtemp(prefix="dermis-test-cache-")
+    os.environ["XDG_CACHE_HOME"] = _cache
+    atexit.register(shutil.rmtree, _cache, True)
+
+
+def pytest_configure(config):
+    """ctest gives each test file its own --basetemp under build/test-tmp: its parent is made here."""
+    if config.option.basetemp:
+        os.makedirs(os.path.dirname(os.path.abspath(config.option.basetemp)), exist_ok=True)
 
 SOURCE_DIR = os.environ.get("DERMIS_SOURCE_DIR", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
 

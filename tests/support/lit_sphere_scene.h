@@ -33,12 +33,14 @@ AttributeEnd
 }
 
 // Scenes a and b (whole scene texts) render the same picture: independent samples with
-// seeds `seed` and seed + 1, spp per pixel.
-inline void expect_same_picture(const std::string& a, const std::string& b, int spp, uint64_t seed) {
+// seeds `seed` and seed + 1, spp per pixel; detectable_bias as expect_same_region_means'.
+inline void expect_same_picture(const std::string& a, const std::string& b, int spp, uint64_t seed,
+                                double detectable_bias = 0) {
   Diagnostics diag;
   auto sa = build_render_scene(parse_scene_string(a), diag);
   auto sb = build_render_scene(parse_scene_string(b), diag);
-  expect_same_region_means(pixel_statistics(*sa, spp, seed), pixel_statistics(*sb, spp, seed + 1), 4, 4);
+  expect_same_region_means(pixel_statistics(*sa, spp, seed), pixel_statistics(*sb, spp, seed + 1), 4, 4,
+                           detectable_bias);
 }
 
 }  // namespace dermis::testing

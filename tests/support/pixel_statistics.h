@@ -90,28 +90,63 @@ inline PixelStatistics replicated_pixel_statistics(const RenderScene& sc, Sample
   return st;
 }
 
-// Two estimates of the same picture agree: in every region of rw x rh pixels and every
-// channel, the means differ by at most 4 standard errors (of the difference).
-inline void expect_same_region_means(const PixelStatistics& a, const PixelStatistics& b, int rw, int rh) {
-  int failures = 0;
+// One region's comparison of two estimates: the difference of their region means in a
+// channel and its standard error (from the pixels' standard errors: the pixels are independent).
+struct RegionComparison {
+  int rx = 0, ry = 0, channel = 0;
+  double mean_a = 0, mean_b = 0, sigma = 0;
+  double z() const { return sigma > 0 ? (mean_a - mean_b) / sigma : (mean_a == mean_b ? 0.0 : INFINITY); }
+};
+
+// Every rw x rh region (left to right, top to bottom) and channel of two estimates.
+inline std::vector<RegionComparison> region_comparisons(const PixelStatistics& a, const PixelStatistics& b, int rw,
+                                                        int rh) {
+  std::vector<RegionComparison> out;
   for (int ry = 0; ry + rh <= a.height; ry += rh)
     for (int rx = 0; rx + rw <= a.width; rx += rw) {
-      const float n = float(rw * rh);
-      RGB ma(0), mb(0), va(0), vb(0);
+      const double n = double(rw * rh);
+      double ma[3] = {0, 0, 0}, mb[3] = {0, 0, 0}, va[3] = {0, 0, 0}, vb[3] = {0, 0, 0};
       for (int y = ry; y < ry + rh; ++y)
         for (int x = rx; x < rx + rw; ++x) {
           const std::size_t p = std::size_t(y) * a.width + x;
-          ma += a.mean[p] / n, mb += b.mean[p] / n;
-          va += a.stderr_[p] * a.stderr_[p] / (n * n), vb += b.stderr_[p] * b.stderr_[p] / (n * n);
+          for (int c = 0; c < 3; ++c) {
+            ma[c] += a.mean[p][c] / n, mb[c] += b.mean[p][c] / n;
+            va[c] += double(a.stderr_[p][c]) * a.stderr_[p][c] / (n * n);
+            vb[c] += double(b.stderr_[p][c]) * b.stderr_[p][c] / (n * n);
+          }
         }
-      for (int c = 0; c < 3; ++c) {
-        const double sigma = std::sqrt(double(va[c]) + vb[c]);
-        if (std::abs(ma[c] - mb[c]) > 4 * sigma && failures++ < 6)
-          ADD_FAILURE() << "region at " << rx << "," << ry << " channel " << c << ": " << ma[c] << " vs " << mb[c]
-                        << " (4 sigma = " << 4 * sigma << ")";
-      }
+      for (int c = 0; c < 3; ++c) out.push_back({rx, ry, c, ma[c], mb[c], std::sqrt(va[c] + vb[c])});
     }
+  return out;
+}
+
+// Two estimates of the same picture agree: in every region of rw x rh pixels and every
+// channel, the means differ by at most 4 standard errors (of the difference). The standard
+// errors come from each image's own sample variances; bench/statistics/ checks them against
+// the spread over many seeds (docs/testing.md, "Statistical tests").
+//
+// detectable_bias > 0: also asserts that the comparison is able to see the bias the test is
+// about. A relative bias of that size in `a` moves its most sensitive region-channel (the
+// largest mean over sigma) by at least 6 sigma, so it would fail with probability >= 97.7 %
+// (z about 6 +- 1 against the bound 4).
+inline void expect_same_region_means(const PixelStatistics& a, const PixelStatistics& b, int rw, int rh,
+                                     double detectable_bias = 0) {
+  int failures = 0;
+  double sensitivity = 0;  // the largest |mean| / sigma of a region-channel
+  for (const RegionComparison& r : region_comparisons(a, b, rw, rh)) {
+    if (std::abs(r.mean_a - r.mean_b) > 4 * r.sigma && failures++ < 6)
+      ADD_FAILURE() << "region at " << r.rx << "," << r.ry << " channel " << r.channel << ": " << r.mean_a << " vs "
+                    << r.mean_b << " (4 sigma = " << 4 * r.sigma << ")";
+    // Regions with noise only: a region of sky alone has none (a sigma that is the rounding
+    // of a constant), and a bias of the method under test does not move it.
+    if (r.sigma > 1e-5 * std::abs(r.mean_b)) sensitivity = std::max(sensitivity, std::abs(r.mean_b) / r.sigma);
+  }
   EXPECT_EQ(failures, 0);
+  if (detectable_bias > 0) {
+    EXPECT_GE(detectable_bias * sensitivity, 6.0)
+        << "too noisy to see a bias of " << detectable_bias << ": the most sensitive region sees "
+        << 6.0 / sensitivity << " at 6 sigma";
+  }
 }
 
 }  // namespace dermis::testing

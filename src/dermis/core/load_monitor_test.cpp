@@ -1,5 +1,7 @@
 // LoadStage: reports start at 0, grow, end at 1 once, are thinned to 1% steps, and the
 // cancel flag stops the stage (Interrupted, or false for the non-throwing form).
+#include <chrono>
+#include <cstdlib>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +39,24 @@ TEST(LoadStage, ReportsZeroGrowingValuesAndOneOnce) {
     EXPECT_GT(r.calls[i].second, r.calls[i - 1].second) << i;
     EXPECT_EQ(r.calls[i].first, "reading x");
   }
+}
+
+// The tests' pause ($DERMIS_TEST_LOAD_STEP_MS): after each report, none without the variable.
+// A lower bound on the stage's time (a sleep never ends early); the reports are the same.
+TEST(LoadStage, TheTestPauseFollowsEachReport) {
+  Recorder r;
+  const LoadMonitor m = r.monitor();
+  setenv("DERMIS_TEST_LOAD_STEP_MS", "20", 1);
+  const auto start = std::chrono::steady_clock::now();
+  {
+    LoadStage stage(&m, "reading x");  // reads the variable when it starts
+    unsetenv("DERMIS_TEST_LOAD_STEP_MS");
+    stage.update(0.5);
+    stage.update(0.501);  // not reported (under 1 % more): no pause
+    stage.finish();
+  }
+  EXPECT_GE(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(3 * 20));
+  EXPECT_EQ(r.calls.size(), 3u);
 }
 
 TEST(LoadStage, OutOfRangeFractionsAreClamped) {

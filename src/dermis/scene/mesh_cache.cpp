@@ -13,6 +13,8 @@
 
 #include <fmt/format.h>
 
+#include "dermis/source_hashes.h"  // generated (cmake/source_hashes.cmake)
+
 namespace dermis {
 
 namespace {
@@ -20,7 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kMagic[8] = {'D', 'R', 'M', 'S', 'M', 'E', 'S', 'H'};
-constexpr uint32_t kFormatVersion = 1;
+// 2: the importer's code hash follows the version.
+constexpr uint32_t kFormatVersion = 2;
 
 static_assert(sizeof(Vec3) == 3 * sizeof(float) && std::is_trivially_copyable_v<Vec3>);
 static_assert(sizeof(Vec2) == 2 * sizeof(float) && std::is_trivially_copyable_v<Vec2>);
@@ -136,6 +139,7 @@ struct Reader {
 std::string stat_header(const SourceState& s) {
   std::string out(kMagic, sizeof kMagic);
   put(out, kFormatVersion);
+  put_string(out, source_hash::kMeshImport);  // the code that imported it: another build's import is not read
   put_string(out, s.path);
   put(out, s.size);
   put(out, s.mtime);
@@ -209,7 +213,7 @@ void prune(const std::string& cache_dir, const std::string& keep) {
     }
     Reader r{head, sizeof kMagic};
     const bool ours = head.compare(0, sizeof kMagic, std::string(kMagic, sizeof kMagic)) == 0;
-    r.get<uint32_t>();  // the format's version: any
+    if (r.get<uint32_t>() >= 2) r.get_string();  // the format's version (any) and, from 2 on, the code hash
     const std::string source = r.get_string();
     std::error_code exists_ec;
     if (!ours || r.bad || !fs::exists(source, exists_ec)) fs::remove(e.path(), ec);

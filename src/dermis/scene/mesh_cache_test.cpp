@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "dermis/source_hashes.h"
+
 namespace dermis {
 namespace {
 
@@ -82,6 +84,26 @@ TEST_F(MeshCacheTest, AFileEditedToTheSameSizeAndTimeIsImportedAgain) {
   EXPECT_TRUE(moved);
   ASSERT_TRUE(load_cached_mesh(cache.string(), obj.string()));  // rewritten for the new file
   expect_same(*load_cached_mesh(cache.string(), obj.string()), again);
+}
+
+// A mesh imported by other code (another build: its sources' hash in the header differs) is
+// never read: the file is imported again and the cache rewritten by this code.
+TEST_F(MeshCacheTest, AMeshImportedByOtherCodeIsImportedAgain) {
+  const ImportedMesh direct = import_mesh_cached(obj.string(), nullptr, cache.string(), 0.0);
+  const std::string path = cache_file();
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::size_t at = bytes.find(source_hash::kMeshImport);
+  ASSERT_NE(at, std::string::npos) << "the header names the importer's code";
+  std::string other = bytes;
+  other[at] = other[at] == '0' ? '1' : '0';  // the same file, made by other code
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << other;
+  EXPECT_FALSE(load_cached_mesh(cache.string(), obj.string()));
+  expect_same(import_mesh_cached(obj.string(), nullptr, cache.string(), 0.0), direct);
+  ASSERT_TRUE(load_cached_mesh(cache.string(), obj.string()));  // rewritten by this code
 }
 
 TEST_F(MeshCacheTest, ADamagedOrTruncatedCacheIsAMiss) {

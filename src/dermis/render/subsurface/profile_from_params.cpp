@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "dermis/core/cache_dir.h"
+#include "dermis/source_hashes.h"  // generated (cmake/source_hashes.cmake)
 #include "dermis/sss/profiles/photon_beam_diffusion.h"
 #include "dermis/sss/profiles/profile_table_io.h"
 
@@ -27,12 +28,8 @@ std::shared_ptr<const sss::ProfileTable> photon_beam_table(float g, float eta) {
   const std::lock_guard lock(mutex);
   auto& table = tables[{g, eta}];
   if (!table) {
-    const sss::ProfileTableOptions options = sss::photon_beam_table_options();
-    const std::string key = fmt::format("photonbeam-v{}-g{:.9g}-eta{:.9g}-a{}-r{}-x{:.9g}-{:.9g}.table",
-                                        sss::kPhotonBeamTableVersion, g, eta, options.albedos.size(),
-                                        options.radial_nodes, options.x_min, options.x_max);
-    table = sss::cached_profile_table(default_cache_dir(), key, [&] {
-      return sss::ProfileTable(sss::photon_beam_family(g, eta), options);
+    table = sss::cached_profile_table(default_cache_dir(), photon_beam_table_key(g, eta), [&] {
+      return sss::ProfileTable(sss::photon_beam_family(g, eta), sss::photon_beam_table_options());
     });
   }
   return table;
@@ -64,6 +61,13 @@ sss::ProfileRGB photon_beam_profile(const MediumAt& at, const std::shared_ptr<co
 }
 
 }  // namespace
+
+std::string photon_beam_table_key(float g, float eta) {
+  const sss::ProfileTableOptions options = sss::photon_beam_table_options();
+  return fmt::format("photonbeam-v{}-{}-g{:.9g}-eta{:.9g}-a{}-r{}-x{:.9g}-{:.9g}.table", sss::kPhotonBeamTableVersion,
+                     source_hash::kPhotonBeamTable, g, eta, options.albedos.size(), options.radial_nodes,
+                     options.x_min, options.x_max);
+}
 
 std::shared_ptr<const sss::ProfileTable> profile_table(const SubsurfaceParams& p) {
   // The Cycles page's table: the (A, r/l) reparameterised dipole, at this eta.

@@ -14,6 +14,7 @@
 
 #include "dermis/core/cache_dir.h"
 #include "dermis/core/microfacet.h"
+#include "dermis/source_hashes.h"  // generated (cmake/source_hashes.cmake)
 #include "dermis/sss/halfspace/halfspace.h"
 
 namespace dermis::sss {
@@ -121,8 +122,9 @@ void AlbedoInversion::init_nodes() {
   }
   if (config.use_cache) {
     const std::string dir = config.cache_dir.empty() ? default_cache_dir() : config.cache_dir;
+    // The file names every parameter of the table and the code that made it (its sources' hash).
     if (!dir.empty())
-      cache_path_ = fmt::format("{}/albedo-v{}-eta{:.9g}{}{}{}-g{:.9g}-n{}-p{}-s{}-{}.txt", dir, kCacheVersion,
+      cache_path_ = fmt::format("{}/albedo-v{}-{}-eta{:.9g}{}{}{}-g{:.9g}-n{}-p{}-s{}-{}.txt", dir, kCacheVersion, source_hash::kAlbedoTable,
                                 config.eta, config.exit_matched ? "-exitmatched" : "",
                                 config.entry_lambertian ? "-lambertianentry" : "",
                                 config.alpha_x > 0 || config.alpha_y > 0

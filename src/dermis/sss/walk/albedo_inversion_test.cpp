@@ -8,6 +8,7 @@
 
 #include "dermis/sss/halfspace/chandrasekhar.h"
 #include "dermis/sss/halfspace/halfspace.h"
+#include "dermis/source_hashes.h"
 
 namespace dermis::sss {
 namespace {
@@ -112,6 +113,23 @@ TEST(AlbedoInversion, InvertsAsBisectionOfTheInterpolant) {
   EXPECT_NEAR(fitted.single_scattering_albedo(0.7), 1 - 0.2 * 0.2, 1e-7);
   EXPECT_EQ(fitted.single_scattering_albedo(0.05), 0.0);  // below A(alpha = 0) = 0.1
   EXPECT_EQ(fitted.single_scattering_albedo(1.0), 1.0);
+}
+
+// The cache file names what made the table: its parameters and the hash of the code's
+// sources (cmake/source_hashes.cmake), so that a table made by other code is never read.
+TEST(AlbedoInversion, TheCacheFileNamesTheTablesParametersAndCode) {
+  AlbedoTableConfig c = small_table(1.3, temp_cache_dir("key"));
+  c.g = 0.25, c.alpha_x = 0.2, c.alpha_y = 0.3, c.seed = 7;
+  const AlbedoInversion inv(c);
+  const std::string name = std::filesystem::path(inv.cache_path()).filename().string();
+  for (const std::string& part : {std::string(source_hash::kAlbedoTable), std::string("eta1.3"), std::string("g0.25"),
+                                 std::string("ax0.2"), std::string("ay0.3"), std::string("n24"), std::string("p20000"),
+                                 std::string("s7"), std::string(walk_sampling_name(c.sampling))})
+    EXPECT_NE(name.find(part), std::string::npos) << part << " in " << name;
+  // Each parameter gives another file.
+  AlbedoTableConfig other = c;
+  other.exit_matched = true;
+  EXPECT_NE(AlbedoInversion(other).cache_path(), inv.cache_path());
 }
 
 TEST(AlbedoInversion, CachesAndRebuildsCorruptCache) {
