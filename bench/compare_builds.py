@@ -2,7 +2,7 @@
 """Wall time of two dermis builds on the same scenes, run alternately in one session (the
 machine is shared and noisy: only the ratio in one run means anything).
 
-  /usr/bin/python3 bench/compare_builds.py OLD_DERMIS NEW_DERMIS [--reps 3]
+  /usr/bin/python3 bench/compare_builds.py OLD_DERMIS NEW_DERMIS [--reps 3] [--scale K]
 
 Each scene is rendered --reps times by each build, alternating; the median wall time of
 the whole process (parse, preparation, render) is reported, and new / old.
@@ -21,6 +21,7 @@ ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDe
 ap.add_argument("old")
 ap.add_argument("new")
 ap.add_argument("--reps", type=int, default=3)
+ap.add_argument("--scale", type=int, default=1, help="each scene's samples per pixel times K (longer renders, less noise)")
 args = ap.parse_args()
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 for scene, spp, res in SCENES:
@@ -28,8 +29,8 @@ for scene, spp, res in SCENES:
     for _ in range(args.reps):
         for binary in (args.old, args.new):
             t0 = time.time()
-            subprocess.run([binary, "render", scene, "--spp", str(spp), "--res", res, "-q", "--no-png", "-o",
+            subprocess.run([binary, "render", scene, "--spp", str(spp * args.scale), "--res", res, "-q", "--no-png", "-o",
                             "/tmp/dermis_compare_builds.exr"], check=True, cwd=root, stderr=subprocess.DEVNULL)
             times[binary].append(time.time() - t0)
     old, new = statistics.median(times[args.old]), statistics.median(times[args.new])
-    print(f"{scene:45s} spp {spp:3d} {res}: old {old:.2f} s, new {new:.2f} s, new/old {new / old:.3f}", flush=True)
+    print(f"{scene:45s} spp {spp * args.scale:3d} {res}: old {old:.2f} s, new {new:.2f} s, new/old {new / old:.3f}", flush=True)

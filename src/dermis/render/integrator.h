@@ -33,9 +33,6 @@ inline constexpr uint64_t kVertexDimensions = 32;
 // of the walk left the variance unchanged (x1.79 below independent either way) and
 // cost a fifth more render time in hashing.
 inline constexpr uint32_t kStratifiedExitDimensions = 8;
-// The region tag of the camera's first entry's exits drawn as one sequence
-// (Sampler::set_split), plus the exit count: each count its own dimensions.
-inline constexpr uint32_t kSplitExitsTag = 0x5e170000u;
 // Vertices past the first 6 of a path take the sample's PCG32 stream: deep in a medium
 // the hashing of Sobol' dimensions cost a quarter of the render time (a medium in glass)
 // for no measurable gain.
@@ -62,31 +59,16 @@ struct PathStart {
   // subsurface exits, SubsurfaceMaterial::exit_sky_rule).
   SkyRule prev_sky = SkyRule::Sampled;
   // The path starts after a specular event (not from the camera: a smooth boundary's
-  // exit): the emission it meets first counts in full, as after the camera.
+  // exit, the camera's split-off reflection): the emission it meets first counts in full,
+  // as after the camera.
   bool prev_specular = false;
   int depth = 0;  // scattering events already taken
   uint64_t first_dimension = kCameraDimensions;  // of vertex 0's block
-  // A camera path follows both reflection and transmission at its first smooth
-  // dielectric or subsurface hit (splitting; tests turn it off to compare).
-  bool split_first_hit = true;
-  // Next-event estimation at rough glass, on both sides of the surface, and at a rough
-  // subsurface entry, for its reflection (tests turn it off to compare with the
-  // estimator that finds emission there by BSDF sampling alone).
-  bool rough_glass_nee = true;
-  // At a smooth subsurface entry or smooth glass not split (all but the camera's first
-  // hit), in vacuum: the emission the reflection meets, where brighter than twice the mean
-  // sky, is added weighted F at every hit, and the reflected path, taken with probability
-  // F, goes on without it (tests turn it off to compare with finding that emission only on
-  // the paths that reflect).
-  bool reflection_emission = true;
-  // The camera's first smooth reflection, split off at a subsurface entry or glass: where
-  // it cannot see a bright emitter, Russian roulette on its throughput F (tests turn it
-  // off to compare with following it always).
-  bool reflection_roulette = true;
   // Russian roulette at the path's first vertex (its first surface hit, once that
   // surface's emission is counted, or its first scattering event in a medium) on this
-  // throughput (roulette_survival's argument; 0: none): the reflection above, where a sky
-  // can be seen, so that the sky met by its first ray counts in full.
+  // throughput (roulette_survival's argument; 0: none): the camera's split-off reflection,
+  // where a sky can be seen, so that the sky met by its first ray counts in full
+  // (path/path_state.h reflection_survival).
   float first_vertex_roulette = 0;
   // The sampling strategy of each subsurface material (SubsurfaceEntry::strategy, by
   // RenderScene::subsurface index; null: every material's default, 0): the render's pilot
@@ -99,7 +81,8 @@ struct PathStart {
   int* split_budget = nullptr;
 };
 
-// Radiance arriving along `ray` (from the camera), starting in `medium`.
+// Radiance arriving along `ray` (from the camera), starting in `medium`: the loop over the
+// path's vertices, each a unit of render/path/ (docs/ARCHITECTURE.md).
 RGB trace_path(const RenderScene& scene, Ray ray, int medium, Sampler& sampler, PathCounters& counters,
                const PathStart& start = {});
 

@@ -10,7 +10,10 @@
 
 #include <fmt/format.h>
 
+#include "dermis/render/integrator.h"
 #include "dermis/render/renderer.h"
+#include "dermis/render/scene_preparation.h"
+#include "dermis/scene/parser.h"
 #include "dermis/render/subsurface/probe_method.h"
 #include "support/lit_sphere_scene.h"
 
@@ -42,6 +45,47 @@ TEST(PathSplitting, OffOrNotANumberNeverSplits) {
   EXPECT_EQ(split_count(RGB(std::numeric_limits<float>::infinity()), 2, budget), 1);
   EXPECT_EQ(split_count(RGB(std::numeric_limits<float>::quiet_NaN()), 2, budget), 1);
   EXPECT_EQ(budget, 10);
+}
+
+// The reflection split off at the camera's first hit on smooth glass spends the camera
+// sample's split budget, shared with every path nested in it (PathStart::split_budget), as
+// the reflection split off at a subsurface entry does: the glass reflection used to start a
+// budget of its own (up to 2 x kSplitBudgetPerSample copies a sample). The camera sees a
+// smooth glass plate at 45 degrees whose reflection shows a bright sphere of disk probes
+// (exit weights of 3 to 6: splits); through the plate it sees nothing.
+TEST(PathSplitting, TheGlassReflectionSpendsTheSamplesBudget) {
+  Diagnostics diag;
+  auto sc = build_render_scene(parse_scene_string(R"(LookAt 0 -4 0  0 0 0  0 0 1
+Camera "perspective" "float fov" 10
+Film "rgb" "integer xresolution" 1 "integer yresolution" 1
+WorldBegin
+LightSource "point" "point3 from" [1.5 -1 0] "rgb I" [20 20 20]
+AttributeBegin
+  Material "dielectric" "float eta" 2.5
+  Shape "trianglemesh" "point3 P" [-1 -1 -1  1 1 -1  1 1 1  -1 -1 1] "integer indices" [0 1 2 0 2 3]
+AttributeEnd
+AttributeBegin
+  Translate 3 0 0
+  Material "subsurface" "rgb reflectance" [0.9 0.9 0.9] "rgb mfp" [0.5 0.5 0.5] "string method" "disk"
+  Shape "sphere"
+AttributeEnd
+)"),
+                               diag);
+  PathCounters counters;
+  int spent = 0, samples_spending = 0;
+  for (uint32_t i = 0; i < 4096; ++i) {
+    int budget = kSplitBudgetPerSample;
+    PathStart start;
+    start.split_budget = &budget;
+    Sampler sampler(SamplerKind::Independent, 7, 0, i);
+    trace_path(*sc, sc->camera.generate_ray({0.5f, 0.5f}, {0.5f, 0.5f}), sc->camera_medium, sampler, counters, start);
+    EXPECT_GE(budget, 0);
+    spent += kSplitBudgetPerSample - budget;
+    samples_spending += budget < kSplitBudgetPerSample;
+  }
+  // About 1 % of the samples reach the sphere past the reflection's roulette and split there;
+  // with a budget of its own the reflection spent none of the sample's.
+  EXPECT_GE(samples_spending, 10) << spent << " copies in all";
 }
 
 // A closed box [lo, hi] as a triangle mesh, its faces wound counter-clockwise seen from

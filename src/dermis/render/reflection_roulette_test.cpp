@@ -36,10 +36,9 @@ const char* kFloor =
 void expect_picture_of_following_always(const std::string& scene, uint64_t seed) {
   Diagnostics diag;
   auto sc = build_render_scene(parse_scene_string(scene), diag);
-  PathStart always;
-  always.reflection_roulette = false;
   const auto a = testing::pixel_statistics(*sc, 256, seed);
-  const auto b = testing::pixel_statistics(*sc, 256, seed + 1, always);
+  sc->switches.reflection_roulette = false;  // followed always
+  const auto b = testing::pixel_statistics(*sc, 256, seed + 1);
   testing::expect_same_region_means(a, b, 4, 4);
   testing::expect_same_region_means(a, b, 16, 16);  // the whole image as one region
 }
@@ -73,10 +72,9 @@ TEST(ReflectionRoulette, ASkySeenInTheReflectionCountsInEverySample) {
     SCOPED_TRACE(object);
     Diagnostics diag;
     auto sc = build_render_scene(parse_scene_string(header + object + "Shape \"sphere\"\n"), diag);
-    PathStart always;
-    always.reflection_roulette = false;
     const auto a = testing::pixel_statistics(*sc, 16, 85);
-    const auto b = testing::pixel_statistics(*sc, 16, 85, always);
+    sc->switches.reflection_roulette = false;  // followed always
+    const auto b = testing::pixel_statistics(*sc, 16, 85);
     for (std::size_t p = 0; p < a.mean.size(); ++p)
       for (int c = 0; c < 3; ++c) ASSERT_EQ(a.mean[p][c], b.mean[p][c]) << "pixel " << p << " channel " << c;
   }

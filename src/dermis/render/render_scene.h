@@ -24,6 +24,25 @@
 
 namespace dermis {
 
+// Switches that turn one of the path tracer's variance reductions off, so that a test can
+// compare its estimator with the one without (each is unbiased: the same mean). A render
+// keeps them all on; they are the scene's, read once per use, not carried by every path.
+struct EstimatorSwitches {
+  // A camera path follows both reflection and transmission at its first smooth dielectric
+  // or subsurface hit (path/camera_reflection.h).
+  bool split_first_hit = true;
+  // Next-event estimation at rough glass, on both sides of the surface, and at a rough
+  // subsurface entry and a walk's rough exits; off: their emission found by BSDF sampling alone.
+  bool rough_glass_nee = true;
+  // At a smooth subsurface entry or smooth glass not split, in vacuum: the emission the
+  // reflection meets, where brighter than twice the mean sky, added weighted F at every hit
+  // (path/emission.h add_bright_emission_seen); off: found only on the paths that reflect.
+  bool reflection_emission = true;
+  // The camera's first smooth reflection, where it cannot see a bright emitter, rouletted on
+  // its throughput (path/path_state.h reflection_survival); off: followed always.
+  bool reflection_roulette = true;
+};
+
 struct RenderScene {
   std::vector<Shape> shapes;
   std::unique_ptr<EmbreeScene> embree;
@@ -64,6 +83,7 @@ struct RenderScene {
   Camera camera;
   FilmDesc film;
   RenderSettingsDesc settings;
+  EstimatorSwitches switches;  // all on but in tests
   bool prepared = false;  // scene_preparation.h has run
 };
 

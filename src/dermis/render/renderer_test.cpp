@@ -33,10 +33,9 @@ TEST(Renderer, SobolSamplerGivesTheMeanOfIndependentSampling) {
 TEST(Renderer, SplittingTheFirstHitKeepsTheMean) {
   Diagnostics diag;
   auto sc = build_render_scene(small_scene(), diag);
-  PathStart no_split;
-  no_split.split_first_hit = false;
   auto split = testing::pixel_statistics(*sc, 128, 60);
-  auto chosen = testing::pixel_statistics(*sc, 128, 61, no_split);
+  sc->switches.split_first_hit = false;
+  auto chosen = testing::pixel_statistics(*sc, 128, 61);
   testing::expect_same_region_means(split, chosen, 10, 10);
 }
 

@@ -1,6 +1,6 @@
 // Light sampling at rough glass (both sides of the surface), at a rough subsurface entry
 // (its reflection lobe) and at a walk's rough exits (through the boundary from inside) changes the noise, never the mean: each scene rendered with
-// and without it (PathStart::rough_glass_nee, the estimator that finds emission there by
+// and without it (EstimatorSwitches::rough_glass_nee, the estimator that finds emission there by
 // BSDF sampling alone), independent samples, region means within 4 standard errors of the
 // difference. The variance ratio (without / with) is printed; it must exceed one.
 #include <gtest/gtest.h>
@@ -74,10 +74,9 @@ AttributeEnd
 double expect_same_mean_and_variance_ratio(const std::string& scene, int spp, uint64_t seed) {
   Diagnostics diag;
   auto sc = build_render_scene(parse_scene_string(scene, "test.pbrt"), diag);
-  PathStart without;
-  without.rough_glass_nee = false;
   const auto with_nee = testing::pixel_statistics(*sc, spp, seed);
-  const auto bsdf_only = testing::pixel_statistics(*sc, spp, seed + 1, without);
+  sc->switches.rough_glass_nee = false;
+  const auto bsdf_only = testing::pixel_statistics(*sc, spp, seed + 1);
   testing::expect_same_region_means(with_nee, bsdf_only, 4, 4);
   double var_with = 0, var_without = 0;
   for (std::size_t p = 0; p < with_nee.mean.size(); ++p)

@@ -369,8 +369,9 @@ TEST(SubsurfacePilot, RecordsTheCameraReflectionApart) {
     }
     SubsurfaceEntryRecord unsplit;
     start.subsurface_record = &unsplit;
-    start.split_first_hit = false;
+    sc->switches.split_first_hit = false;
     trace_path(*sc, ray, sc->camera_medium, sampler, counters, start);
+    sc->switches.split_first_hit = true;
     EXPECT_EQ(unsplit.camera_reflection[0], 0.0f);
   }
 }

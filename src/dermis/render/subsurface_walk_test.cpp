@@ -106,10 +106,9 @@ TEST(SubsurfaceRandomWalk, SplittingTheEntryKeepsTheMean) {
       parse_scene_string(kHeader + "Material \"subsurface\" " + kCoefficients +
                          " \"float eta\" 1.4 \"string method\" \"randomwalk\"\nShape \"sphere\"\n"),
       diag);
-  PathStart no_split;
-  no_split.split_first_hit = false;
-  testing::expect_same_region_means(testing::pixel_statistics(*sc, 192, 70),
-                                    testing::pixel_statistics(*sc, 192, 71, no_split), 4, 4);
+  const auto split = testing::pixel_statistics(*sc, 192, 70);
+  sc->switches.split_first_hit = false;
+  testing::expect_same_region_means(split, testing::pixel_statistics(*sc, 192, 71), 4, 4);
 }
 
 // Several exits at the camera's first entry (Integrator "subsurfacesamples"), their direct
@@ -181,11 +180,10 @@ AttributeBegin
 AttributeEnd
 )" + floor + sphere + "Shape \"sphere\"\n"),
                                  diag);
-    PathStart every_hit, chosen;
-    every_hit.split_first_hit = chosen.split_first_hit = false;
-    chosen.reflection_emission = false;
-    const auto every = testing::pixel_statistics(*sc, 256, 80, every_hit);
-    const auto only_reflected = testing::pixel_statistics(*sc, 256, 81, chosen);
+    sc->switches.split_first_hit = false;
+    const auto every = testing::pixel_statistics(*sc, 256, 80);
+    sc->switches.reflection_emission = false;
+    const auto only_reflected = testing::pixel_statistics(*sc, 256, 81);
     testing::expect_same_region_means(every, only_reflected, 4, 4);
     double v_every = 0, v_chosen = 0;
     for (std::size_t p = 0; p < every.mean.size(); ++p)

@@ -55,7 +55,7 @@ using InteriorAlbedo = FunctionRef<RGB(const SurfaceHit& hit)>;
 // through `boundary` (a rough dielectric seen from inside) toward wo inside: one light
 // sample per group, f(wo, wi)|cos wi| L / pdf over the directions wi outside, MIS-weighted
 // against sampling `boundary` (integrator.h estimate_direct). Zero when the integrator does
-// no light sampling there (PathStart::rough_glass_nee off).
+// no light sampling there (EstimatorSwitches::rough_glass_nee off, render_scene.h).
 using LightThrough = FunctionRef<RGB(Vec3 p, Vec3 n, const BSDF& boundary, Vec3 wo, Sampler& sampler)>;
 
 // Direct light leaving the object at `exit` (hit.ng outward) through the exit lobe Sw: one

@@ -1,0 +1,15 @@
+// A path's segment through a homogeneous medium, up to the surface it was traced to (or to
+// infinity): the light in-scattered along the segment, and the free flight that either
+// scatters in the medium (the phase function sampled for the way on) or passes through
+// (Cycles' shade_volume; pbrt-v4's VolPathIntegrator::Li, its medium part).
+#pragma once
+
+#include "dermis/render/path/path_state.h"
+
+namespace dermis {
+
+// st.ray traced to t_hit (infinity: no surface) in medium st.medium. kContinue: the path
+// scattered and goes on along st.ray; kPassThrough: it reached t_hit; kStop: it ended.
+VertexOutcome shade_volume(PathContext& ctx, PathState& st, float t_hit);
+
+}  // namespace dermis
