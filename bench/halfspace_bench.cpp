@@ -24,4 +24,3 @@ void BM_HalfspacePaths(benchmark::State& state) {
 BENCHMARK(BM_HalfspacePaths)->Arg(500)->Arg(900)->Arg(990)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
-

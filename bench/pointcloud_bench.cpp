@@ -68,8 +68,6 @@ void PointCloud_Query(benchmark::State& state) {
     benchmark::DoNotOptimize(d.radiant_exitance(x, RGB(1.0f)));
   }
 }
-BENCHMARK(PointCloud_Query)
-    ->ArgsProduct({{10000, 100000}, {300, 100, 30, 10}, {0, 1}})
-    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(PointCloud_Query)->ArgsProduct({{10000, 100000}, {300, 100, 30, 10}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 }  // namespace

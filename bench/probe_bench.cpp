@@ -19,10 +19,14 @@ const char* const kNames[] = {"Gaussian RGB", "Skin (14 lobes)", "Burley RGB", "
 
 ProfileRGB make(Kind kind) {
   switch (kind) {
-    case kGaussian: return make_gaussian_rgb(RGB(0.8f, 0.6f, 0.4f), RGB(0.04f, 0.09f, 0.25f));
-    case kSkin: return make_skin_rgb(1.0);
-    case kBurley: return make_burley_rgb(RGB(0.8f, 0.5f, 0.3f), RGB(0.5f, 0.3f, 0.2f));
-    case kDipole: return make_dipole_rgb(RGB(0.8f, 0.5f, 0.3f), RGB(0.3f, 0.2f, 0.1f), 1.3);
+    case kGaussian:
+      return make_gaussian_rgb(RGB(0.8f, 0.6f, 0.4f), RGB(0.04f, 0.09f, 0.25f));
+    case kSkin:
+      return make_skin_rgb(1.0);
+    case kBurley:
+      return make_burley_rgb(RGB(0.8f, 0.5f, 0.3f), RGB(0.5f, 0.3f, 0.2f));
+    case kDipole:
+      return make_dipole_rgb(RGB(0.8f, 0.5f, 0.3f), RGB(0.3f, 0.2f, 0.1f), 1.3);
   }
   return {};
 }

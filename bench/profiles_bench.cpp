@@ -18,11 +18,16 @@ const char* const kNames[] = {"Gaussian", "SkinSumOfGaussians(red,6)", "Cubic", 
 
 RadialProfile make(Kind kind) {
   switch (kind) {
-    case kGaussian: return GaussianProfile(0.25, 0.8);
-    case kSkinRed: return skin_sum_of_gaussians(1.0, dermis::RGB(0.8f))[0];
-    case kCubic: return CubicProfile(1.5, 0.8);
-    case kDipole: return DipoleProfile::from_albedo(0.8, 0.5, 1.3);
-    case kBurley: return BurleyProfile(0.8, 0.5);
+    case kGaussian:
+      return GaussianProfile(0.25, 0.8);
+    case kSkinRed:
+      return skin_sum_of_gaussians(1.0, dermis::RGB(0.8f))[0];
+    case kCubic:
+      return CubicProfile(1.5, 0.8);
+    case kDipole:
+      return DipoleProfile::from_albedo(0.8, 0.5, 1.3);
+    case kBurley:
+      return BurleyProfile(0.8, 0.5);
     case kTabulatedDipole: {
       static const auto table = std::make_shared<const ProfileTable>(dipole_family(1.3));
       return TabulatedProfile(table, 0.8, 0.5);
@@ -80,4 +85,3 @@ BENCHMARK(BM_ProfileSampleRadius)->DenseRange(0, 5);
 BENCHMARK(BM_ProfilePdfRadius)->DenseRange(0, 5);
 
 }  // namespace
-

@@ -103,4 +103,3 @@ BENCHMARK(BM_DemoRawEmbreeIntersect1)->Unit(benchmark::kMillisecond)->MinTime(2.
 
 }  // namespace
 }  // namespace dermis
-

@@ -125,13 +125,11 @@ void GeometryArguments(benchmark::internal::Benchmark* b, std::initializer_list<
     for (int alpha : {500, 900, 990})
       for (int strategy = 0; strategy < 5; ++strategy) b->Args({size, alpha, strategy, 50});
 }
-BENCHMARK(BM_SlabWalkEfficiency)
-    ->Apply([](auto* b) { GeometryArguments(b, {5, 10, 20, 40, 80, 160}); })
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK(BM_SphereWalkEfficiency)
-    ->Apply([](auto* b) { GeometryArguments(b, {5, 20, 80}); })
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
+BENCHMARK(BM_SlabWalkEfficiency)->Apply([](auto* b) {
+                                  GeometryArguments(b, {5, 10, 20, 40, 80, 160});
+                                }) -> Unit(benchmark::kMillisecond) -> UseRealTime();
+BENCHMARK(BM_SphereWalkEfficiency)->Apply([](auto* b) {
+                                    GeometryArguments(b, {5, 20, 80});
+                                  }) -> Unit(benchmark::kMillisecond) -> UseRealTime();
 
 }  // namespace walk_geometry

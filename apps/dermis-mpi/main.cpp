@@ -2,11 +2,11 @@
 //   mpirun -n N dermis-mpi render SCENE [the options of dermis render] [--tiles interleaved|blocks]
 // Every rank reads the scene; they share the pre-passes and the tiles; rank 0 prints
 // the progress and writes the image, bit-identical to `dermis render` with the same seed.
+#include <fmt/format.h>
 #include <mpi.h>
 
 #include <CLI/CLI.hpp>
 #include <csignal>
-#include <fmt/format.h>
 
 #include "mpi_process_group.h"
 #include "render_job.h"
@@ -23,8 +23,9 @@ int main(int argc, char** argv) {
   std::string tiles = "interleaved";
   auto* cmd = app.add_subcommand("render", "Render a pbrt-v4 scene to EXR (and a PNG preview) on all ranks");
   dermis::app::add_render_options(*cmd, args);
-  cmd->add_option("--tiles", tiles, "which rank renders which 16x16 tile: interleaved (tile i on rank i mod N, the "
-                                    "default) or blocks (contiguous runs of tiles)")
+  cmd->add_option("--tiles", tiles,
+                  "which rank renders which 16x16 tile: interleaved (tile i on rank i mod N, the "
+                  "default) or blocks (contiguous runs of tiles)")
       ->check(CLI::IsMember({"interleaved", "blocks"}));
   try {
     app.parse(argc, argv);

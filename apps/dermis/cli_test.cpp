@@ -112,7 +112,8 @@ Camera "perspective" "float fov" 40
 Film "rgb" "integer xresolution" 8 "integer yresolution" 8
 WorldBegin
 LightSource "infinite" "rgb L" [0.5 0.5 0.5]
-Texture "t" "spectrum" "imagemap" "string filename" ")" + path("tex.png") + R"("
+Texture "t" "spectrum" "imagemap" "string filename" ")" +
+                               path("tex.png") + R"("
 Material "diffuse" "texture reflectance" "t"
 Shape "sphere" "float radius" 1
 )";
@@ -210,29 +211,29 @@ TEST_F(Cli, ResumeFromACheckpointIsBitIdentical) {
   std::string scene = write("s.pbrt", kSmallScene);
   const std::string common = " -q --no-png --seed 3 --threads 2 ";
   ASSERT_EQ(run_dermis("render " + scene + common + "--spp 6 -o " + path("whole.exr")).status, 0);
-  CommandResult first = run_dermis("render " + scene + common + "--spp 2 --checkpoint " + path("c.ckpt") + " -o " +
-                                   path("part.exr"));
+  CommandResult first =
+      run_dermis("render " + scene + common + "--spp 2 --checkpoint " + path("c.ckpt") + " -o " + path("part.exr"));
   ASSERT_EQ(first.status, 0) << first.output;
   ASSERT_TRUE(fs::exists(path("c.ckpt")));
-  CommandResult rest = run_dermis("render " + scene + common + "--spp 6 --resume " + path("c.ckpt") + " -o " +
-                                  path("resumed.exr"));
+  CommandResult rest =
+      run_dermis("render " + scene + common + "--spp 6 --resume " + path("c.ckpt") + " -o " + path("resumed.exr"));
   ASSERT_EQ(rest.status, 0) << rest.output;
   dermis::Image a = dermis::read_image(path("whole.exr")), b = dermis::read_image(path("resumed.exr"));
   ASSERT_EQ(a.pixels.size(), b.pixels.size());
   EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)));
 
-  CommandResult other_seed = run_dermis("render " + scene + " -q --seed 4 --resume " + path("c.ckpt") + " -o " +
-                                        path("o.exr"));
+  CommandResult other_seed =
+      run_dermis("render " + scene + " -q --seed 4 --resume " + path("c.ckpt") + " -o " + path("o.exr"));
   EXPECT_EQ(other_seed.status, 2);
   EXPECT_NE(other_seed.output.find("written with --seed 3, not 4"), std::string::npos) << other_seed.output;
   EXPECT_FALSE(fs::exists(path("o.exr")));
   write("s.pbrt", std::string(kSmallScene) + "# changed\n");
-  CommandResult changed = run_dermis("render " + scene + " -q --seed 3 --resume " + path("c.ckpt") + " -o " +
-                                     path("o.exr"));
+  CommandResult changed =
+      run_dermis("render " + scene + " -q --seed 3 --resume " + path("c.ckpt") + " -o " + path("o.exr"));
   EXPECT_EQ(changed.status, 2);
   EXPECT_NE(changed.output.find("another scene"), std::string::npos) << changed.output;
-  CommandResult garbage = run_dermis("render " + scene + " -q --resume " + write("g.ckpt", "not a checkpoint") +
-                                     " -o " + path("o.exr"));
+  CommandResult garbage =
+      run_dermis("render " + scene + " -q --resume " + write("g.ckpt", "not a checkpoint") + " -o " + path("o.exr"));
   EXPECT_EQ(garbage.status, 2);
   EXPECT_NE(garbage.output.find("not a Dermis checkpoint"), std::string::npos) << garbage.output;
 }
@@ -249,10 +250,14 @@ Sampler "independent" "integer pixelsamples" 2
 WorldBegin
 LightSource "infinite" "rgb L" [0.5 0.5 0.5]
 )";
-  const std::string plain = write("plain.pbrt", head + R"(Material "subsurface" "rgb reflectance" [0.8 0.5 0.3] "rgb mfp" [0.2 0.1 0.05]
+  const std::string plain =
+      write("plain.pbrt", head + R"(Material "subsurface" "rgb reflectance" [0.8 0.5 0.3] "rgb mfp" [0.2 0.1 0.05]
 Shape "sphere" "float radius" 1
 )");
-  const std::string named = write("named.pbrt", head + R"(Material "subsurface" "rgb reflectance" [0.8 0.5 0.3] "rgb mfp" [0.2 0.1 0.05] "string method" "disk" "string profile" "photonbeam"
+  const std::string named = write(
+      "named.pbrt",
+      head +
+          R"(Material "subsurface" "rgb reflectance" [0.8 0.5 0.3] "rgb mfp" [0.2 0.1 0.05] "string method" "disk" "string profile" "photonbeam"
 Shape "sphere" "float radius" 1
 )");
   ASSERT_EQ(run_dermis("render " + plain + " -q --seed 3 --subsurface pbrt-v4 -o " + path("a.exr")).status, 0);
@@ -264,7 +269,8 @@ Shape "sphere" "float radius" 1
   EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)));
   EXPECT_NE(0, std::memcmp(a.pixels.data(), c.pixels.data(), a.pixels.size() * sizeof(float)));  // the walk's
 
-  const CommandResult bad = run_dermis("render " + plain + " -q --subsurface '\"string method\" \"nope\"' -o " + path("d.exr"));
+  const CommandResult bad =
+      run_dermis("render " + plain + " -q --subsurface '\"string method\" \"nope\"' -o " + path("d.exr"));
   EXPECT_EQ(bad.status, 2) << bad.output;
   EXPECT_NE(bad.output.find("--subsurface:1:"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(path("d.exr")));
@@ -346,7 +352,9 @@ Shape "sphere"
   ASSERT_EQ(s.status, 0) << s.output;
   EXPECT_NE(s.output.find("point clouds: 500 points"), std::string::npos) << s.output;
   EXPECT_TRUE(fs::exists(path("c.bin")));
-  EXPECT_EQ(run_dermis("render " + scene + " -q --spp 2 --load-pointcloud " + path("c.bin") + " -o " + path("b.exr")).status, 0);
+  EXPECT_EQ(
+      run_dermis("render " + scene + " -q --spp 2 --load-pointcloud " + path("c.bin") + " -o " + path("b.exr")).status,
+      0);
   std::ofstream(path("bad.bin")) << "not a point cloud";
   CommandResult bad = run_dermis("render " + scene + " --load-pointcloud " + path("bad.bin") + " -o " + path("x.exr"));
   EXPECT_EQ(bad.status, 2);
@@ -365,7 +373,8 @@ TEST_F(Cli, InterruptWritesThePartialImageAndSaysSo) {
                     path("i.exr") + " --checkpoint " + checkpoint + " --checkpoint-interval 0.001 > " + log +
                     " 2>&1 & pid=$!; i=0; while [ ! -e " + checkpoint +
                     " ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; kill -INT $pid; wait $pid; "
-                    "echo rc=$?; cat " + log + "'";
+                    "echo rc=$?; cat " +
+                    log + "'";
   FILE* p = popen(cmd.c_str(), "r");
   ASSERT_NE(p, nullptr);
   std::string out;
@@ -425,8 +434,8 @@ TEST_F(Cli, CompareReportsDifferences) {
 }
 
 // A point light of 1e37 (within float range, as the parser requires) 0.001 away from a
-// wall, seen through a narrow lens: I / r^2 overflows to infinity in the path. Such samples are counted, reported, and never
-// reach the image.
+// wall, seen through a narrow lens: I / r^2 overflows to infinity in the path. Such samples are counted, reported, and
+// never reach the image.
 TEST_F(Cli, NonFiniteSamplesAreReportedAndNotWritten) {
   std::string scene = write("hot.pbrt", R"(
 LookAt 0 0 5  0 0 0  0 1 0
@@ -439,8 +448,7 @@ Shape "trianglemesh" "point3 P" [-5 -5 0 5 -5 0 5 5 0 -5 5 0] "integer indices" 
 )");
   CommandResult r = run_dermis("render " + scene + " -q --spp 2 --no-png -o " + path("hot.exr"));
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find(" samples were NaN or infinite; they were dropped"), std::string::npos)
-      << r.output;
+  EXPECT_NE(r.output.find(" samples were NaN or infinite; they were dropped"), std::string::npos) << r.output;
   dermis::Image img = dermis::read_image(path("hot.exr"));
   for (float v : img.pixels) ASSERT_TRUE(std::isfinite(v));
 }
@@ -470,8 +478,9 @@ LightSource "point" "point3 from" [0 0 4] "rgb I" [3e37 3e37 3e37]
 // --confine: the scene reads inside its directory and the --allow-path ones only, after
 // '..' and symbolic links; outside is an error at the file name, exit 2, nothing written.
 TEST_F(Cli, ConfineRefusesFilesOutsideTheSceneDirectory) {
-  const std::string head = "Camera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 4 "
-                           "\"integer yresolution\" 4\nWorldBegin\nLightSource \"point\"\n";
+  const std::string head =
+      "Camera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 4 "
+      "\"integer yresolution\" 4\nWorldBegin\nLightSource \"point\"\n";
   fs::create_directories(dir_ / "scene");
   fs::create_directories(dir_ / "assets");
   write("assets/part.pbrt", "Shape \"sphere\"\n");
@@ -496,8 +505,9 @@ TEST_F(Cli, ConfineRefusesFilesOutsideTheSceneDirectory) {
   // An allowed directory (--allow-path implies --confine), named through a symlink or not.
   for (const std::string& s : {up, abs, sym})
     EXPECT_EQ(run_dermis("render " + s + " --allow-path " + path("assets") + out).status, 0) << s;
-  EXPECT_EQ(run_dermis("render " + up + " --allow-path " + path("scene") + " --allow-path " + path("assets") + out).status,
-            0);
+  EXPECT_EQ(
+      run_dermis("render " + up + " --allow-path " + path("scene") + " --allow-path " + path("assets") + out).status,
+      0);
   EXPECT_EQ(run_dermis("render " + up + " --allow-path " + path("missing-dir") + out).status, 2);
 }
 

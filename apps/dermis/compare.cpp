@@ -42,8 +42,7 @@ int run_compare(const CompareOptions& opt) {
     if (!opt.diff.empty()) {
       double scale = 0;
       write_image(opt.diff, difference_image(a, b, &scale));
-      fmt::print("difference image: {} (luminance of |A-B|; top of the colour ramp = {:.6g})\n", opt.diff,
-                 scale);
+      fmt::print("difference image: {} (luminance of |A-B|; top of the colour ramp = {:.6g})\n", opt.diff, scale);
     }
     return 0;
   } catch (const std::exception& e) {

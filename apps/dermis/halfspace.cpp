@@ -1,5 +1,7 @@
 // dermis halfspace: brute-force random walk in a semi-infinite medium (the ground
 // truth of the diffusion profiles). Total albedo on stderr, R(r) as CSV.
+#include "dermis/sss/halfspace/halfspace.h"
+
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
@@ -12,7 +14,6 @@
 #include <stdexcept>
 
 #include "commands.h"
-#include "dermis/sss/halfspace/halfspace.h"
 
 namespace dermis::app {
 
@@ -31,7 +32,8 @@ struct HalfspaceOptions {
 int run_halfspace(const HalfspaceOptions& o) {
   sss::HalfspaceConfig c;
   if (o.albedo) {
-    if (o.sigma_a || o.sigma_s) throw std::invalid_argument("give either --albedo (with --sigma-t) or --sigma-a and --sigma-s");
+    if (o.sigma_a || o.sigma_s)
+      throw std::invalid_argument("give either --albedo (with --sigma-t) or --sigma-a and --sigma-s");
     c.albedo = *o.albedo;
     c.sigma_t = o.sigma_t;
   } else if (o.sigma_a && o.sigma_s) {
@@ -60,7 +62,8 @@ int run_halfspace(const HalfspaceOptions& o) {
   sss::validate(c);
 
   std::unique_ptr<tbb::global_control> limit;
-  if (o.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+  if (o.threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
   const sss::HalfspaceResult r = sss::simulate_halfspace(c);
 
   const double scale = o.per_entering ? 1 / r.entered : 1.0;
@@ -94,10 +97,11 @@ int run_halfspace(const HalfspaceOptions& o) {
 
 void register_halfspace(CLI::App& app, int& exit_code) {
   auto opts = std::make_shared<HalfspaceOptions>();
-  auto* cmd = app.add_subcommand("halfspace",
-                                 "Brute-force random walk in a semi-infinite medium: total albedo and radial profile R(r)");
+  auto* cmd = app.add_subcommand(
+      "halfspace", "Brute-force random walk in a semi-infinite medium: total albedo and radial profile R(r)");
   cmd->add_option("--albedo", opts->albedo, "Single-scattering albedo sigma_s/sigma_t in [0, 1]");
-  cmd->add_option("--sigma-t", opts->sigma_t, "Extinction coefficient with --albedo (default 1: lengths in mean free paths)");
+  cmd->add_option("--sigma-t", opts->sigma_t,
+                  "Extinction coefficient with --albedo (default 1: lengths in mean free paths)");
   cmd->add_option("--sigma-a", opts->sigma_a, "Absorption coefficient (with --sigma-s, instead of --albedo)");
   cmd->add_option("--sigma-s", opts->sigma_s, "Scattering coefficient (with --sigma-a)");
   cmd->add_option("--g", opts->g, "Henyey-Greenstein anisotropy in (-1, 1)");
@@ -114,9 +118,11 @@ void register_halfspace(CLI::App& app, int& exit_code) {
   cmd->add_flag("--log-bins", opts->log_bins, "Log-spaced bins");
   cmd->add_option("--walksampling", opts->walk_sampling,
                   "classical | dwivedi (zero-variance guiding) | mis (one-sample MIS of both)");
-  cmd->add_option("--p-guided", opts->p_guided, "Probability of the guided strategy with --walksampling mis, in [0, 1]");
+  cmd->add_option("--p-guided", opts->p_guided,
+                  "Probability of the guided strategy with --walksampling mis, in [0, 1]");
   cmd->add_option("--max-collisions", opts->max_collisions, "Truncate (and report) paths after this many collisions");
-  cmd->add_flag("--per-entering", opts->per_entering, "Normalise R(r) per unit power that entered (1 - specular when smooth)");
+  cmd->add_flag("--per-entering", opts->per_entering,
+                "Normalise R(r) per unit power that entered (1 - specular when smooth)");
   cmd->add_option("-o,--output", opts->output, "CSV file for R(r) (default: stdout)");
   cmd->callback([opts, &exit_code] {
     try {

@@ -1,6 +1,7 @@
 // dermis: a renderer for translucent materials. See README.md.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
 
 #include "commands.h"
 

@@ -80,17 +80,19 @@ int run_profile(ProfileCommandOptions& o) {
   }
 
   std::unique_ptr<tbb::global_control> limit;
-  if (o.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+  if (o.threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
   const auto start = std::chrono::steady_clock::now();
   const auto table = sss::study_profile_table(o.study.eta);
   std::vector<sss::AlbedoStudy> studies;
   for (double a : o.study.albedos) {
     studies.push_back(sss::study_albedo(a, o.study, table));
     const auto& s = studies.back();
-    std::cerr << fmt::format("A = {:.3g}: alpha = {:.10f}, simulated A = {:.5f} +- {:.5f} ({:.2g} beyond r_max), "
-                             "{} paths, {:.1f} s\n",
-                             a, s.single_scattering_albedo, s.simulated_albedo, s.simulated_albedo_stderr,
-                             s.beyond_rmax, s.paths, s.seconds);
+    std::cerr << fmt::format(
+        "A = {:.3g}: alpha = {:.10f}, simulated A = {:.5f} +- {:.5f} ({:.2g} beyond r_max), "
+        "{} paths, {:.1f} s\n",
+        a, s.single_scattering_albedo, s.simulated_albedo, s.simulated_albedo_stderr, s.beyond_rmax, s.paths,
+        s.seconds);
     if (!o.plot_dir.empty()) {
       const fs::path file = fs::path(o.plot_dir) / fmt::format("profile_A{:.2f}.csv", a);
       std::ofstream out(file);

@@ -1,5 +1,5 @@
-// dermis render SCENE [--spp N] [--threads N] [--seed S] [--sampler sobol|independent] [-o OUT] [--res WxH] [--time-limit SEC]
-// The body is render_job.cpp, shared with dermis-mpi.
+// dermis render SCENE [--spp N] [--threads N] [--seed S] [--sampler sobol|independent] [-o OUT] [--res WxH]
+// [--time-limit SEC] The body is render_job.cpp, shared with dermis-mpi.
 #include "commands.h"
 #include "render_job.h"
 

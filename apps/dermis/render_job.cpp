@@ -1,7 +1,5 @@
 #include "render_job.h"
 
-#include "cli_checks.h"
-
 #include <fmt/format.h>
 #include <oneapi/tbb/global_control.h>
 
@@ -13,6 +11,7 @@
 #include <memory>
 #include <optional>
 
+#include "cli_checks.h"
 #include "dermis/render/checkpoint.h"
 #include "dermis/render/film.h"
 #include "dermis/render/image.h"
@@ -82,8 +81,7 @@ class LoadProgressDisplay {
 
 void add_render_options(CLI::App& cmd, RenderArgs& args) {
   cmd.add_option("scene", args.scene, "pbrt-v4 scene file")->required();
-  cmd.add_option("--spp", args.spp, "samples per pixel (default: the scene's Sampler pixelsamples)")
-      ->check(kPositive);
+  cmd.add_option("--spp", args.spp, "samples per pixel (default: the scene's Sampler pixelsamples)")->check(kPositive);
   cmd.add_option("--threads", args.threads, "worker threads (default: all cores)")->check(kNonNegative);
   cmd.add_option("--seed", args.seed, "random seed (default: the scene's, else 0)")->check(kNonNegative);
   cmd.add_option("--sampler", args.sampler,
@@ -91,7 +89,8 @@ void add_render_options(CLI::App& cmd, RenderArgs& args) {
       ->check(CLI::IsMember({"sobol", "independent"}));
   cmd.add_option("-o,--output", args.output, "output image (.exr, .png, ...; default: the Film's filename)");
   cmd.add_option("--res", args.res, "resolution WIDTHxHEIGHT, overriding the Film's");
-  cmd.add_option("--time-limit", args.time_limit, "stop after this many seconds (never before every pixel has a sample), keeping the samples taken")
+  cmd.add_option("--time-limit", args.time_limit,
+                 "stop after this many seconds (never before every pixel has a sample), keeping the samples taken")
       ->check(kNonNegative);
   cmd.add_option("--noise-threshold", args.noise_threshold,
                  "adaptive sampling: pixels stop once the estimated error of their value (the standard error over the "
@@ -112,7 +111,9 @@ void add_render_options(CLI::App& cmd, RenderArgs& args) {
                "'rays' channels "
                "(or STEM-maps.exr beside another format), as --noise-threshold does");
   cmd.add_flag("-q,--quiet", args.quiet, "no progress bar or summary");
-  cmd.add_option("--points", args.points, "points per `pointcloud` subsurface object (default: chosen from the illumination, or its pointdensity; up to its maxpoints)")
+  cmd.add_option("--points", args.points,
+                 "points per `pointcloud` subsurface object (default: chosen from the illumination, or its "
+                 "pointdensity; up to its maxpoints)")
       ->check(kPositive);
   cmd.add_option("--save-pointcloud", args.save_pointcloud, "save the point cloud(s) of the pre-pass to this file");
   cmd.add_option("--load-pointcloud", args.load_pointcloud, "load the point cloud(s) instead of computing them")
@@ -171,10 +172,8 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   LoadMonitor load;
   load.cancel = &g_interrupted;
   if (progress_style != Progress::Style::kQuiet)
-    load.progress = [display = std::make_shared<LoadProgressDisplay>(progress_style)](const std::string& stage,
-                                                                                     double fraction) {
-      (*display)(stage, fraction);
-    };
+    load.progress = [display = std::make_shared<LoadProgressDisplay>(progress_style)](
+                        const std::string& stage, double fraction) { (*display)(stage, fraction); };
   // Reading and assembling: each process alone.
   try {
     desc = parse_scene_file(a.scene, a.file_access, &load);
@@ -183,7 +182,8 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
       char x = 0;
       if (std::sscanf(a.res.c_str(), "%d%c%d%n", &w, &x, &h, &consumed) != 3 || consumed != int(a.res.size()) ||
           (x != 'x' && x != 'X') || w <= 0 || h <= 0 || w > 65536 || h > 65536)
-        throw std::invalid_argument(fmt::format("--res {}: expected WIDTHxHEIGHT with positive integers, e.g. 640x480", a.res));
+        throw std::invalid_argument(
+            fmt::format("--res {}: expected WIDTHxHEIGHT with positive integers, e.g. 640x480", a.res));
       desc.film.xres = w;
       desc.film.yres = h;
     }
@@ -193,9 +193,10 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
       const double pixels = double(px.width()) * px.height(),
                    gib = pixels * double(Film::kBytesPerPixel) / double(1ull << 30);
       if (pixels > double(1ull << 28))
-        throw std::invalid_argument(fmt::format("{}: a film of {}x{} pixels is too large (it would need {:.0f} GiB); "
-                                                "lower the Film's xresolution/yresolution or use --res",
-                                                a.scene, px.width(), px.height(), gib));
+        throw std::invalid_argument(
+            fmt::format("{}: a film of {}x{} pixels is too large (it would need {:.0f} GiB); "
+                        "lower the Film's xresolution/yresolution or use --res",
+                        a.scene, px.width(), px.height(), gib));
     }
     if (a.spp > 0) desc.settings.spp = a.spp;
     if (a.noise_threshold >= 0) desc.settings.noise_threshold = a.noise_threshold;
@@ -261,11 +262,14 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   for (char& c : ext) c = char(std::tolower(c));
   if (root) {
     if (ext != ".exr" && ext != ".png" && ext != ".hdr" && ext != ".tif" && ext != ".tiff" && ext != ".jpg")
-      error = fmt::format("{}: {}: unsupported output format '{}' (use .exr, .png, .hdr, .tif or .jpg)", program, out, ext);
+      error =
+          fmt::format("{}: {}: unsupported output format '{}' (use .exr, .png, .hdr, .tif or .jpg)", program, out, ext);
     else if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path()))
-      error = fmt::format("{}: {}: output directory '{}' does not exist", program, out, out_path.parent_path().string());
+      error =
+          fmt::format("{}: {}: output directory '{}' does not exist", program, out, out_path.parent_path().string());
     else if (const auto png = std::filesystem::path(out).replace_extension(".png");
-             std::filesystem::is_directory(out_path) || (ext == ".exr" && !a.no_png && std::filesystem::is_directory(png)))
+             std::filesystem::is_directory(out_path) ||
+             (ext == ".exr" && !a.no_png && std::filesystem::is_directory(png)))
       // Refused before rendering: failing at the write would leave the .exr without its preview.
       error = fmt::format("{}: {}: the output {} is a directory", program, out,
                           std::filesystem::is_directory(out_path) ? "path" : fmt::format("preview '{}'", png.string()));
@@ -331,14 +335,15 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   }
 
   if (!quiet)
-    fmt::print(stderr, "dermis: {} — {}x{}, {}{} spp{}, {} shapes, {} lights{}\n", a.scene, scene->film.xres,
-               scene->film.yres, opt.adaptive.enabled() ? "at most " : "", opt.spp,
-               opt.adaptive.enabled() ? fmt::format(" (noise threshold {:g}, at least {})", opt.adaptive.noise_threshold,
-                                                    opt.adaptive.min_spp > 0 ? std::min(opt.adaptive.min_spp, opt.spp)
-                                                                             : default_min_spp(opt.spp))
-                                      : "",
-               scene->shapes.size(), scene->lights.size(),
-               group.size() > 1 ? fmt::format(", {} processes", group.size()) : "");
+    fmt::print(
+        stderr, "dermis: {} — {}x{}, {}{} spp{}, {} shapes, {} lights{}\n", a.scene, scene->film.xres, scene->film.yres,
+        opt.adaptive.enabled() ? "at most " : "", opt.spp,
+        opt.adaptive.enabled()
+            ? fmt::format(" (noise threshold {:g}, at least {})", opt.adaptive.noise_threshold,
+                          opt.adaptive.min_spp > 0 ? std::min(opt.adaptive.min_spp, opt.spp) : default_min_spp(opt.spp))
+            : "",
+        scene->shapes.size(), scene->lights.size(),
+        group.size() > 1 ? fmt::format(", {} processes", group.size()) : "");
   RenderResult r = render_image(*scene, opt);  // stops at once if a stop signal came during preparation
   restore_signals();
   progress.finish();
@@ -384,13 +389,14 @@ int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& gr
 
   double mrays = r.seconds > 0 ? double(r.rays) / r.seconds * 1e-6 : 0;
   fmt::print(stderr, "dermis: wrote {}{}{} in {:.3f} s ({:.2f} Mrays/s, {} samples)\n", out,
-             ext == ".exr" && !a.no_png ? " and its .png" : "", maps_path.empty() ? "" : " and " + maps_path,
-             r.seconds, mrays, r.samples);
+             ext == ".exr" && !a.no_png ? " and its .png" : "", maps_path.empty() ? "" : " and " + maps_path, r.seconds,
+             mrays, r.samples);
   if (!r.subsurface_choices.empty() && !a.quiet) {
-    fmt::print(stderr, "dermis: subsurface pilot ({:.3f} s of the render; Integrator \"bool subsurfacepilot\" false turns it off):\n",
-               r.pilot_seconds);
-    for (const SubsurfaceChoice& c : r.subsurface_choices)
-      fmt::print(stderr, "  {}\n", c.description);
+    fmt::print(
+        stderr,
+        "dermis: subsurface pilot ({:.3f} s of the render; Integrator \"bool subsurfacepilot\" false turns it off):\n",
+        r.pilot_seconds);
+    for (const SubsurfaceChoice& c : r.subsurface_choices) fmt::print(stderr, "  {}\n", c.description);
   }
   if (opt.adaptive.enabled() && !a.quiet) {
     const double pixels = double(r.sample_counts.size());

@@ -5,7 +5,6 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -29,7 +28,7 @@ struct RenderArgs {
   // Parameters given to every `subsurface` material, as pbrt-v4 parameter text, or
   // "pbrt-v4" (kPbrtV4Subsurface): the file's own method otherwise.
   std::string subsurface;
-  bool error_map = false;       // write the samples and error channels (implied by adaptive sampling)
+  bool error_map = false;  // write the samples and error channels (implied by adaptive sampling)
   bool quiet = false, no_png = false;
   int64_t points = 0;
   std::string save_pointcloud, load_pointcloud;
@@ -53,10 +52,10 @@ struct RankCannotContinue : std::runtime_error {
 
 struct RenderJob {
   std::string program = "dermis render";  // the prefix of error messages
-  ProcessGroup* group = nullptr;           // null: this process alone
+  ProcessGroup* group = nullptr;          // null: this process alone
   TileAssignment tile_assignment = TileAssignment::Interleaved;
   // Signals that stop the render (first one: stop and write; again: default action).
-  std::vector<int> stop_signals;           // empty: SIGINT
+  std::vector<int> stop_signals;  // empty: SIGINT
 };
 
 // Renders; returns the exit status: 0, 2 (bad input, nothing written) or 130

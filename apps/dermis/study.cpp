@@ -83,10 +83,9 @@ int run_study(const std::vector<std::string>& args) {
 }  // namespace
 
 void register_study(CLI::App& app, int& exit_code) {
-  auto* cmd = app.add_subcommand(
-      "study",
-      "Compare subsurface methods at equal time: an HTML report with images, error maps, "
-      "tables and convergence plots (python3 -m dermis.study; `dermis study --help`)");
+  auto* cmd = app.add_subcommand("study",
+                                 "Compare subsurface methods at equal time: an HTML report with images, error maps, "
+                                 "tables and convergence plots (python3 -m dermis.study; `dermis study --help`)");
   cmd->prefix_command();  // every argument goes to the study as it is
   cmd->set_help_flag();   // --help too: the study's own parser answers it
   cmd->callback([cmd, &exit_code] { exit_code = run_study(cmd->remaining()); });

@@ -42,17 +42,18 @@ int main(int argc, char** argv) {
   const uint64_t first = argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 1000;
   const double k = argc > 4 ? std::atof(argv[4]) : 4.0;
   dermis::Diagnostics diag;
-  auto volume = dermis::build_render_scene(dermis::parse_scene_string(dermis::testing::pilot_strategy_volume_scene()),
-                                           diag);
+  auto volume =
+      dermis::build_render_scene(dermis::parse_scene_string(dermis::testing::pilot_strategy_volume_scene()), diag);
   std::printf("%d seeds (%llu, %llu, ...), %d spp, verdict at %g sigma\n", seeds, (unsigned long long)first,
               (unsigned long long)first + 2, spp, k);
   int any_fail = 0;
   std::vector<int> seed_failed(std::size_t(seeds), 0);
   for (const char* strategy : dermis::testing::kPilotStrategies) {
-    auto walk =
-        dermis::build_render_scene(dermis::parse_scene_string(dermis::testing::pilot_strategy_walk_scene(strategy)), diag);
+    auto walk = dermis::build_render_scene(
+        dermis::parse_scene_string(dermis::testing::pilot_strategy_walk_scene(strategy)), diag);
     std::vector<std::vector<RegionComparison>> runs{std::size_t(seeds)};
-    tbb::parallel_for(0, seeds, [&](int i) { runs[std::size_t(i)] = compare_once(*walk, *volume, spp, first + 2 * i); });
+    tbb::parallel_for(0, seeds,
+                      [&](int i) { runs[std::size_t(i)] = compare_once(*walk, *volume, spp, first + 2 * i); });
     const std::size_t m = runs[0].size();
     int fails = 0;
     std::size_t beyond3 = 0, beyond4 = 0, beyond_k = 0, count = 0;
@@ -87,10 +88,12 @@ int main(int argc, char** argv) {
     auto quantile = [&](double q) { return ratios.empty() ? NAN : ratios[std::size_t(q * (ratios.size() - 1))]; };
     std::printf("\n%s\n", strategy);
     std::printf("  false failures: %d of %d seeds (%.1f %%)\n", fails, seeds, 100.0 * fails / seeds);
-    std::printf("  spread over seeds / rms sigma, over %zu region-channels: min %.3f, median %.3f, 90%% %.3f, max %.3f\n",
-                ratios.size(), quantile(0), quantile(0.5), quantile(0.9), quantile(1));
-    std::printf("  |z| > 3: %.2e (normal 2.70e-03), |z| > 4: %.2e (normal 6.33e-05), |z| > %g: %zu of %zu; max |z| %.2f\n",
-                double(beyond3) / count, double(beyond4) / count, k, beyond_k, count, max_abs_z);
+    std::printf(
+        "  spread over seeds / rms sigma, over %zu region-channels: min %.3f, median %.3f, 90%% %.3f, max %.3f\n",
+        ratios.size(), quantile(0), quantile(0.5), quantile(0.9), quantile(1));
+    std::printf(
+        "  |z| > 3: %.2e (normal 2.70e-03), |z| > 4: %.2e (normal 6.33e-05), |z| > %g: %zu of %zu; max |z| %.2f\n",
+        double(beyond3) / count, double(beyond4) / count, k, beyond_k, count, max_abs_z);
   }
   for (int f : seed_failed) any_fail += f;
   std::printf("\nthe test as a whole (all strategies): %d of %d seeds fail (%.1f %%)\n", any_fail, seeds,

@@ -5,9 +5,9 @@
 
 namespace dermis::python {
 
-void bind_scene(pybind11::module_& m);    // scene.cpp: load_scene, Scene, Material
-void bind_render(pybind11::module_& m);   // render.cpp: render, RenderInterrupted
-void bind_images(pybind11::module_& m);   // images.cpp: read/write, compare, error maps, masks
-void bind_sss(pybind11::module_& m);      // sss.cpp: profiles, half-space simulator, albedo inversion
+void bind_scene(pybind11::module_& m);   // scene.cpp: load_scene, Scene, Material
+void bind_render(pybind11::module_& m);  // render.cpp: render, RenderInterrupted
+void bind_images(pybind11::module_& m);  // images.cpp: read/write, compare, error maps, masks
+void bind_sss(pybind11::module_& m);     // sss.cpp: profiles, half-space simulator, albedo inversion
 
 }  // namespace dermis::python

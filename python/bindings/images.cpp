@@ -1,17 +1,16 @@
 // Images between NumPy and Dermis: files, comparison statistics, false-colour error
 // maps, and the subsurface-object mask.
+#include <fmt/format.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include <fmt/format.h>
-
 #include "bindings.h"
-#include "scene.h"
 #include "dermis/render/film.h"
 #include "dermis/render/image.h"
 #include "dermis/render/image_compare.h"
 #include "dermis/render/object_mask.h"
 #include "dermis/render/scene_assembly.h"
+#include "scene.h"
 
 namespace py = pybind11;
 

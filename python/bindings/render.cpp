@@ -1,21 +1,20 @@
 // dermis.render: the scene made renderable (assembly and preparation, kept between
 // renders), the render loop without the GIL, progress and Ctrl-C.
+#include <fmt/format.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
-
-#include <fmt/format.h>
 #include <time.h>
 
 #include <optional>
 
 #include "bindings.h"
-#include "interruptible.h"
-#include "scene.h"
 #include "dermis/render/film.h"
 #include "dermis/render/point_cloud_prepass.h"
 #include "dermis/render/renderer.h"
 #include "dermis/render/scene_assembly.h"
 #include "dermis/render/scene_preparation.h"
+#include "interruptible.h"
+#include "scene.h"
 
 namespace py = pybind11;
 
@@ -101,8 +100,7 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
     throw py::value_error(fmt::format("sampler must be 'sobol' or 'independent', got '{}'", *sampler));
   opt.adaptive.noise_threshold = noise_threshold.value_or(s.desc.settings.noise_threshold);
   if (!(opt.adaptive.noise_threshold >= 0) || !std::isfinite(opt.adaptive.noise_threshold))
-    throw py::value_error(
-        fmt::format("noise_threshold must be >= 0 (0: off), got {}", opt.adaptive.noise_threshold));
+    throw py::value_error(fmt::format("noise_threshold must be >= 0 (0: off), got {}", opt.adaptive.noise_threshold));
   opt.adaptive.min_spp = min_spp.value_or(s.desc.settings.min_spp);
   if (opt.adaptive.min_spp < 0 || (min_spp && *min_spp <= 0))
     throw py::value_error(fmt::format("min_spp must be positive, got {}", opt.adaptive.min_spp));
@@ -127,7 +125,8 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
   };
   auto error = run_interruptible([&] { r = render_image(*scene, opt); }, cancel, poll);
   const double cpu_seconds = process_cpu_seconds() - cpu0;
-  if (!error && !progress.is_none() && reported != std::min(done.load(), total)) progress(std::min(done.load(), total), total);
+  if (!error && !progress.is_none() && reported != std::min(done.load(), total))
+    progress(std::min(done.load(), total), total);
 
   py::array_t<float> image({py::ssize_t(r.height), py::ssize_t(r.width), py::ssize_t(3)});
   std::copy(r.rgb.begin(), r.rgb.end(), image.mutable_data());

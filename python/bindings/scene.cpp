@@ -1,6 +1,7 @@
 // load_scene, Scene (inspection and changes between renders) and Material.
 #include "scene.h"
 
+#include <fmt/format.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -10,14 +11,13 @@
 #include <mutex>
 #include <utility>
 #include <vector>
-#include <fmt/format.h>
 
 #include "bindings.h"
-#include "interruptible.h"
 #include "dermis/render/film.h"
 #include "dermis/scene/params.h"
 #include "dermis/scene/parser.h"
 #include "dermis/scene/subsurface_params.h"
+#include "interruptible.h"
 
 namespace py = pybind11;
 
@@ -88,15 +88,24 @@ std::shared_ptr<Scene> load_scene(const py::object& source, const std::string& b
 
 const char* material_type_name(MaterialDesc::Type t) {
   switch (t) {
-    case MaterialDesc::Type::Diffuse: return "diffuse";
-    case MaterialDesc::Type::Dielectric: return "dielectric";
-    case MaterialDesc::Type::Conductor: return "conductor";
-    case MaterialDesc::Type::Interface: return "interface";
-    case MaterialDesc::Type::Subsurface: return "subsurface";
-    case MaterialDesc::Type::CoatedDiffuse: return "coateddiffuse";
-    case MaterialDesc::Type::CoatedConductor: return "coatedconductor";
-    case MaterialDesc::Type::DiffuseTransmission: return "diffusetransmission";
-    case MaterialDesc::Type::Mix: return "mix";
+    case MaterialDesc::Type::Diffuse:
+      return "diffuse";
+    case MaterialDesc::Type::Dielectric:
+      return "dielectric";
+    case MaterialDesc::Type::Conductor:
+      return "conductor";
+    case MaterialDesc::Type::Interface:
+      return "interface";
+    case MaterialDesc::Type::Subsurface:
+      return "subsurface";
+    case MaterialDesc::Type::CoatedDiffuse:
+      return "coateddiffuse";
+    case MaterialDesc::Type::CoatedConductor:
+      return "coatedconductor";
+    case MaterialDesc::Type::DiffuseTransmission:
+      return "diffusetransmission";
+    case MaterialDesc::Type::Mix:
+      return "mix";
   }
   return "?";
 }
@@ -160,7 +169,8 @@ std::size_t material_index(const Scene& s, const py::object& key) {
     if (s.desc.materials[i].name == name) return i;
     if (!s.desc.materials[i].name.empty()) names += (names.empty() ? "" : ", ") + s.desc.materials[i].name;
   }
-  throw py::key_error(fmt::format("no material named \"{}\" (named materials: {})", name, names.empty() ? "none" : names));
+  throw py::key_error(
+      fmt::format("no material named \"{}\" (named materials: {})", name, names.empty() ? "none" : names));
 }
 
 py::dict material_dict(const MaterialDesc& m, std::size_t index) {
@@ -203,15 +213,17 @@ parameters) are issued as UserWarning. Raises dermis.SceneError ("file:line:col:
 what and why") for bad input, FileNotFoundError-like SceneError for missing files.)");
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A parsed scene: see load_scene.")
-      .def_property_readonly("source", [](const Scene& s) { return s.source; }, "The file read, or '<string>'.")
+      .def_property_readonly(
+          "source", [](const Scene& s) { return s.source; }, "The file read, or '<string>'.")
       .def_property(
           "resolution", [](const Scene& s) { return py::make_tuple(s.desc.film.xres, s.desc.film.yres); },
           [](Scene& s, std::pair<int, int> wh) {
             const auto [w, h] = wh;
             if (w <= 0 || h <= 0 || w > 65536 || h > 65536 || int64_t(w) * h > (int64_t(1) << 28))
-              throw py::value_error(fmt::format("resolution {}x{}: each side must be in 1..65536 and the film at most "
-                                                "2^28 pixels",
-                                                w, h));
+              throw py::value_error(
+                  fmt::format("resolution {}x{}: each side must be in 1..65536 and the film at most "
+                              "2^28 pixels",
+                              w, h));
             s.changed();
             s.desc.film.xres = w;
             s.desc.film.yres = h;
@@ -271,10 +283,11 @@ what and why") for bad input, FileNotFoundError-like SceneError for missing file
             return out;
           },
           "Indices of the `subsurface` materials.")
-      .def_property_readonly("shape_count", [](const Scene& s) { return s.desc.shapes.size(); },
-                             "Number of top-level shapes.")
-      .def_property_readonly("warnings", [](const Scene& s) { return s.desc.diagnostics.warnings; },
-                             "The warnings parsing the scene gave.")
+      .def_property_readonly(
+          "shape_count", [](const Scene& s) { return s.desc.shapes.size(); }, "Number of top-level shapes.")
+      .def_property_readonly(
+          "warnings", [](const Scene& s) { return s.desc.diagnostics.warnings; },
+          "The warnings parsing the scene gave.")
       .def(
           "set_material",
           [](Scene& s, const py::object& key, const std::string& text, const py::kwargs& kwargs) {

@@ -1,17 +1,16 @@
 // The subsurface libraries behind the renderer: radial diffusion profiles, the
 // brute-force half-space simulator, Chandrasekhar's H-function albedo and the
 // albedo inversion (METHODS.md sections 0, 1 and 4).
+#include <fmt/format.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include <fmt/format.h>
-
 #include "bindings.h"
-#include "interruptible.h"
 #include "dermis/sss/halfspace/chandrasekhar.h"
 #include "dermis/sss/halfspace/halfspace.h"
 #include "dermis/sss/profiles/profile.h"
 #include "dermis/sss/walk/albedo_inversion.h"
+#include "interruptible.h"
 
 namespace py = pybind11;
 
@@ -41,8 +40,8 @@ sss::BurleyParameterisation burley_parameterisation(const std::string& name) {
   if (name == "volume-mfp") return sss::BurleyParameterisation::VolumeMeanFreePath;
   if (name == "diffuse-mfp") return sss::BurleyParameterisation::DiffuseMeanFreePath;
   if (name == "searchlight") return sss::BurleyParameterisation::Searchlight;
-  throw py::value_error(fmt::format("parameterisation must be 'volume-mfp', 'diffuse-mfp' or 'searchlight', got '{}'",
-                                    name));
+  throw py::value_error(
+      fmt::format("parameterisation must be 'volume-mfp', 'diffuse-mfp' or 'searchlight', got '{}'", name));
 }
 
 sss::WalkSampling walk_sampling(const std::string& name) {
@@ -90,7 +89,8 @@ NumPy arrays or numbers.)")
           py::arg("scene_units_per_mm") = 1.0, py::arg("channel") = 0,
           "d'Eon & Luebke's six-Gaussian skin (GPU Gems 3, table 14-1), one channel.")
       .def(
-          "eval", [](const RadialProfile& p, const Doubles& r) { return map_array(r, [&](double x) { return p.eval(x); }); },
+          "eval",
+          [](const RadialProfile& p, const Doubles& r) { return map_array(r, [&](double x) { return p.eval(x); }); },
           py::arg("r"), "R(r), an area density on the surface.")
       .def(
           "sample",
@@ -100,7 +100,9 @@ NumPy arrays or numbers.)")
           py::arg("xi"), "A radius distributed as pdf(r), for xi uniform in [0, 1).")
       .def(
           "pdf",
-          [](const RadialProfile& p, const Doubles& r) { return map_array(r, [&](double x) { return p.pdf_radius(x); }); },
+          [](const RadialProfile& p, const Doubles& r) {
+            return map_array(r, [&](double x) { return p.pdf_radius(x); });
+          },
           py::arg("r"), "The radial density of sample() (zero beyond r_max()).")
       .def("albedo", &RadialProfile::albedo, "The integral of R over the plane.")
       .def(
@@ -147,8 +149,8 @@ NumPy arrays or numbers.)")
         return d;
       },
       py::kw_only(), py::arg("albedo") = 0.5, py::arg("sigma_t") = 1.0, py::arg("g") = 0.0, py::arg("eta") = 1.0,
-      py::arg("exit_matched") = false, py::arg("incidence") = "normal", py::arg("paths") = 100000,
-      py::arg("seed") = 1, py::arg("r_max") = 16.0, py::arg("bins") = 64, py::arg("sampling") = "classical",
+      py::arg("exit_matched") = false, py::arg("incidence") = "normal", py::arg("paths") = 100000, py::arg("seed") = 1,
+      py::arg("r_max") = 16.0, py::arg("bins") = 64, py::arg("sampling") = "classical",
       R"(Brute-force Monte Carlo of light in a homogeneous half-space below a flat boundary
 (the ground truth of the diffusion profiles).
 

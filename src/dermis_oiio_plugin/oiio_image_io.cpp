@@ -51,8 +51,8 @@ constexpr std::uintmax_t kMaxDeflateRatio = 1032;              // deflate's larg
 std::string image_size_problem(const OIIO::ImageSpec& spec, const std::string& format, const char* path) {
   const std::size_t pixels = std::size_t(spec.width) * std::size_t(spec.height);
   if (pixels > kMaxImagePixels)
-    return fmt::format("the header claims {}x{} pixels, more than the {} a texture may have", spec.width,
-                       spec.height, kMaxImagePixels);
+    return fmt::format("the header claims {}x{} pixels, more than the {} a texture may have", spec.width, spec.height,
+                       kMaxImagePixels);
   // OpenEXR: zip/zips/pxr24 (deflate after at most 4:3), piz, rle, b44 stay within twice
   // deflate's ratio; DWAA/DWAB (DCT then deflate) have no such bound and are not checked.
   std::uintmax_t ratio = 0;
@@ -64,9 +64,10 @@ std::string image_size_problem(const OIIO::ImageSpec& spec, const std::string& f
   const std::uintmax_t file_bytes = std::filesystem::file_size(path, ec);
   const std::uintmax_t pixel_bytes = std::uintmax_t(pixels) * std::uintmax_t(spec.pixel_bytes());
   if (!ec && pixel_bytes / ratio > file_bytes)
-    return fmt::format("the header claims {}x{} pixels ({} bytes) but the file holds only {} bytes: a corrupt "
-                       "or truncated file",
-                       spec.width, spec.height, pixel_bytes, file_bytes);
+    return fmt::format(
+        "the header claims {}x{} pixels ({} bytes) but the file holds only {} bytes: a corrupt "
+        "or truncated file",
+        spec.width, spec.height, pixel_bytes, file_bytes);
   return "";
 }
 
@@ -99,8 +100,8 @@ extern "C" void dermis_plugin_read_image(const char* path, DecodedImage* out, st
   in->close();
 }
 
-extern "C" void dermis_plugin_write_image(const char* path, const char* format, int width, int height,
-                                          const float* rgb, std::string* error) {
+extern "C" void dermis_plugin_write_image(const char* path, const char* format, int width, int height, const float* rgb,
+                                          std::string* error) {
   const bool eight_bit = format == std::string("jpeg");
   OIIO::ImageSpec spec(width, height, 3, eight_bit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
   if (eight_bit) spec.attribute("Compression", "jpeg:95");

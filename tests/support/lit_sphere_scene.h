@@ -4,9 +4,9 @@
 // errors of the difference.
 #pragma once
 
-#include <string>
-
 #include <fmt/format.h>
+
+#include <string>
 
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"

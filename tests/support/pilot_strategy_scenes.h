@@ -17,8 +17,7 @@ inline const char* kPilotTestCoefficients = R"("rgb sigma_a" [0.05 0.15 0.3] "rg
 // No guided flights and the channels drawn by throughput alone (channel preference 0), half
 // the flights guided, and the larger guided share of 0.8 with channel preference 0.5.
 inline const std::array<const char*, 3> kPilotStrategies = {
-    "\"float guidedshare\" 0 \"float channelpreference\" 0",
-    "\"float guidedshare\" 0.5 \"float channelpreference\" 0",
+    "\"float guidedshare\" 0 \"float channelpreference\" 0", "\"float guidedshare\" 0.5 \"float channelpreference\" 0",
     "\"float guidedshare\" 0.8 \"float channelpreference\" 0.5"};
 
 inline std::string pilot_strategy_walk_scene(const std::string& strategy) {

@@ -144,8 +144,8 @@ inline void expect_same_region_means(const PixelStatistics& a, const PixelStatis
   EXPECT_EQ(failures, 0);
   if (detectable_bias > 0) {
     EXPECT_GE(detectable_bias * sensitivity, 6.0)
-        << "too noisy to see a bias of " << detectable_bias << ": the most sensitive region sees "
-        << 6.0 / sensitivity << " at 6 sigma";
+        << "too noisy to see a bias of " << detectable_bias << ": the most sensitive region sees " << 6.0 / sensitivity
+        << " at 6 sigma";
   }
 }
 

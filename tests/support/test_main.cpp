@@ -5,12 +5,12 @@
 // sets it to <build>/test-cache), else under the system's temporary folder. Tests of the
 // cache itself choose their own folders.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <system_error>
-#include <unistd.h>
 
 namespace {
 

@@ -1,10 +1,10 @@
 #include "dermis/core/distribution.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 namespace dermis {
 
@@ -78,8 +78,7 @@ float Distribution1D::pmf_discrete(std::size_t i) const { return float(cdf_[i + 
 
 Distribution2D::Distribution2D(std::span<const float> f, std::size_t nu, std::size_t nv) {
   if (nu == 0 || nv == 0 || f.size() != nu * nv)
-    throw std::invalid_argument(
-        fmt::format("Distribution2D: {} values given for a {} x {} grid", f.size(), nu, nv));
+    throw std::invalid_argument(fmt::format("Distribution2D: {} values given for a {} x {} grid", f.size(), nu, nv));
   conditional_.reserve(nv);
   std::vector<float> marginal(nv);
   for (std::size_t v = 0; v < nv; ++v) {

@@ -102,8 +102,7 @@ std::vector<float> probing_numbers(const std::vector<float>& f) {
   for (float v : f) {
     cdf += v / total;
     const float b = float(cdf);
-    for (float x : {std::nextafter(std::nextafter(b, 0.0f), 0.0f), std::nextafter(b, 0.0f), b,
-                    std::nextafter(b, 1.0f)})
+    for (float x : {std::nextafter(std::nextafter(b, 0.0f), 0.0f), std::nextafter(b, 0.0f), b, std::nextafter(b, 1.0f)})
       if (x >= 0 && x < 1) u.push_back(x);
   }
   u.push_back(0);
@@ -221,8 +220,13 @@ TEST(Distribution2D, SamplingMatchesTheFunctionAndPdf) {
 TEST(Distribution2D, SampleAndPdfAgreeAtCellBoundaries) {
   const std::vector<float> f = spot_function();
   Distribution2D d(f, kNu, kNv);
-  const std::vector<float> probes = {0.0f, 0.25f, 0.5f, std::nextafter(0.5f, 0.0f), std::nextafter(1.0f, 0.0f),
-                                     1.0f / 3, std::nextafter(1.0f / 3, 0.0f)};
+  const std::vector<float> probes = {0.0f,
+                                     0.25f,
+                                     0.5f,
+                                     std::nextafter(0.5f, 0.0f),
+                                     std::nextafter(1.0f, 0.0f),
+                                     1.0f / 3,
+                                     std::nextafter(1.0f / 3, 0.0f)};
   for (float a : probes)
     for (float b : probes) {
       float pdf;

@@ -56,7 +56,7 @@ class LoadStage {
   const LoadMonitor* monitor_;
   std::string name_;
   std::mutex mutex_;
-  double reported_ = -1;  // guarded by mutex_
+  double reported_ = -1;   // guarded by mutex_
   int test_pause_ms_ = 0;  // $DERMIS_TEST_LOAD_STEP_MS (load_monitor.cpp): tests only
 };
 

@@ -1,14 +1,14 @@
 // LoadStage: reports start at 0, grow, end at 1 once, are thinned to 1% steps, and the
 // cancel flag stops the stage (Interrupted, or false for the non-throwing form).
+#include "dermis/core/load_monitor.h"
+
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <cstdlib>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <gtest/gtest.h>
-
-#include "dermis/core/load_monitor.h"
 
 namespace dermis {
 namespace {

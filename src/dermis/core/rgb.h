@@ -22,10 +22,22 @@ struct RGB {
   constexpr RGB operator/(RGB o) const { return {c[0] / o.c[0], c[1] / o.c[1], c[2] / o.c[2]}; }
   constexpr RGB operator*(float s) const { return {c[0] * s, c[1] * s, c[2] * s}; }
   constexpr RGB operator/(float s) const { return {c[0] / s, c[1] / s, c[2] / s}; }
-  constexpr RGB& operator+=(RGB o) { for (int i = 0; i < 3; ++i) c[i] += o.c[i]; return *this; }
-  constexpr RGB& operator*=(RGB o) { for (int i = 0; i < 3; ++i) c[i] *= o.c[i]; return *this; }
-  constexpr RGB& operator*=(float s) { for (int i = 0; i < 3; ++i) c[i] *= s; return *this; }
-  constexpr RGB& operator/=(float s) { for (int i = 0; i < 3; ++i) c[i] /= s; return *this; }
+  constexpr RGB& operator+=(RGB o) {
+    for (int i = 0; i < 3; ++i) c[i] += o.c[i];
+    return *this;
+  }
+  constexpr RGB& operator*=(RGB o) {
+    for (int i = 0; i < 3; ++i) c[i] *= o.c[i];
+    return *this;
+  }
+  constexpr RGB& operator*=(float s) {
+    for (int i = 0; i < 3; ++i) c[i] *= s;
+    return *this;
+  }
+  constexpr RGB& operator/=(float s) {
+    for (int i = 0; i < 3; ++i) c[i] /= s;
+    return *this;
+  }
   constexpr bool operator==(const RGB&) const = default;
   constexpr bool is_black() const { return c[0] == 0 && c[1] == 0 && c[2] == 0; }
   constexpr float max() const { return std::max(c[0], std::max(c[1], c[2])); }

@@ -2,9 +2,8 @@
 // that results do not depend on the thread count.
 #pragma once
 
-#include <pcg_random.hpp>
-
 #include <cstdint>
+#include <pcg_random.hpp>
 
 namespace dermis {
 

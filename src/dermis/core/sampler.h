@@ -31,9 +31,7 @@ inline bool parse_sampler_kind(std::string_view name, SamplerKind& kind) {
   if (name == "independent") return kind = SamplerKind::Independent, true;
   return false;
 }
-inline const char* sampler_kind_name(SamplerKind kind) {
-  return kind == SamplerKind::Sobol ? "sobol" : "independent";
-}
+inline const char* sampler_kind_name(SamplerKind kind) { return kind == SamplerKind::Sobol ? "sobol" : "independent"; }
 
 class Sampler {
  public:
@@ -130,7 +128,7 @@ class Sampler {
   float uniform() { return get1d(); }
   double uniform_double() {
     return kind_ == SamplerKind::Independent || dim_ >= stratified_end_ ? stream().uniform_double()
-                                                                         : fraction_to_double(next_fraction());
+                                                                        : fraction_to_double(next_fraction());
   }
 
  private:
@@ -148,7 +146,8 @@ class Sampler {
     const uint32_t i = shuffled_index(seed);
     const uint32_t x = reverse_bits(laine_karras_permutation(i, hash_combine(seed, 0x0b1c0u)));
     // nested_uniform_scramble(sobol_sample(i, 1), ...), the point's reversal from a table.
-    const uint32_t y = reverse_bits(laine_karras_permutation(sobol_sample_reversed(i, 1), hash_combine(seed, 0x0b1c1u)));
+    const uint32_t y =
+        reverse_bits(laine_karras_permutation(sobol_sample_reversed(i, 1), hash_combine(seed, 0x0b1c1u)));
     return {x, y};
   }
   // nested_uniform_scramble(index_, seed), the index's reversal kept from the constructor

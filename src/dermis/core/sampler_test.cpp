@@ -194,8 +194,8 @@ TEST(Sampler, DimensionsAndPixelsAreDecorrelated) {
         ++obs[int(ua * bins) * bins + int(ub * bins)];
       }
       auto r = chi_square(obs, expected);
-      EXPECT_GT(r.p_value, kChiSquareAlpha) << "dims " << da << "," << db << " sample " << sample
-                                            << " chi2 " << r.statistic << " dof " << r.dof;
+      EXPECT_GT(r.p_value, kChiSquareAlpha)
+          << "dims " << da << "," << db << " sample " << sample << " chi2 " << r.statistic << " dof " << r.dof;
     }
   }
 }

@@ -19,9 +19,9 @@ inline constexpr int kSobolDimensions = 4;
 namespace sobol_detail {
 
 struct Polynomial {
-  int degree;          // s
-  uint32_t coeffs;     // a: the inner coefficients a_1 .. a_{s-1}, a_1 the highest bit
-  uint32_t m[3];       // initial odd m_1 .. m_s
+  int degree;       // s
+  uint32_t coeffs;  // a: the inner coefficients a_1 .. a_{s-1}, a_1 the highest bit
+  uint32_t m[3];    // initial odd m_1 .. m_s
 };
 
 // Bratley & Fox 1988, eq. for m_k: m_k = 2 a_1 m_{k-1} ^ 4 a_2 m_{k-2} ^ ... ^ 2^s m_{k-s} ^ m_{k-s};
@@ -42,10 +42,10 @@ constexpr std::array<uint32_t, 32> direction_numbers(Polynomial p) {
 
 constexpr std::array<std::array<uint32_t, 32>, kSobolDimensions> make_matrices() {
   std::array<std::array<uint32_t, 32>, kSobolDimensions> d{};
-  for (int k = 0; k < 32; ++k) d[0][k] = 1u << (31 - k);          // van der Corput
-  d[1] = direction_numbers({1, 0u, {1, 0, 0}});                    // x + 1
-  d[2] = direction_numbers({2, 1u, {1, 3, 0}});                    // x^2 + x + 1
-  d[3] = direction_numbers({3, 1u, {1, 3, 1}});                    // x^3 + x + 1
+  for (int k = 0; k < 32; ++k) d[0][k] = 1u << (31 - k);  // van der Corput
+  d[1] = direction_numbers({1, 0u, {1, 0, 0}});           // x + 1
+  d[2] = direction_numbers({2, 1u, {1, 3, 0}});           // x^2 + x + 1
+  d[3] = direction_numbers({3, 1u, {1, 3, 1}});           // x^3 + x + 1
   return d;
 }
 

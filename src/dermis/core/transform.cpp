@@ -64,16 +64,24 @@ Transform::Transform(const Mat4& m) : m_(m) {
 
 Transform Transform::translate(Vec3d d) {
   Mat4 m = Mat4::identity(), inv = Mat4::identity();
-  m.m[0][3] = d.x; m.m[1][3] = d.y; m.m[2][3] = d.z;
-  inv.m[0][3] = -d.x; inv.m[1][3] = -d.y; inv.m[2][3] = -d.z;
+  m.m[0][3] = d.x;
+  m.m[1][3] = d.y;
+  m.m[2][3] = d.z;
+  inv.m[0][3] = -d.x;
+  inv.m[1][3] = -d.y;
+  inv.m[2][3] = -d.z;
   return {m, inv};
 }
 
 Transform Transform::scale(Vec3d s) {
   if (s.x == 0 || s.y == 0 || s.z == 0) throw std::invalid_argument("scale by zero is singular");
   Mat4 m = Mat4::identity(), inv = Mat4::identity();
-  m.m[0][0] = s.x; m.m[1][1] = s.y; m.m[2][2] = s.z;
-  inv.m[0][0] = 1 / s.x; inv.m[1][1] = 1 / s.y; inv.m[2][2] = 1 / s.z;
+  m.m[0][0] = s.x;
+  m.m[1][1] = s.y;
+  m.m[2][2] = s.z;
+  inv.m[0][0] = 1 / s.x;
+  inv.m[1][1] = 1 / s.y;
+  inv.m[2][2] = 1 / s.z;
   return {m, inv};
 }
 
@@ -103,8 +111,7 @@ Transform Transform::look_at(Vec3d eye, Vec3d look, Vec3d up) {
   dir = normalize(dir);
   if (length(up) == 0) throw std::invalid_argument("LookAt: up vector has zero length");
   Vec3d right = cross(normalize(up), dir);
-  if (length(right) < 1e-12)
-    throw std::invalid_argument("LookAt: up vector is parallel to the viewing direction");
+  if (length(right) < 1e-12) throw std::invalid_argument("LookAt: up vector is parallel to the viewing direction");
   right = normalize(right);
   Vec3d new_up = cross(dir, right);
   Mat4 world_from_camera = Mat4::identity();
@@ -121,8 +128,7 @@ Transform Transform::look_at(Vec3d eye, Vec3d look, Vec3d up) {
 
 bool Transform::swaps_handedness() const {
   const auto& a = m_.m;
-  double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-               a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+  double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
                a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
   return det < 0;
 }

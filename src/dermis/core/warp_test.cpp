@@ -62,8 +62,7 @@ TEST(WarpPdf, UniformSphereIntegratesToOne) {
 TEST(WarpPdf, UniformConeIntegratesToOne) {
   for (float cos_max : kConeCosines) {
     const double pdf = uniform_cone_pdf(cos_max);
-    EXPECT_NEAR(integrate_over_cap([pdf](Vec3) { return pdf; }, std::acos(double(cos_max))), 1.0,
-                kIntegralTolerance)
+    EXPECT_NEAR(integrate_over_cap([pdf](Vec3) { return pdf; }, std::acos(double(cos_max))), 1.0, kIntegralTolerance)
         << "cos_max " << cos_max;
   }
 }
@@ -83,8 +82,7 @@ double phi_of(Vec3 w) {
 // 16 x 4 points per cell; the pdfs are smooth within a cell). Directions must be unit
 // length and lie within theta_max.
 void expect_direction_sampler_matches_pdf(const std::function<Vec3(Vec2)>& sample,
-                                          const std::function<double(Vec3)>& pdf, double theta_max,
-                                          uint64_t seed) {
+                                          const std::function<double(Vec3)>& pdf, double theta_max, uint64_t seed) {
   std::vector<double> observed(kThetaBins * kPhiBins, 0.0), expected(kThetaBins * kPhiBins, 0.0);
   const double dt = theta_max / kThetaBins, dp = kTwoPi / kPhiBins;
   Rng rng(seed, 0);
@@ -115,13 +113,13 @@ void expect_direction_sampler_matches_pdf(const std::function<Vec3(Vec2)>& sampl
 }
 
 TEST(WarpSampler, CosineHemisphereMatchesPdf) {
-  expect_direction_sampler_matches_pdf(sample_cosine_hemisphere,
-                                       [](Vec3 w) { return double(cosine_hemisphere_pdf(w.z)); }, kPiD / 2, 1);
+  expect_direction_sampler_matches_pdf(
+      sample_cosine_hemisphere, [](Vec3 w) { return double(cosine_hemisphere_pdf(w.z)); }, kPiD / 2, 1);
 }
 
 TEST(WarpSampler, UniformSphereMatchesPdf) {
-  expect_direction_sampler_matches_pdf(sample_uniform_sphere, [](Vec3) { return double(uniform_sphere_pdf()); },
-                                       kPiD, 2);
+  expect_direction_sampler_matches_pdf(
+      sample_uniform_sphere, [](Vec3) { return double(uniform_sphere_pdf()); }, kPiD, 2);
 }
 
 TEST(WarpSampler, UniformConeMatchesPdf) {
@@ -145,7 +143,8 @@ TEST(WarpSampler, ConcentricDiskIsUniformInArea) {
     ASSERT_LE(r, 1 + 1e-6);
     double phi = std::atan2(double(p.y), double(p.x));
     if (phi < 0) phi += kTwoPi;
-    const int i = std::min(kRadialBins - 1, int(r * kRadialBins)), j = std::min(kPhiBins - 1, int(phi / kTwoPi * kPhiBins));
+    const int i = std::min(kRadialBins - 1, int(r * kRadialBins)),
+              j = std::min(kPhiBins - 1, int(phi / kTwoPi * kPhiBins));
     observed[i * kPhiBins + j] += 1;
   }
   for (int i = 0; i < kRadialBins; ++i)

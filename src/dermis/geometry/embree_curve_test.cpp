@@ -1,13 +1,12 @@
 // Curves through Embree's curve primitives: the area a straight curve covers seen
 // side-on, against its analytic projection (length x width, or x width cos(theta) for a
 // ribbon turned by theta), by jittered parallel rays; and the normals each kind reports.
-#include "dermis/geometry/embree_scene.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "dermis/core/rng.h"
+#include "dermis/geometry/embree_scene.h"
 
 namespace dermis {
 namespace {
@@ -48,7 +47,8 @@ Coverage side_on_coverage(const Shape& curve, float projected_width) {
   for (int j = 0; j < ny; ++j) {
     const float y0 = -kWidth + h * float(j);
     // The fraction of this row's cells inside |y| <= projected_width / 2.
-    const double f = std::clamp((std::min(y0 + h, projected_width / 2) - std::max(y0, -projected_width / 2)) / h, 0.0f, 1.0f);
+    const double f =
+        std::clamp((std::min(y0 + h, projected_width / 2) - std::max(y0, -projected_width / 2)) / h, 0.0f, 1.0f);
     sum_var += nx * f * (1 - f);
     for (int i = 0; i < nx; ++i) {
       const Vec3 o(-x_half + h * (float(i) + rng.uniform()), y0 + h * rng.uniform(), 10);
@@ -76,9 +76,8 @@ TEST(CurveCoverage, StraightFlatCurveSeenSideOnCoversLengthTimesWidth) {
 // A ribbon whose normal is turned 60 degrees from the view about the curve shows half its width.
 TEST(CurveCoverage, RibbonTurnedBySixtyDegreesCoversHalfItsWidth) {
   const float theta = float(kPi / 3);
-  const Coverage c =
-      side_on_coverage(straight_curve(Shape::CurveKind::Ribbon, Vec3(0, std::sin(theta), std::cos(theta))),
-                       kWidth * std::cos(theta));
+  const Coverage c = side_on_coverage(
+      straight_curve(Shape::CurveKind::Ribbon, Vec3(0, std::sin(theta), std::cos(theta))), kWidth * std::cos(theta));
   EXPECT_NEAR(c.area, c.expected, 4 * c.sigma) << "sigma " << c.sigma;
 }
 

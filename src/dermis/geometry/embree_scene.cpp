@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstddef>
-#include <type_traits>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 #include "dermis/core/frame.h"
 
@@ -81,8 +81,8 @@ void flat_curve_filter(const RTCFilterFunctionNArguments* args) {
     // (Farin, Curves and Surfaces for CAGD, the derivative of a Bézier curve).
     constexpr int m = 8;
     const float second = std::max(length(p[2] - p[1] * 2 + p[0]), length(p[3] - p[2] * 2 + p[1]));
-    const float reach = std::max({r[0], r[1], r[2], r[3]}) + 6 * second / (8 * m * m) +
-                        2e-4f * std::max(1.0f, max_component(abs(o)));
+    const float reach =
+        std::max({r[0], r[1], r[2], r[3]}) + 6 * second / (8 * m * m) + 2e-4f * std::max(1.0f, max_component(abs(o)));
     Vec3 a = p[0];
     bool near = false;
     for (int k = 1; k <= m && !near; ++k) {
@@ -130,10 +130,9 @@ void collect_filter(const RTCFilterFunctionNArguments* args) {
   const unsigned N = args->N;
   for (unsigned i = 0; i < N; ++i) {
     if (args->valid[i] != -1) continue;
-    if (c->pass_through &&
-        !(*c->pass_through)[std::size_t(c->scene->shape_of(RTCHitN_geomID(args->hit, N, i),
-                                                           RTCHitN_instID(args->hit, N, i, 0)))])
-      continue;  // accepted
+    if (c->pass_through && !(*c->pass_through)[std::size_t(c->scene->shape_of(RTCHitN_geomID(args->hit, N, i),
+                                                                              RTCHitN_instID(args->hit, N, i, 0)))])
+      continue;          // accepted
     args->valid[i] = 0;  // rejected: the traversal goes on to the next candidate
     EmbreeScene::RawHit h;
     h.t = RTCRayN_tfar(args->ray, N, i);
@@ -269,8 +268,7 @@ void EmbreeScene::build(const std::vector<Shape>& shapes, const std::vector<int>
   object_geom_shape_.assign(objects.size(), {});
   for (std::size_t o = 0; o < objects.size(); ++o) {
     object_scenes_.push_back(make_scene(objects[o], object_geom_shape_[o]));
-    commit(object_scenes_.back(), monitor,
-           fmt::format("building the BVH (object {} of {})", o + 1, objects.size()));
+    commit(object_scenes_.back(), monitor, fmt::format("building the BVH (object {} of {})", o + 1, objects.size()));
   }
 
   top_geom_shape_.clear();
@@ -422,8 +420,8 @@ void EmbreeScene::fill_hit(const RTCRayHit& rh, const Ray& ray, SurfaceHit& hit)
     // perpendicular to the tangent (pbrt-v4's flat curve, dp/du x dp/dv with dp/dv across
     // the ray). Computed in world space; the point is on the ray.
     Vec3 n(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-    if (inst) n = s.curve_kind == Shape::CurveKind::Flat ? inst->object_to_world.vector(n)
-                                                        : inst->object_to_world.normal(n);
+    if (inst)
+      n = s.curve_kind == Shape::CurveKind::Flat ? inst->object_to_world.vector(n) : inst->object_to_world.normal(n);
     if (s.curve_kind == Shape::CurveKind::Flat) {
       const Vec3 tangent = normalize(n);
       const Vec3 d = normalize(ray.d);

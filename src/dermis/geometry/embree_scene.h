@@ -79,7 +79,7 @@ class EmbreeScene {
   Vec3 bounds_center() const { return center_; }
   float bounds_radius() const { return radius_; }
 
- // What the filter of one geometry (alpha, flat curve) reads (Embree's geometry user pointer).
+  // What the filter of one geometry (alpha, flat curve) reads (Embree's geometry user pointer).
   struct AlphaGeometry {
     const Shape* shape;
     AlphaTextureLookup lookup;
@@ -95,8 +95,8 @@ class EmbreeScene {
   RTCScene scene_ = nullptr;
   std::vector<RTCScene> object_scenes_;
   const std::vector<Shape>* shapes_ = nullptr;
-  std::vector<int> top_geom_shape_;     // top-level geomID -> shape index, or -1 for instances
-  std::vector<int> top_geom_instance_;  // top-level geomID -> instance index, or -1
+  std::vector<int> top_geom_shape_;                  // top-level geomID -> shape index, or -1 for instances
+  std::vector<int> top_geom_instance_;               // top-level geomID -> instance index, or -1
   std::vector<std::vector<int>> object_geom_shape_;  // per object: geomID -> shape index
   std::vector<Instance> instances_;
   std::vector<std::unique_ptr<AlphaGeometry>> alpha_geometries_;

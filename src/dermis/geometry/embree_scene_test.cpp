@@ -36,8 +36,8 @@ void expect_hits_match_the_shape(bool flip, bool instanced) {
     const Vec3 center = to_world.point(Vec3(0.3f, -0.2f, 0.1f));
     const bool inside = i % 2 == 1;
     Vec3 d = normalize(Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f));
-    Vec3 o = inside ? center + Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 0.5f : center - d * 10.0f +
-                      Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, 0.0f);
+    Vec3 o = inside ? center + Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 0.5f
+                    : center - d * 10.0f + Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, 0.0f);
     SurfaceHit h;
     if (!scene.intersect(Ray{o, d}, h)) continue;
     ++hits;

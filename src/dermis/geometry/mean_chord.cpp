@@ -20,7 +20,8 @@ double mean_chord_length(const std::vector<const Shape*>& shapes) {
     double v = 0, a = 0;
     Vec3d oriented(0.0, 0.0, 0.0);  // the sum of the faces' oriented area vectors: 0 for a closed surface
     for (std::size_t k = 0; k + 2 < s->indices.size(); k += 3) {
-      const Vec3d p0 = Vec3d(s->positions[s->indices[k]]) - centre, p1 = Vec3d(s->positions[s->indices[k + 1]]) - centre,
+      const Vec3d p0 = Vec3d(s->positions[s->indices[k]]) - centre,
+                  p1 = Vec3d(s->positions[s->indices[k + 1]]) - centre,
                   p2 = Vec3d(s->positions[s->indices[k + 2]]) - centre;
       const Vec3d twice_area = cross(p1 - p0, p2 - p0);
       v += dot(p0, cross(p1, p2)) / 6;  // the signed tetrahedron (centre, triangle)

@@ -8,7 +8,8 @@ namespace {
 // A closed cube of side a at `offset`, its faces wound outward (or inward).
 Shape cube(float a, Vec3 offset, bool inward = false) {
   Shape s;
-  for (int k = 0; k < 8; ++k) s.positions.push_back(offset + Vec3(k & 1 ? a : 0.0f, k & 2 ? a : 0.0f, k & 4 ? a : 0.0f));
+  for (int k = 0; k < 8; ++k)
+    s.positions.push_back(offset + Vec3(k & 1 ? a : 0.0f, k & 2 ? a : 0.0f, k & 4 ? a : 0.0f));
   const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   for (const auto& q : quads) {
     const uint32_t tris[2][3] = {{q[0], q[1], q[2]}, {q[0], q[2], q[3]}};

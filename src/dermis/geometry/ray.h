@@ -15,12 +15,12 @@ struct Ray {
 // Where a ray met a surface, in world space.
 struct SurfaceHit {
   float t = 0;
-  Vec3 p;          // position
-  Vec3 ng;         // geometric normal, unit, oriented as the shape says "outside"
-  Vec3 ns;         // shading normal (interpolated vertex normals), unit, same side as ng
-  Vec2 uv;         // surface parameterisation (texture coordinates)
-  int shape = -1;  // index into RenderScene::shapes
-  int prim = -1;   // triangle index within the shape
+  Vec3 p;             // position
+  Vec3 ng;            // geometric normal, unit, oriented as the shape says "outside"
+  Vec3 ns;            // shading normal (interpolated vertex normals), unit, same side as ng
+  Vec2 uv;            // surface parameterisation (texture coordinates)
+  int shape = -1;     // index into RenderScene::shapes
+  int prim = -1;      // triangle index within the shape
   int instance = -1;  // object instance the shape was hit through, -1 for top-level shapes
 };
 

@@ -20,21 +20,21 @@ struct Shape {
   // Mesh: vertices in the space of the Embree scene that holds it. Curve: cubic Bézier
   // control points, 4 per segment (segment k: positions[4k .. 4k+3]); indices stay empty.
   std::vector<Vec3> positions;
-  std::vector<Vec3> normals;  // mesh: optional per-vertex shading normals; ribbon curve: per control point
+  std::vector<Vec3> normals;       // mesh: optional per-vertex shading normals; ribbon curve: per control point
   std::vector<float> curve_radii;  // curve: half the width at each control point
   CurveKind curve_kind = CurveKind::Flat;
-  std::vector<Vec2> uvs;      // optional
+  std::vector<Vec2> uvs;  // optional
   std::vector<uint32_t> indices;
   // Sphere: centre and radius in the space of the Embree scene that holds it.
   Vec3 center;
   float radius = 0;
   // Flip the geometric normal (pbrt: ReverseOrientation xor handedness swap).
   bool flip_normals = false;
-  int material = -1;          // index into RenderScene::materials
+  int material = -1;  // index into RenderScene::materials
   int inside_medium = -1, outside_medium = -1;
   bool has_medium_interface = false;
-  int first_light = -1;       // index of the area light of its first primitive, -1 if not emissive
-  int instance = -1;          // instance index when the shape belongs to an instanced object
+  int first_light = -1;  // index of the area light of its first primitive, -1 if not emissive
+  int instance = -1;     // instance index when the shape belongs to an instanced object
   // Alpha cut-out (geometry/alpha_mask.h): a constant, or a float texture (-1: none).
   float alpha = 1;
   int alpha_texture = -1;

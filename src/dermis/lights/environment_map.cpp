@@ -1,10 +1,10 @@
 #include "dermis/lights/environment_map.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 namespace dermis {
 
@@ -22,7 +22,7 @@ Vec3 equal_area_square_to_sphere(Vec2 uv) {
 Vec2 equal_area_sphere_to_square(Vec3 w) {
   const float ax = std::abs(w.x), ay = std::abs(w.y), az = std::min(std::abs(w.z), 1.0f);
   const float r = safe_sqrt(1 - az);
-  const float phi = std::atan2(ay, ax);        // [0, pi/2]
+  const float phi = std::atan2(ay, ax);         // [0, pi/2]
   float vp = r * phi * (2 / kPi), up = r - vp;  // on the diamond |u| + |v| = r
   if (w.z < 0) {                                // the corner triangles, folded out
     const float t = up;
@@ -92,7 +92,7 @@ float EnvironmentMap::upper_hemisphere_illuminance() const {
 
 float EnvironmentMap::solid_angle_density(Vec2 uv) const {
   if (mapping_ == Mapping::EqualArea) return 4 * kPi;  // equal-area: 4 pi over the unit square
-  return 2 * kPi * kPi * std::sin(uv.y * kPi);       // dω = 2 π² sin θ du dv
+  return 2 * kPi * kPi * std::sin(uv.y * kPi);         // dω = 2 π² sin θ du dv
 }
 
 Vec2 EnvironmentMap::direction_to_uv(Vec3 w_world) const {

@@ -65,7 +65,8 @@ TEST(EqualAreaEnvironmentMap, PdfIntegratesToOneAndSamplerMatchesIt) {
   const int g = 128;
   double sum = 0;
   for (int j = 0; j < g; ++j)
-    for (int i = 0; i < g; ++i) sum += env.pdf(env.uv_to_direction({(i + 0.5f) / g, (j + 0.5f) / g})) * 4 * kPi / (g * g);
+    for (int i = 0; i < g; ++i)
+      sum += env.pdf(env.uv_to_direction({(i + 0.5f) / g, (j + 0.5f) / g})) * 4 * kPi / (g * g);
   EXPECT_NEAR(sum, 1.0, 1e-3);
   // Samples binned per texel: a texel's probability is its luminance over the sum (every
   // texel has the same solid angle).

@@ -142,7 +142,8 @@ bool light_sample(const Light& l, const std::vector<Shape>& shapes, Vec3 ref, Ve
         s.pdf = uniform_sphere_pdf();
         s.L = l.emission;
       }
-      if (!through_portal(l, s.wi)) s.L = RGB(0);  // sampled over the whole sphere: unbiased, the portal's side is not favoured
+      if (!through_portal(l, s.wi))
+        s.L = RGB(0);  // sampled over the whole sphere: unbiased, the portal's side is not favoured
       s.distance = kInf;
       s.delta = false;
       return !s.L.is_black();

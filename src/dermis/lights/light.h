@@ -16,7 +16,7 @@ namespace dermis {
 struct Light {
   enum class Type { Triangle, Sphere, Point, Spot, Distant, Infinite };
   Type type = Type::Point;
-  RGB emission;          // L for area, distant and uniform infinite lights; I for point and spot
+  RGB emission;  // L for area, distant and uniform infinite lights; I for point and spot
   bool two_sided = false;
   // Triangle (world space) and its shape/primitive, for the normal's orientation.
   Vec3 p0, p1, p2;
@@ -29,7 +29,7 @@ struct Light {
   // Sphere (world space).
   Vec3 center;
   float radius = 0;
-  bool inward = false;   // sphere's normals point inward (ReverseOrientation)
+  bool inward = false;  // sphere's normals point inward (ReverseOrientation)
   // Point and spot position; spot axis; distant: unit direction toward the light.
   Vec3 position, direction;
   float cos_falloff_start = 1, cos_falloff_end = 1;
@@ -41,12 +41,12 @@ struct Light {
 };
 
 struct LightSample {
-  Vec3 wi;              // unit direction from the reference point toward the light
-  float distance = 0;   // to the sampled point (infinity for distant and infinite lights)
-  float pdf = 0;        // solid angle at the reference point (1 for delta lights)
-  RGB L;                // radiance (or I/d^2 for point lights) arriving at the reference point
-  Vec3 p_light;         // sampled point on the light (finite lights)
-  Vec3 n_light;         // its normal (area lights)
+  Vec3 wi;             // unit direction from the reference point toward the light
+  float distance = 0;  // to the sampled point (infinity for distant and infinite lights)
+  float pdf = 0;       // solid angle at the reference point (1 for delta lights)
+  RGB L;               // radiance (or I/d^2 for point lights) arriving at the reference point
+  Vec3 p_light;        // sampled point on the light (finite lights)
+  Vec3 n_light;        // its normal (area lights)
   bool delta = false;
 };
 

@@ -65,8 +65,8 @@ LightSelection::LightSelection(const std::vector<Light>& lights, float scene_rad
     switch (l.type) {
       case Light::Type::Triangle: {
         b.center = (l.p0 + l.p1 + l.p2) / 3.0f;
-        b.radius = std::sqrt(std::max({length_squared(l.p0 - b.center), length_squared(l.p1 - b.center),
-                                       length_squared(l.p2 - b.center)}));
+        b.radius = std::sqrt(std::max(
+            {length_squared(l.p0 - b.center), length_squared(l.p1 - b.center), length_squared(l.p2 - b.center)}));
         const Vec3 c = cross(l.p1 - l.p0, l.p2 - l.p0);
         const float len = length(c);
         b.normal = len > 0 ? c / len : Vec3(0, 0, 1);
@@ -177,8 +177,8 @@ float LightSelection::importance(std::size_t i, Vec3 p, Vec3 n) const {
   return 0;
 }
 
-int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped, int group,
-                           float* group_importance, SkyRule sky) const {
+int LightSelection::sample(float u, Vec3 p, Vec3 n, float* pmf, float* u_remapped, int group, float* group_importance,
+                           SkyRule sky) const {
   *pmf = 0;
   if (group_importance) *group_importance = 0;
   if (count_ == 0) return -1;

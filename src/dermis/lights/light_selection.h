@@ -141,12 +141,12 @@ class LightSelection {
 
   struct Bounds {
     Light::Type type;
-    Vec3 center;            // bounding sphere of an area light; position of point and spot
+    Vec3 center;  // bounding sphere of an area light; position of point and spot
     float radius = 0;
-    Vec3 normal;            // triangle's unit normal (either side); spot axis; toward a distant light
-    float emission = 0;     // average radiance (area, infinite), intensity (point, spot), irradiance (distant),
-                            // divided by the largest of them
-    float area = 0;         // triangle: area; sphere: its cross-section
+    Vec3 normal;         // triangle's unit normal (either side); spot axis; toward a distant light
+    float emission = 0;  // average radiance (area, infinite), intensity (point, spot), irradiance (distant),
+                         // divided by the largest of them
+    float area = 0;      // triangle: area; sphere: its cross-section
     float cos_falloff_end = -1;
     bool uniform_sky = false;  // an infinite light of constant radiance (no image)
   };

@@ -198,8 +198,8 @@ TEST(LightSelection, AUniformSkyGivesWayInAMediumToLightsThatOutweighIt) {
     EXPECT_NE(chosen, 2);
     EXPECT_FLOAT_EQ(pmf, sel.pmf(chosen, p, in_medium));
   }
-  EXPECT_FLOAT_EQ(sel.pmf(2, p, {0, -1, 0}), 1.0f);  // a surface: the sky's own group
-  EXPECT_GT(LightSelection(lights, 10, false).pmf(2, p, in_medium), 0.0f);  // the rule off
+  EXPECT_FLOAT_EQ(sel.pmf(2, p, {0, -1, 0}), 1.0f);                             // a surface: the sky's own group
+  EXPECT_GT(LightSelection(lights, 10, false).pmf(2, p, in_medium), 0.0f);      // the rule off
   EXPECT_FLOAT_EQ(LightSelection({sky(0.1f)}, 10).pmf(0, p, in_medium), 1.0f);  // the sky alone
   // A sky bright enough to outweigh the quad keeps its share (its importance there, 4 pi L,
   // against the quad's L A cos / d^2).
@@ -246,7 +246,8 @@ TEST(LightSelection, AUniformSkyGivesWayAtASurfaceWhereTheFiniteLightsOutweighIt
   EXPECT_FALSE(sel.uniform_sky_outweighed(finite_importance(sel, {0, -1, 0})));  // the quad behind
   EXPECT_EQ(finite_importance(sel, {0, -1, 0}), 0.0f);
   float pmf = 1;
-  EXPECT_EQ(sel.sample(0.5f, p, {0, 1, 0}, &pmf, nullptr, 1, nullptr, SkyRule::Outweighed), -1);  // facing: the sky gives way
+  EXPECT_EQ(sel.sample(0.5f, p, {0, 1, 0}, &pmf, nullptr, 1, nullptr, SkyRule::Outweighed),
+            -1);  // facing: the sky gives way
   EXPECT_EQ(pmf, 0.0f);
   EXPECT_EQ(sel.pmf(2, p, {0, 1, 0}, SkyRule::Outweighed), 0.0f);
   EXPECT_EQ(sel.sample(0.5f, p, {0, 1, 0}, &pmf, nullptr, 1), 2);  // not asked for: it keeps its group
@@ -332,8 +333,7 @@ TEST(LightSelection, ManyLightsUseThePowerDistribution) {
   // In proportion to power (area x radiance; all areas equal).
   double sum = 0;
   for (int i = 0; i < int(lights.size()); ++i) sum += 1.0 + i;
-  for (int i = 0; i < int(lights.size()); ++i)
-    EXPECT_NEAR(sel.pmf(i, {0, 0, 0}, {0, 0, 1}), (1.0 + i) / sum, 1e-5);
+  for (int i = 0; i < int(lights.size()); ++i) EXPECT_NEAR(sel.pmf(i, {0, 0, 0}, {0, 0, 1}), (1.0 + i) / sum, 1e-5);
 }
 
 // Lights near the range of floats: the probabilities stay finite and exact (a sky of
@@ -412,8 +412,8 @@ TEST(LightSelection, MayMeetFiniteEmitterIsNeverFalseForARayThatMeetsOne) {
   EXPECT_FALSE(sel.may_meet_finite_emitter({0, 0, 0}, {0, -1, 0}));
   EXPECT_FALSE(sel.may_meet_finite_emitter({0, 0, 0}, normalize(Vec3(0, -2, 1))));  // toward the point light
   EXPECT_FALSE(sel.may_meet_finite_emitter({0, 0, 0}, {0, 0, 1}));                  // toward the spot light
-  EXPECT_FALSE(sel.may_meet_finite_emitter({0, 0, 0}, {-1, 0, 0}));  // away from the sphere light
-  EXPECT_TRUE(sel.may_meet_finite_emitter({3, 0.1f, 0}, {0, -1, 0}));  // from inside its bounds
+  EXPECT_FALSE(sel.may_meet_finite_emitter({0, 0, 0}, {-1, 0, 0}));                 // away from the sphere light
+  EXPECT_TRUE(sel.may_meet_finite_emitter({3, 0.1f, 0}, {0, -1, 0}));               // from inside its bounds
   // Without the bounds (more lights than kPointwiseLightLimit): always true.
   std::vector<Light> many;
   for (std::size_t i = 0; i <= kPointwiseLightLimit; ++i)

@@ -114,8 +114,8 @@ TEST(Light, TrianglePdfMatchesSampledDensity) {
   // Solid angle of a triangle (Van Oosterom & Strackee 1983).
   Vec3d a = Vec3d(l.p0 - ref), b = Vec3d(l.p1 - ref), c = Vec3d(l.p2 - ref);
   double la = length(a), lb = length(b), lc = length(c);
-  double omega = 2 * std::atan2(std::abs(dot(a, cross(b, c))),
-                                la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la);
+  double omega =
+      2 * std::atan2(std::abs(dot(a, cross(b, c))), la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la);
   EXPECT_NEAR(est, omega, 1e-3 * omega);
 }
 

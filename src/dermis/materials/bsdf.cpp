@@ -1,8 +1,8 @@
 #include "dermis/materials/bsdf.h"
 
 #include "dermis/core/frame.h"
-#include "dermis/core/rng.h"
 #include "dermis/core/fresnel.h"
+#include "dermis/core/rng.h"
 #include "dermis/core/warp.h"
 #include "dermis/materials/microfacet_bsdf.h"
 #include "dermis/materials/rough_exit_lobe.h"

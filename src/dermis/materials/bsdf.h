@@ -9,10 +9,10 @@
 
 #include <optional>
 
+#include "dermis/core/microfacet.h"
 #include "dermis/core/rgb.h"
 #include "dermis/core/vec.h"
 #include "dermis/materials/layered_bsdf.h"
-#include "dermis/core/microfacet.h"
 
 namespace dermis {
 
@@ -21,10 +21,10 @@ struct RoughExitTable;  // materials/rough_exit_lobe.h
 struct BSDF {
   enum class Type { Diffuse, Dielectric, Conductor, SubsurfaceExit, DiffuseTransmission, Coated };
   Type type = Type::Diffuse;
-  Vec3 n;           // unit normal of the surface (either side)
-  RGB albedo;       // diffuse reflectance (Diffuse, DiffuseTransmission)
+  Vec3 n;             // unit normal of the surface (either side)
+  RGB albedo;         // diffuse reflectance (Diffuse, DiffuseTransmission)
   RGB transmittance;  // DiffuseTransmission: Lambertian transmission to the other side
-  float eta = 1.5f; // dielectric: index inside over outside (the side n points away from)
+  float eta = 1.5f;   // dielectric: index inside over outside (the side n points away from)
   RGB cond_eta, cond_k;
   float sw_norm = 1;  // SubsurfaceExit: c = 1 - 2 FM1(eta), see subsurface_exit_normalization()
   // SubsurfaceExit through a rough boundary: T(mu) replaces 1 - Fr, and sw_norm is the
@@ -67,9 +67,9 @@ float subsurface_exit_normalization(float eta);
 
 struct BSDFSample {
   Vec3 wi;
-  RGB weight;        // f |cos wi| / pdf
-  float pdf = 0;     // solid angle; for specular lobes the discrete probability of the lobe;
-                     // Coated: an independent estimate of bsdf_pdf(wo, wi), for MIS
+  RGB weight;     // f |cos wi| / pdf
+  float pdf = 0;  // solid angle; for specular lobes the discrete probability of the lobe;
+                  // Coated: an independent estimate of bsdf_pdf(wo, wi), for MIS
   bool specular = false;
   bool transmission = false;
   float eta_scale = 1;  // etap^2 after a refraction (for Russian roulette, pbrt-v4 14.1)

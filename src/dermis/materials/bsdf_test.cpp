@@ -69,8 +69,8 @@ TEST(SubsurfaceExitLobe, IntegratesToOneAgainstCosine) {
     for (int i = 0; i < nt; ++i)
       for (int j = 0; j < np; ++j) {
         double th = (i + 0.5) / nt * kPiD / 2, ph = (j + 0.5) / np * 2 * kPiD;
-        Vec3 wi = f.to_world(Vec3(float(std::sin(th) * std::cos(ph)), float(std::sin(th) * std::sin(ph)),
-                                  float(std::cos(th))));
+        Vec3 wi = f.to_world(
+            Vec3(float(std::sin(th) * std::cos(ph)), float(std::sin(th) * std::sin(ph)), float(std::cos(th))));
         sum += bsdf_eval(b, Vec3(0, 0, 1), wi)[0] * std::sin(th) * (kPiD / 2 / nt) * (2 * kPiD / np);
       }
     EXPECT_NEAR(sum, 1.0, 2e-4) << "eta " << eta;

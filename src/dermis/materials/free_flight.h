@@ -45,7 +45,7 @@ struct FreeFlight {
   bool valid = false;      // false: nothing carries on (zero throughput or zero pdf)
   bool scattered = false;  // a scattering event at distance t before t_max
   float t = 0;
-  RGB weight;              // multiplies the throughput: sigma_s T(t) / pdf, or T(t_max) / P(pass)
+  RGB weight;  // multiplies the throughput: sigma_s T(t) / pdf, or T(t_max) / P(pass)
 };
 
 // beta: the path throughput (chooses the channel, with m.channel_preference); t_max: distance to the next surface
@@ -93,7 +93,7 @@ inline FreeFlight sample_free_flight(const HomogeneousMedium& m, const RGB& beta
 struct SegmentPoint {
   bool valid = false;  // false: no channel scatters on this segment
   float t = 0;
-  RGB weight;          // sigma_s T(t) / p(t): multiplies the in-scattered radiance at t
+  RGB weight;  // sigma_s T(t) / p(t): multiplies the in-scattered radiance at t
 };
 
 // The distance is drawn from the channel's exponential truncated to the segment, the channel

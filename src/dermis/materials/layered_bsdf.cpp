@@ -183,7 +183,8 @@ WalkResult walk(const CoatedLayer& c, Vec3 wo, Vec3 wi, Estimate mode, float u_l
       // At the base.
       if (events++ == c.max_depth) return out;
       if (v_exit) {
-        if (mode == Estimate::Value) out.sum += beta * bsdf_eval(base, -w, *v_exit) * to_interface(0, *v_exit) * exit_value;
+        if (mode == Estimate::Value)
+          out.sum += beta * bsdf_eval(base, -w, *v_exit) * to_interface(0, *v_exit) * exit_value;
         if (mode == Estimate::Density)
           out.sum += RGB(bsdf_pdf(base, -w, *v_exit) * to_interface(0, *v_exit) * exit_density);
       }
@@ -203,8 +204,7 @@ WalkResult walk(const CoatedLayer& c, Vec3 wo, Vec3 wi, Estimate mode, float u_l
     if (!t) return out;
     if (t->transmission) {
       // Value and Density counted this exit by their connections, in expectation.
-      if (mode == Estimate::Sample)
-        out.exit = CoatedSample{t->wi, beta * t->weight, specular && t->specular};
+      if (mode == Estimate::Sample) out.exit = CoatedSample{t->wi, beta * t->weight, specular && t->specular};
       return out;
     }
     if (events++ == c.max_depth) return out;

@@ -38,10 +38,10 @@ namespace dermis {
 
 struct CoatedLayer {
   enum class Base { Diffuse, Conductor };
-  float eta = 1.5f;                   // interface: index of the coating over the outside
+  float eta = 1.5f;                                    // interface: index of the coating over the outside
   float interface_alpha_x = 0, interface_alpha_y = 0;  // Trowbridge-Reitz; 0: smooth
   Base base = Base::Diffuse;
-  RGB base_reflectance{0.5f, 0.5f, 0.5f};  // Diffuse
+  RGB base_reflectance{0.5f, 0.5f, 0.5f};            // Diffuse
   RGB conductor_eta{1, 1, 1}, conductor_k{0, 0, 0};  // Conductor
   float base_alpha_x = 0, base_alpha_y = 0;
   float thickness = 0.01f;  // optical thickness of the slab (extinction 1 per unit)

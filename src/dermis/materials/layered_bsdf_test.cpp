@@ -91,7 +91,7 @@ TEST(CoatedDiffuse, EvalIntegratesToOneMinusSpecular) {
   Mean m;
   for (int i = 0; i < 200000; ++i) {
     const Vec3 wi = sample_uniform_sphere({rng.uniform(), rng.uniform()});
-    m.add(coated_eval(c, wo, wi, mix64(i)) [0] / uniform_sphere_pdf());
+    m.add(coated_eval(c, wo, wi, mix64(i))[0] / uniform_sphere_pdf());
   }
   const double F = fresnel_dielectric(wo.z, 1.5f);
   EXPECT_NEAR(m.mean() + F, 1.0, 4 * m.stderr_());

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
-#include "dermis/core/rgb.h"
 #include "dermis/core/microfacet.h"
+#include "dermis/core/rgb.h"
 #include "dermis/core/rng.h"
 #include "dermis/geometry/ray.h"
 #include "dermis/materials/bsdf.h"
@@ -22,7 +22,7 @@ struct Material {
   int reflectance_texture = -1;
   RGB transmittance{0.25f, 0.25f, 0.25f};  // DiffuseTransmission
   int transmittance_texture = -1;
-  float scale = 1;  // DiffuseTransmission: factor of both, pbrt-v4's "scale"
+  float scale = 1;   // DiffuseTransmission: factor of both, pbrt-v4's "scale"
   CoatedLayer coat;  // Coated: the stack (its base reflectance from `reflectance` above)
   // Mix: the two materials (indices), the second chosen with probability `amount`.
   int mix[2] = {-1, -1};
@@ -87,8 +87,10 @@ inline float textured_float(const std::vector<Texture>& textures, int texture, f
 // Roughness along the two axes as alpha: the constants, or the textures mapped per hit.
 inline void textured_alpha(const std::vector<Texture>& textures, const int texture[2], bool remap,
                            const SurfaceHit& hit, float& alpha_x, float& alpha_y) {
-  if (texture[0] >= 0) alpha_x = roughness_to_alpha(std::max(0.0f, textured_float(textures, texture[0], 0, hit)), remap);
-  if (texture[1] >= 0) alpha_y = roughness_to_alpha(std::max(0.0f, textured_float(textures, texture[1], 0, hit)), remap);
+  if (texture[0] >= 0)
+    alpha_x = roughness_to_alpha(std::max(0.0f, textured_float(textures, texture[0], 0, hit)), remap);
+  if (texture[1] >= 0)
+    alpha_y = roughness_to_alpha(std::max(0.0f, textured_float(textures, texture[1], 0, hit)), remap);
 }
 
 inline BSDF bsdf_at(const Material& m, const std::vector<Texture>& textures, const SurfaceHit& hit) {
@@ -99,15 +101,19 @@ inline BSDF bsdf_at(const Material& m, const std::vector<Texture>& textures, con
       b.type = BSDF::Type::Coated;
       b.coat = m.coat;
       if (m.coat.base == CoatedLayer::Base::Diffuse) {
-        RGB r = m.reflectance_texture >= 0 ? evaluate_texture(textures, m.reflectance_texture, texture_context(hit)) : m.reflectance;
+        RGB r = m.reflectance_texture >= 0 ? evaluate_texture(textures, m.reflectance_texture, texture_context(hit))
+                                           : m.reflectance;
         for (int c = 0; c < 3; ++c) r[c] = std::clamp(r[c], 0.0f, 1.0f);
         b.coat.base_reflectance = r;
       } else if (m.reflectance_texture >= 0) {
         b.coat.conductor_eta = RGB(1);
-        b.coat.conductor_k = conductor_k_from_reflectance(evaluate_texture(textures, m.reflectance_texture, texture_context(hit)));
+        b.coat.conductor_k =
+            conductor_k_from_reflectance(evaluate_texture(textures, m.reflectance_texture, texture_context(hit)));
       }
-      textured_alpha(textures, m.roughness_texture, m.remap_roughness, hit, b.coat.interface_alpha_x, b.coat.interface_alpha_y);
-      textured_alpha(textures, m.base_roughness_texture, m.remap_roughness, hit, b.coat.base_alpha_x, b.coat.base_alpha_y);
+      textured_alpha(textures, m.roughness_texture, m.remap_roughness, hit, b.coat.interface_alpha_x,
+                     b.coat.interface_alpha_y);
+      textured_alpha(textures, m.base_roughness_texture, m.remap_roughness, hit, b.coat.base_alpha_x,
+                     b.coat.base_alpha_y);
       // pbrt-v4 clamps a textured thickness to at least its float epsilon and g to (-1, 1).
       if (m.thickness_texture >= 0)
         b.coat.thickness = std::max(textured_float(textures, m.thickness_texture, 0, hit), 0x1p-24f);
@@ -120,8 +126,8 @@ inline BSDF bsdf_at(const Material& m, const std::vector<Texture>& textures, con
     case Material::Type::DiffuseTransmission: {
       b.type = BSDF::Type::DiffuseTransmission;
       RGB r = m.reflectance_texture >= 0 ? evaluate_texture(textures, m.reflectance_texture, hit.uv) : m.reflectance;
-      RGB t = m.transmittance_texture >= 0 ? evaluate_texture(textures, m.transmittance_texture, hit.uv)
-                                           : m.transmittance;
+      RGB t =
+          m.transmittance_texture >= 0 ? evaluate_texture(textures, m.transmittance_texture, hit.uv) : m.transmittance;
       for (int c = 0; c < 3; ++c) {  // pbrt-v4 clamps scale * R and scale * T to [0, 1]
         b.albedo[c] = std::clamp(m.scale * r[c], 0.0f, 1.0f);
         b.transmittance[c] = std::clamp(m.scale * t[c], 0.0f, 1.0f);
@@ -136,7 +142,8 @@ inline BSDF bsdf_at(const Material& m, const std::vector<Texture>& textures, con
     case Material::Type::Interface:
     case Material::Type::Subsurface:  // handled by the integrator before any BSDF
       b.type = BSDF::Type::Diffuse;
-      b.albedo = m.reflectance_texture >= 0 ? evaluate_texture(textures, m.reflectance_texture, texture_context(hit)) : m.reflectance;
+      b.albedo = m.reflectance_texture >= 0 ? evaluate_texture(textures, m.reflectance_texture, texture_context(hit))
+                                            : m.reflectance;
       for (int c = 0; c < 3; ++c) b.albedo[c] = std::clamp(b.albedo[c], 0.0f, 1.0f);
       break;
     case Material::Type::Dielectric:
@@ -152,7 +159,8 @@ inline BSDF bsdf_at(const Material& m, const std::vector<Texture>& textures, con
       b.cond_k = m.cond_k;
       if (m.reflectance_texture >= 0) {  // only a conductor given a "reflectance" has one
         b.cond_eta = RGB(1);
-        b.cond_k = conductor_k_from_reflectance(evaluate_texture(textures, m.reflectance_texture, texture_context(hit)));
+        b.cond_k =
+            conductor_k_from_reflectance(evaluate_texture(textures, m.reflectance_texture, texture_context(hit)));
       }
       b.alpha_x = m.alpha_x;
       b.alpha_y = m.alpha_y;

@@ -79,8 +79,8 @@ RoughExitTable make_rough_exit_table(float eta, float alpha_x, float alpha_y) {
   RoughExitTable t;
   constexpr int n = RoughExitTable::kNodes;
   for (int i = 0; i < n; ++i)
-    t.transmittance[i] = float(rough_dielectric_transmittance(eta, alpha_x, alpha_y, float(i) / (n - 1),
-                                                              kTableResolution));
+    t.transmittance[i] =
+        float(rough_dielectric_transmittance(eta, alpha_x, alpha_y, float(i) / (n - 1), kTableResolution));
   set_norm(t);
   return t;
 }

@@ -183,9 +183,10 @@ TEST(RoughExitLobe, ConvergesToTheSmoothLobeAsRoughnessVanishes) {
     // 2 int |T - (1 - Fr)| mu dmu between the two interpolants: bounds their c's difference.
     const double d = lobe_distance([&](float mu) { return double(t.at(mu)) / kPiD; },
                                    [&](float mu) { return double(smooth.at(mu)) / kPiD; });
-    std::printf("alpha %.3f: distance to the smooth lobe %.5f (floor %.5f), 2 int |T - (1 - Fr)| mu dmu %.5f, "
-                "c %.5f (smooth %.5f, its interpolant %.5f)\n",
-                alpha, distance, floor, d, t.norm, c_smooth, smooth.norm);
+    std::printf(
+        "alpha %.3f: distance to the smooth lobe %.5f (floor %.5f), 2 int |T - (1 - Fr)| mu dmu %.5f, "
+        "c %.5f (smooth %.5f, its interpolant %.5f)\n",
+        alpha, distance, floor, d, t.norm, c_smooth, smooth.norm);
     EXPECT_LT(distance, previous) << "alpha " << alpha;
     previous = distance;
     if (alpha == 0.001f) {
@@ -235,7 +236,8 @@ TEST(RoughExitLobe, TexturedTablesAreTheTablesAtTheirNodesAndInterpolateBetween)
     for (int i = 0; i < RoughExitTable::kNodes; ++i) {
       const auto t_i = [i](const RoughExitTable& t) { return double(t.transmittance[i]); };
       const float mu = float(i) / (RoughExitTable::kNodes - 1);
-      const double quadrature = std::abs(direct.transmittance[i] - rough_dielectric_transmittance(eta, alpha, alpha, mu, 128));
+      const double quadrature =
+          std::abs(direct.transmittance[i] - rough_dielectric_transmittance(eta, alpha, alpha, mu, 128));
       c_quadrature = std::max(c_quadrature, quadrature);  // c's error is at most T's largest (2 int mu = 1)
       const double error = std::abs(double(blended.transmittance[i]) - direct.transmittance[i]);
       EXPECT_LE(error, interpolation_error(t_i) + quadrature + kFloatSlack) << "alpha " << alpha << " node " << i;
@@ -247,8 +249,8 @@ TEST(RoughExitLobe, TexturedTablesAreTheTablesAtTheirNodesAndInterpolateBetween)
     // The blend is a lobe of its own: it integrates to one against cos (its c blended with T).
     const BSDF b = exit_lobe(blended, eta);
     const Frame f(kNormal);
-    const auto I = integrate_with_error(
-        [&](Vec3 w) { return double(bsdf_eval(b, kNormal, f.to_world(w))[0]); }, kPiD / 2, 1024, 64);
+    const auto I = integrate_with_error([&](Vec3 w) { return double(bsdf_eval(b, kNormal, f.to_world(w))[0]); },
+                                        kPiD / 2, 1024, 64);
     EXPECT_NEAR(I.value, 1.0, I.error + kFloatSlack) << "alpha " << alpha;
     std::printf("alpha %.2f: max |T blended - T direct| %.2e, |c blended - c direct| %.2e\n", alpha, worst,
                 std::abs(double(blended.norm) - direct.norm));

@@ -10,7 +10,6 @@ namespace dermis {
 
 namespace {
 
-
 RGB texel(const ImageData& img, int x, int y, Texture::Wrap wrap) {
   if (wrap == Texture::Wrap::Repeat) {
     x = ((x % img.width) + img.width) % img.width;

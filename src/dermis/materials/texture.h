@@ -34,16 +34,27 @@ struct TextureMapping {
   enum class Kind { UV, Spherical, Cylindrical, Planar, Point3D };
   Kind kind = Kind::UV;
   float su = 1, sv = 1, du = 0, dv = 0;  // uv; du, dv also offset planar
-  Transform texture_from_world;         // all but uv: the inverse of the CTM at the Texture directive
+  Transform texture_from_world;          // all but uv: the inverse of the CTM at the Texture directive
   Vec3 vs{1, 0, 0}, vt{0, 1, 0};         // planar: the two axes
 
-  Vec2 st(const TextureContext& c) const;  // 2D mappings
+  Vec2 st(const TextureContext& c) const;                                              // 2D mappings
   Vec3 point(const TextureContext& c) const { return texture_from_world.point(c.p); }  // 3D
 };
 
 struct Texture {
   enum class Type {
-    Constant, Image, Scale, Checkerboard, Mix, DirectionMix, Bilerp, Dots, FBm, Wrinkled, Windy, Marble
+    Constant,
+    Image,
+    Scale,
+    Checkerboard,
+    Mix,
+    DirectionMix,
+    Bilerp,
+    Dots,
+    FBm,
+    Wrinkled,
+    Windy,
+    Marble
   };
   enum class Wrap { Repeat, Black, Clamp };
   Type type = Type::Constant;
@@ -58,13 +69,13 @@ struct Texture {
   // tex2); Dots: inside (value / tex1) and outside (value2 / tex2).
   RGB value2{0, 0, 0};
   int tex1 = -1, tex2 = -1;
-  float amount = 0.5f;       // Mix: the weight of tex2 ...
-  int amount_texture = -1;   // ... or a float texture for it (its first channel)
-  Vec3 dir{0, 1, 0};         // DirectionMix: unit, world space
+  float amount = 0.5f;           // Mix: the weight of tex2 ...
+  int amount_texture = -1;       // ... or a float texture for it (its first channel)
+  Vec3 dir{0, 1, 0};             // DirectionMix: unit, world space
   std::array<RGB, 4> corners{};  // Bilerp: v00, v01, v10, v11
-  int octaves = 8;           // FBm, Wrinkled, Marble
-  float omega = 0.5f;        // FBm, Wrinkled, Marble: pbrt-v4's "roughness"
-  float variation = 0.2f;    // Marble
+  int octaves = 8;               // FBm, Wrinkled, Marble
+  float omega = 0.5f;            // FBm, Wrinkled, Marble: pbrt-v4's "roughness"
+  float variation = 0.2f;        // Marble
 };
 
 // Evaluates texture `index` of `textures` at `c`. Float textures hold their value in all

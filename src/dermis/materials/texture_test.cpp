@@ -14,7 +14,7 @@ TEST(Textures, CheckerboardAlternatesBySquareAsPbrtV4) {
   t[0].type = Texture::Type::Constant;
   t[0].value = RGB(0.25f);
   t[1].type = Texture::Type::Checkerboard;
-  t[1].tex1 = 0;           // a texture
+  t[1].tex1 = 0;             // a texture
   t[1].value2 = RGB(0.75f);  // a value
   t[1].mapping.su = 2;
   // (s, t) = (2u, v): tex1 where floor(s) + floor(t) is even.
@@ -68,14 +68,14 @@ TextureContext at(Vec3 p, Vec3 n = {0, 0, 1}, Vec2 uv = {0, 0}) {
 TEST(TextureMappings, SphericalCylindricalPlanarAtHandComputedPoints) {
   TextureMapping m;
   m.texture_from_world = Transform::translate({-1, 0, 0});
-  m.kind = TextureMapping::Kind::Spherical;  // (theta / pi, phi / 2pi)
-  EXPECT_NEAR(m.st(at({1, 0, 2})).x, 0, 1e-6f);         // +z: theta 0
-  EXPECT_NEAR(m.st(at({2, 0, 0})).x, 0.5f, 1e-6f);      // +x: theta pi/2, phi 0
+  m.kind = TextureMapping::Kind::Spherical;         // (theta / pi, phi / 2pi)
+  EXPECT_NEAR(m.st(at({1, 0, 2})).x, 0, 1e-6f);     // +z: theta 0
+  EXPECT_NEAR(m.st(at({2, 0, 0})).x, 0.5f, 1e-6f);  // +x: theta pi/2, phi 0
   EXPECT_NEAR(m.st(at({2, 0, 0})).y, 0, 1e-6f);
-  EXPECT_NEAR(m.st(at({1, 3, 0})).y, 0.25f, 1e-6f);     // +y: phi pi/2
-  EXPECT_NEAR(m.st(at({1, -3, 0})).y, 0.75f, 1e-6f);    // -y: phi 3pi/2
-  EXPECT_NEAR(m.st(at({1, 0, -1})).x, 1, 1e-6f);        // -z: theta pi
-  m.kind = TextureMapping::Kind::Cylindrical;  // ((pi + atan2(y, x)) / 2pi, z)
+  EXPECT_NEAR(m.st(at({1, 3, 0})).y, 0.25f, 1e-6f);   // +y: phi pi/2
+  EXPECT_NEAR(m.st(at({1, -3, 0})).y, 0.75f, 1e-6f);  // -y: phi 3pi/2
+  EXPECT_NEAR(m.st(at({1, 0, -1})).x, 1, 1e-6f);      // -z: theta pi
+  m.kind = TextureMapping::Kind::Cylindrical;         // ((pi + atan2(y, x)) / 2pi, z)
   EXPECT_NEAR(m.st(at({2, 0, 3})).x, 0.5f, 1e-6f);
   EXPECT_NEAR(m.st(at({2, 0, 3})).y, 3, 1e-6f);
   EXPECT_NEAR(m.st(at({1, 1, 0})).x, 0.75f, 1e-6f);
@@ -131,7 +131,8 @@ TEST(Textures, DotsLieWhereTheNoiseSaysWithRadius035) {
     for (int j = -20; j < 20; ++j) {
       const float si = float(i), tj = float(j);
       const bool dot = perlin_noise(si + 0.5f, tj + 0.5f) > 0;
-      const Vec2 centre(si + 0.15f * perlin_noise(si + 1.5f, tj + 2.8f), tj + 0.15f * perlin_noise(si + 4.5f, tj + 9.8f));
+      const Vec2 centre(si + 0.15f * perlin_noise(si + 1.5f, tj + 2.8f),
+                        tj + 0.15f * perlin_noise(si + 4.5f, tj + 9.8f));
       EXPECT_EQ(inside_polka_dot(centre), dot) << i << " " << j;
       EXPECT_FALSE(inside_polka_dot(centre + Vec2(0.36f, 0)));
       EXPECT_FALSE(inside_polka_dot(centre + Vec2(0, -0.36f)));

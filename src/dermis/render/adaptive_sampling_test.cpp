@@ -1,7 +1,5 @@
 #include "dermis/render/adaptive_sampling.h"
 
-#include "dermis/core/sampler.h"
-
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -11,6 +9,7 @@
 #include <limits>
 #include <optional>
 
+#include "dermis/core/sampler.h"
 #include "dermis/render/renderer.h"
 #include "dermis/render/scene_preparation.h"
 #include "support/pixel_statistics.h"
@@ -44,7 +43,7 @@ TEST(AdaptiveSampling, ErrorIsTheStandardErrorOverTheRootOfTheValue) {
   for (int c = 0; c < 3; ++c) film.sum[c] = 4, film.sum_sq[c] = 10;
   film.samples[0] = 2;
   EXPECT_NEAR(pixel_noise_error(film, 0, 1), 1 / std::sqrt(2.0), 1e-7);
-  EXPECT_NEAR(pixel_noise_error(film, 0, 0.5), 0.5, 1e-7);  // at exposure 1/2 the value is 1: relative error
+  EXPECT_NEAR(pixel_noise_error(film, 0, 0.5), 0.5, 1e-7);           // at exposure 1/2 the value is 1: relative error
   EXPECT_NEAR(pixel_noise_error(film, 0, 4), std::sqrt(2.0), 1e-6);  // the error as written
   // Pixel 1: one sample: unknown.
   film.sum[3] = 1, film.sum_sq[3] = 1, film.samples[1] = 1;
@@ -105,7 +104,8 @@ TEST(AdaptiveSampling, EveryPassIsAStratifiedBlockOfThePixelsSequence) {
       for (uint32_t i = n; i < next; ++i) u.push_back(Sampler(SamplerKind::Sobol, 7, pixel, i).get2d());
       for (int j = 0; j <= k; ++j) {
         std::vector<int> cells(size, 0);
-        for (const Vec2& p : u) ++cells[std::size_t(int(p.x * float(1 << j)) * (1 << (k - j)) + int(p.y * float(1 << (k - j))))];
+        for (const Vec2& p : u)
+          ++cells[std::size_t(int(p.x * float(1 << j)) * (1 << (k - j)) + int(p.y * float(1 << (k - j))))];
         for (int c : cells) ASSERT_EQ(c, 1) << "pixel " << pixel << " block [" << n << ", " << next << ") split " << j;
       }
       ++blocks;
@@ -146,8 +146,8 @@ TEST(AdaptiveSampling, NoPixelStopsWhileItsNeighbourhoodIsAboveTheThreshold) {
   }
   EXPECT_GT(stopped, 100);
   EXPECT_GT(at_max, 10);
-  EXPECT_EQ(r.converged_pixels, uint64_t(std::count_if(nearby.begin(), nearby.end(),
-                                                       [&](float e) { return e <= threshold; })));
+  EXPECT_EQ(r.converged_pixels,
+            uint64_t(std::count_if(nearby.begin(), nearby.end(), [&](float e) { return e <= threshold; })));
 }
 
 // Stopping early keeps the mean: an adaptive render (independent samples, so that each

@@ -16,7 +16,8 @@ class Camera {
   enum class Projection { Perspective, Orthographic };
   Camera() = default;
   Camera(const Transform& camera_to_world, float fov_degrees, float lens_radius, float focal_distance, int xres,
-         int yres, const std::array<float, 4>* screen_window = nullptr, Projection projection = Projection::Perspective);
+         int yres, const std::array<float, 4>* screen_window = nullptr,
+         Projection projection = Projection::Perspective);
   // film: raster position in pixels; u_lens in [0,1)^2.
   Ray generate_ray(Vec2 film, Vec2 u_lens) const;
   // A thin lens (lens radius > 0): generate_ray reads u_lens; a pinhole ignores it.

@@ -22,8 +22,10 @@ void expect_near(Vec3 a, Vec3 b, float tol, const std::string& what) {
 // the plane z = 0: raster (0, 0) is its top-left corner, raster (200, 100) its bottom-right.
 TEST(CameraOrthographic, RaysLeaveTheScreenWindowAlongTheViewAxis) {
   const Camera c(Transform(), 90, 0, 1e6f, 200, 100, nullptr, Camera::Projection::Orthographic);
-  const struct { Vec2 film; Vec3 origin; } cases[] = {
-      {{0, 0}, {-2, 1, 0}}, {{200, 100}, {2, -1, 0}}, {{100, 50}, {0, 0, 0}}, {{150, 25}, {1, 0.5f, 0}}};
+  const struct {
+    Vec2 film;
+    Vec3 origin;
+  } cases[] = {{{0, 0}, {-2, 1, 0}}, {{200, 100}, {2, -1, 0}}, {{100, 50}, {0, 0, 0}}, {{150, 25}, {1, 0.5f, 0}}};
   for (const auto& k : cases) {
     const Ray r = c.generate_ray(k.film, {0.5f, 0.5f});
     expect_near(r.o, k.origin, 1e-6f, "origin");
@@ -41,8 +43,8 @@ TEST(CameraOrthographic, RaysLeaveTheScreenWindowAlongTheViewAxis) {
 // origin; under a placed and mirrored camera (as bench/vs_cycles' scenes: Scale -1 1 1 and a
 // LookAt), computed here in double from the transform.
 TEST(CameraPerspective, PinholeRaysFollowTheProjectionUnderAnyTransform) {
-  const Transform place = Transform::scale({-1, 1, 1}) *
-                          Transform::look_at({-850, -1000, 150}, {0, 0, 10}, {0, 0, 1}).inverse();
+  const Transform place =
+      Transform::scale({-1, 1, 1}) * Transform::look_at({-850, -1000, 150}, {0, 0, 10}, {0, 0, 1}).inverse();
   const int xres = 128, yres = 96;
   const double t = std::tan(36.0 * 3.14159265358979323846 / 360.0), aspect = double(xres) / yres;
   const Camera c(place, 36, 0, 1e6f, xres, yres);

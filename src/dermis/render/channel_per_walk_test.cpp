@@ -124,8 +124,8 @@ TEST(ChannelPerWalk, SamePictureLessNoiseWhereTheExtinctionDiffersByChannel) {
     float p_guided;
     double more_walks;  // the variance 3 shared walks would give, of the shared walks'
   };
-  for (const Case& k : {Case{"diffuse", 0.0f, 2.0 / 3.0}, Case{"diffuse", 0.5f, 2.0 / 3.0},
-                        Case{"dielectric", 0.0f, 1.0 / 3.0}}) {
+  for (const Case& k :
+       {Case{"diffuse", 0.0f, 2.0 / 3.0}, Case{"diffuse", 0.5f, 2.0 / 3.0}, Case{"dielectric", 0.0f, 1.0 / 3.0}}) {
     SCOPED_TRACE(k.boundary);
     SCOPED_TRACE(k.p_guided);
     auto sc = build_render_scene(
@@ -135,9 +135,10 @@ TEST(ChannelPerWalk, SamePictureLessNoiseWhereTheExtinctionDiffersByChannel) {
     const auto per_walk = render_with(*sc, strategy_index(true, p_guided), 256, 12);
     testing::expect_same_region_means(shared, per_walk, 3, 3);
     const Variances v = sphere_variances(shared, per_walk, 256);
-    std::printf("%s boundary, guided share %.1f: variance per sample %.4g (shared) vs %.4g (one channel per walk): "
-                "%.3gx\n",
-                k.boundary, double(p_guided), v.a, v.b, v.b / v.a);
+    std::printf(
+        "%s boundary, guided share %.1f: variance per sample %.4g (shared) vs %.4g (one channel per walk): "
+        "%.3gx\n",
+        k.boundary, double(p_guided), v.a, v.b, v.b / v.a);
     expect_less_noise(v, k.more_walks);
   }
 }
@@ -166,8 +167,8 @@ TEST(ChannelPerWalk, SamePictureAsThePreciseSharedWalk) {
 // for the pilot to choose); false keeps the shared walks in every strategy.
 TEST(ChannelPerWalk, TheMaterialParameterPinsIt) {
   Diagnostics diag;
-  auto pinned = build_render_scene(
-      parse_scene_string(sky_sphere(R"( "bool channelperwalk" true "float guidedshare" 0)")), diag);
+  auto pinned =
+      build_render_scene(parse_scene_string(sky_sphere(R"( "bool channelperwalk" true "float guidedshare" 0)")), diag);
   const SubsurfaceMaterial& m = *pinned->subsurface[0];
   EXPECT_EQ(m.strategy_count(), 1);
   EXPECT_FALSE(subsurface_pilot_wanted(*pinned));
@@ -178,8 +179,8 @@ TEST(ChannelPerWalk, TheMaterialParameterPinsIt) {
   EXPECT_THROW(parse_scene_string(sky_sphere(R"( "bool channelperwalk" 1)")), SceneError);
   // Pinned, with the pilot's strategies out of the way (strategy 0 is the material's own):
   // the same picture as the shared classical walk, and less noise.
-  auto shared = build_render_scene(
-      parse_scene_string(sky_sphere(R"( "float guidedshare" 0 "float channelpreference" 0)")), diag);
+  auto shared =
+      build_render_scene(parse_scene_string(sky_sphere(R"( "float guidedshare" 0 "float channelpreference" 0)")), diag);
   const auto a = render_with(*shared, 0, 256, 21);
   const auto b = render_with(*pinned, 0, 256, 22);
   testing::expect_same_region_means(a, b, 3, 3);

@@ -65,16 +65,14 @@ void write_checkpoint(const std::string& path, const CheckpointKey& key, const F
     File f(std::fopen(tmp.c_str(), "wb"));
     if (!f) throw fail(std::strerror(errno));
     const Header h = header_of(key);
-    const bool ok = std::fwrite(&h, sizeof h, 1, f.get()) == 1 &&
-                    std::fwrite(film.sum.data(), sizeof(double), film.sum.size(), f.get()) == film.sum.size() &&
-                    std::fwrite(film.sum_sq.data(), sizeof(double), film.sum_sq.size(), f.get()) ==
-                        film.sum_sq.size() &&
-                    std::fwrite(film.samples.data(), sizeof(uint32_t), film.samples.size(), f.get()) ==
-                        film.samples.size() &&
-                    std::fwrite(film.target.data(), sizeof(uint32_t), film.target.size(), f.get()) ==
-                        film.target.size() &&
-                    std::fwrite(film.rays.data(), sizeof(uint64_t), film.rays.size(), f.get()) == film.rays.size() &&
-                    std::fflush(f.get()) == 0;
+    const bool ok =
+        std::fwrite(&h, sizeof h, 1, f.get()) == 1 &&
+        std::fwrite(film.sum.data(), sizeof(double), film.sum.size(), f.get()) == film.sum.size() &&
+        std::fwrite(film.sum_sq.data(), sizeof(double), film.sum_sq.size(), f.get()) == film.sum_sq.size() &&
+        std::fwrite(film.samples.data(), sizeof(uint32_t), film.samples.size(), f.get()) == film.samples.size() &&
+        std::fwrite(film.target.data(), sizeof(uint32_t), film.target.size(), f.get()) == film.target.size() &&
+        std::fwrite(film.rays.data(), sizeof(uint64_t), film.rays.size(), f.get()) == film.rays.size() &&
+        std::fflush(f.get()) == 0;
     if (!ok) throw fail(std::strerror(errno));
   }
   std::error_code ec;
@@ -94,8 +92,9 @@ Film read_checkpoint(const std::string& path, const CheckpointKey& expected) {
   if (std::fread(&h, sizeof h, 1, f.get()) != 1 || std::memcmp(h.magic, kMagic, sizeof kMagic) != 0)
     throw fail("it is not a Dermis checkpoint");
   if (h.version == 1)
-    throw fail("it was written by an older Dermis (checkpoint version 1, without the per-pixel variances that "
-               "version 2 keeps); resume it with that Dermis, or render again");
+    throw fail(
+        "it was written by an older Dermis (checkpoint version 1, without the per-pixel variances that "
+        "version 2 keeps); resume it with that Dermis, or render again");
   if (h.version != kVersion) throw fail(fmt::format("version {}, this Dermis reads version {}", h.version, kVersion));
   const Header want = header_of(expected);
   if (h.scene_hash != want.scene_hash) throw fail("it was written for another scene (the scene file changed)");
@@ -107,12 +106,12 @@ Film read_checkpoint(const std::string& path, const CheckpointKey& expected) {
     throw fail(fmt::format("it was written for a {}x{} image (pixels [{}, {}) x [{}, {})), not {}x{}", h.full_width,
                            h.full_height, h.x0, h.x1, h.y0, h.y1, want.full_width, want.full_height));
   Film film(expected.pixels.width(), expected.pixels.height());
-  const bool ok = std::fread(film.sum.data(), sizeof(double), film.sum.size(), f.get()) == film.sum.size() &&
-                  std::fread(film.sum_sq.data(), sizeof(double), film.sum_sq.size(), f.get()) == film.sum_sq.size() &&
-                  std::fread(film.samples.data(), sizeof(uint32_t), film.samples.size(), f.get()) ==
-                      film.samples.size() &&
-                  std::fread(film.target.data(), sizeof(uint32_t), film.target.size(), f.get()) == film.target.size() &&
-                  std::fread(film.rays.data(), sizeof(uint64_t), film.rays.size(), f.get()) == film.rays.size();
+  const bool ok =
+      std::fread(film.sum.data(), sizeof(double), film.sum.size(), f.get()) == film.sum.size() &&
+      std::fread(film.sum_sq.data(), sizeof(double), film.sum_sq.size(), f.get()) == film.sum_sq.size() &&
+      std::fread(film.samples.data(), sizeof(uint32_t), film.samples.size(), f.get()) == film.samples.size() &&
+      std::fread(film.target.data(), sizeof(uint32_t), film.target.size(), f.get()) == film.target.size() &&
+      std::fread(film.rays.data(), sizeof(uint64_t), film.rays.size(), f.get()) == film.rays.size();
   unsigned char extra;
   if (!ok || std::fread(&extra, 1, 1, f.get()) != 0) throw fail("it is truncated or has extra bytes");
   for (std::size_t i = 0; i < film.sum.size(); ++i)

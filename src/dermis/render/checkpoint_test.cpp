@@ -29,7 +29,8 @@ TEST(Checkpoint, RoundTripIsExactAndMismatchesAreRefused) {
   Film film(3, 2);
   for (std::size_t i = 0; i < film.sum.size(); ++i) film.sum[i] = 0.1 * double(i) + 1e-17;
   for (std::size_t i = 0; i < film.sum_sq.size(); ++i) film.sum_sq[i] = 0.3 * double(i) + 1e-16;
-  for (std::size_t i = 0; i < film.samples.size(); ++i) film.samples[i] = uint32_t(i + 1), film.target[i] = uint32_t(2 * i), film.rays[i] = 1000 + i;
+  for (std::size_t i = 0; i < film.samples.size(); ++i)
+    film.samples[i] = uint32_t(i + 1), film.target[i] = uint32_t(2 * i), film.rays[i] = 1000 + i;
   const std::string path = temp_path("roundtrip");
   write_checkpoint(path, key, film);
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));

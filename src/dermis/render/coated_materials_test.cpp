@@ -1,16 +1,15 @@
 // The layered, diffuse-transmission and mix materials through the parser and the path
 // tracer: each image against an independent reference (geometry, a furnace, a closed
 // form), within 4 standard errors per pixel.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include <fmt/format.h>
-
+#include "dermis/core/microfacet.h"
 #include "dermis/core/rng.h"
 #include "dermis/materials/layered_bsdf.h"
-#include "dermis/core/microfacet.h"
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
 #include "dermis/scene/scene_test_util.h"
@@ -29,9 +28,10 @@ std::unique_ptr<RenderScene> scene_from(const std::string& text) {
 
 // A horizontal quad at height z, half-size h, facing +z.
 std::string quad(float z, float h) {
-  return fmt::format("Shape \"trianglemesh\" \"point3 P\" [{0} {0} {2} {1} {0} {2} {1} {1} {2} {0} {1} {2}] "
-                     "\"integer indices\" [0 1 2 0 2 3]\n",
-                     -h, h, z);
+  return fmt::format(
+      "Shape \"trianglemesh\" \"point3 P\" [{0} {0} {2} {1} {0} {2} {1} {1} {2} {0} {1} {2}] "
+      "\"integer indices\" [0 1 2 0 2 3]\n",
+      -h, h, z);
 }
 
 // A closed box [-h, h]^2 x [z0, z1] (outward winding).
@@ -72,8 +72,8 @@ void expect_images_equal(const testing::PixelStatistics& a, const testing::Pixel
   }
   EXPECT_EQ(failures, 0);
   // The image means (red): a sharper test of the same thing.
-  EXPECT_NEAR(sum_a, sum_b, 4 * std::sqrt(var)) << "image means " << sum_a / a.mean.size() << " vs "
-                                                 << sum_b / b.mean.size();
+  EXPECT_NEAR(sum_a, sum_b, 4 * std::sqrt(var))
+      << "image means " << sum_a / a.mean.size() << " vs " << sum_b / b.mean.size();
 }
 
 // (b) coateddiffuse against the same stack built as geometry: a smooth glass slab
@@ -189,19 +189,19 @@ TEST(DiffuseTransmissionRender, PlaneShowsTFromBelowAndRFromAbove) {
   const std::string body =
       "Film \"rgb\" \"integer xresolution\" 4 \"integer yresolution\" 4\n"
       "Integrator \"volpath\" \"integer maxdepth\" 1\nWorldBegin\n"
-      "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2] \"bool twosided\" true\n" + quad(5, 1e4f) + "AttributeEnd\n"
+      "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2] \"bool twosided\" true\n" +
+      quad(5, 1e4f) +
+      "AttributeEnd\n"
       "Material \"diffusetransmission\" \"rgb reflectance\" [0.2 0.2 0.2] \"rgb transmittance\" [0.5 0.5 0.5]\n" +
       quad(0, 1e4f);
   // From below the plane (z = -3) the only light reaches it through the plane; the area
   // light at z = 5 fills its upper hemisphere.
-  const auto below =
-      testing::pixel_statistics(*scene_from("LookAt 0 0 -3  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 20\n" + body),
-                                2000, 5);
+  const auto below = testing::pixel_statistics(
+      *scene_from("LookAt 0 0 -3  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 20\n" + body), 2000, 5);
   for (std::size_t p = 0; p < below.mean.size(); ++p)
     EXPECT_NEAR(below.mean[p][0], 0.5 * 2, 4 * below.stderr_[p][0] + 1e-5) << p;
-  const auto above =
-      testing::pixel_statistics(*scene_from("LookAt 0 0 3  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 20\n" + body),
-                                2000, 6);
+  const auto above = testing::pixel_statistics(
+      *scene_from("LookAt 0 0 3  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 20\n" + body), 2000, 6);
   for (std::size_t p = 0; p < above.mean.size(); ++p)
     EXPECT_NEAR(above.mean[p][0], 0.2 * 2, 4 * above.stderr_[p][0] + 1e-5) << p;
 }
@@ -218,23 +218,26 @@ std::string mix_scene(const std::string& materials) {
 // A mix of black and white at amount a renders a (white's share) on a convex sphere in
 // a white furnace: one bounce, white with probability a; nested mixes multiply.
 TEST(MixMaterialRender, BlackWhiteMixRendersAmount) {
-  const auto simple = scene_from(mix_scene(
-      "MakeNamedMaterial \"m\" \"string type\" \"mix\" \"string materials\" [\"black\" \"white\"] \"float amount\" 0.3\n"
-      "NamedMaterial \"m\"\n"));
+  const auto simple =
+      scene_from(mix_scene("MakeNamedMaterial \"m\" \"string type\" \"mix\" \"string materials\" [\"black\" \"white\"] "
+                           "\"float amount\" 0.3\n"
+                           "NamedMaterial \"m\"\n"));
   const auto st = testing::pixel_statistics(*simple, 4000, 7);
   for (std::size_t p = 0; p < st.mean.size(); ++p) EXPECT_NEAR(st.mean[p][1], 0.3, 4 * st.stderr_[p][1]) << p;
   // mix(mix(black, white, 0.3), white, 0.5): white with probability 0.5 0.3 + 0.5 = 0.65.
   const auto nested = scene_from(mix_scene(
-      "MakeNamedMaterial \"m\" \"string type\" \"mix\" \"string materials\" [\"black\" \"white\"] \"float amount\" 0.3\n"
+      "MakeNamedMaterial \"m\" \"string type\" \"mix\" \"string materials\" [\"black\" \"white\"] \"float amount\" "
+      "0.3\n"
       "MakeNamedMaterial \"n\" \"string type\" \"mix\" \"string materials\" [\"m\" \"white\"] \"float amount\" 0.5\n"
       "NamedMaterial \"n\"\n"));
   const auto sn = testing::pixel_statistics(*nested, 4000, 8);
   for (std::size_t p = 0; p < sn.mean.size(); ++p) EXPECT_NEAR(sn.mean[p][1], 0.65, 4 * sn.stderr_[p][1]) << p;
   // amount as a float texture (constant 0.8).
-  const auto textured = scene_from(mix_scene(
-      "Texture \"a\" \"float\" \"constant\" \"float value\" 0.8\n"
-      "MakeNamedMaterial \"m\" \"string type\" \"mix\" \"string materials\" [\"black\" \"white\"] \"texture amount\" \"a\"\n"
-      "NamedMaterial \"m\"\n"));
+  const auto textured =
+      scene_from(mix_scene("Texture \"a\" \"float\" \"constant\" \"float value\" 0.8\n"
+                           "MakeNamedMaterial \"m\" \"string type\" \"mix\" \"string materials\" [\"black\" \"white\"] "
+                           "\"texture amount\" \"a\"\n"
+                           "NamedMaterial \"m\"\n"));
   const auto stt = testing::pixel_statistics(*textured, 4000, 9);
   for (std::size_t p = 0; p < stt.mean.size(); ++p) EXPECT_NEAR(stt.mean[p][1], 0.8, 4 * stt.stderr_[p][1]) << p;
 }
@@ -248,14 +251,15 @@ TEST(MixMaterialParse, ErrorsNameTheValue) {
     FAIL() << "expected a SceneError";
   } catch (const SceneError& e) {
     const int col = int(line.find("\"nope\"")) + 1;
-    EXPECT_NE(std::string(e.what()).find(fmt::format("test.pbrt:8:{}: error: mix: unknown named material \"nope\"", col)),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find(fmt::format("test.pbrt:8:{}: error: mix: unknown named material \"nope\"", col)),
+        std::string::npos)
         << e.what();
   }
   EXPECT_THROW(parse_scene_string(mix_scene("MakeNamedMaterial \"m\" \"string type\" \"mix\" \"string materials\" "
                                             "\"black\"\n"),
                                   "test.pbrt"),
-               SceneError);  // one name
+               SceneError);                                                                    // one name
   EXPECT_THROW(parse_scene_string(mix_scene("Material \"mix\"\n"), "test.pbrt"), SceneError);  // none
   EXPECT_THROW(parse_scene_string(mix_scene("MakeNamedMaterial \"i\" \"string type\" \"interface\"\n"
                                             "Material \"mix\" \"string materials\" [\"i\" \"white\"]\n"),

@@ -65,7 +65,8 @@ std::string hair_scene(const std::string& type) {
     const float x = hair_x(k);
     s += "Shape \"curve\" \"string type\" \"" + type + "\" \"float width\" " + std::to_string(kWidth) +
          " \"point3 P\" [";
-    for (int i = 0; i < 4; ++i) s += " " + std::to_string(x) + " " + std::to_string(-kHalfLength + 2 * kHalfLength * float(i) / 3) + " 0";
+    for (int i = 0; i < 4; ++i)
+      s += " " + std::to_string(x) + " " + std::to_string(-kHalfLength + 2 * kHalfLength * float(i) / 3) + " 0";
     s += " ]\n";
   }
   return s;

@@ -22,7 +22,8 @@ Camera "perspective" "float fov" 30
 Film "rgb" "integer xresolution" 24 "integer yresolution" 24
 Integrator "volpath" "integer maxdepth" 1
 WorldBegin
-LightSource "infinite" "string filename" ")" + map_path + "\"" + mapping + R"(
+LightSource "infinite" "string filename" ")" +
+                            map_path + "\"" + mapping + R"(
 Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
 Shape "sphere"
 )";
@@ -125,8 +126,8 @@ TEST(EnvironmentLight, IlluminanceNormalisesUniformAndImageSkies) {
   img.width = img.height = 16;
   img.pixels.assign(16 * 16 * 3, 0.5f);
   write_image(dir.path() + "/sky.exr", img);
-  auto mapped = build_render_scene(parse_scene_string(head + "LightSource \"infinite\" \"string filename\" \"" + dir.path() +
-                                                      "/sky.exr\" \"float illuminance\" 10\n"),
+  auto mapped = build_render_scene(parse_scene_string(head + "LightSource \"infinite\" \"string filename\" \"" +
+                                                      dir.path() + "/sky.exr\" \"float illuminance\" 10\n"),
                                    diag);
   // A constant map of radiance c gives pi c: scaled to 10, its radiance is 10 / pi (to
   // 0.2%: the midpoint rule on 64 x 64 points, the horizon cutting the cells it crosses).

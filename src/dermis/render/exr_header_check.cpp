@@ -10,10 +10,10 @@ namespace dermis {
 
 namespace {
 
-constexpr uint32_t kMagic = 20000630;          // 76 2f 31 01, little-endian
-constexpr uint32_t kMultiPart = 0x1000;        // version flag: several headers
-constexpr uint32_t kLongNames = 0x400;         // names up to 255 bytes instead of 31
-constexpr int kMaxAttributes = 1 << 16;        // far beyond any real header
+constexpr uint32_t kMagic = 20000630;    // 76 2f 31 01, little-endian
+constexpr uint32_t kMultiPart = 0x1000;  // version flag: several headers
+constexpr uint32_t kLongNames = 0x400;   // names up to 255 bytes instead of 31
+constexpr int kMaxAttributes = 1 << 16;  // far beyond any real header
 
 uint32_t le32(const unsigned char* b) { return b[0] | (b[1] << 8) | (b[2] << 16) | (uint32_t(b[3]) << 24); }
 
@@ -63,9 +63,10 @@ std::string exr_header_problem(const std::string& path) {
       const int32_t size = int32_t(le32(size_bytes));
       if (size < 0) return fmt::format("attribute \"{}\" claims a negative size ({})", name, size);
       if (std::uintmax_t(size) > file_bytes - pos)
-        return fmt::format("attribute \"{}\" ({}) claims {} bytes but the file holds only {} more: a corrupt or "
-                           "truncated file",
-                           name, type, size, file_bytes - pos);
+        return fmt::format(
+            "attribute \"{}\" ({}) claims {} bytes but the file holds only {} more: a corrupt or "
+            "truncated file",
+            name, type, size, file_bytes - pos);
       in.seekg(size, std::ios::cur);
       pos += std::uintmax_t(size);
     }

@@ -31,8 +31,7 @@ FilterSampler::FilterSampler(const FilterDesc& desc) : desc_(desc) {
 }
 
 Vec2 FilterSampler::sample(Vec2 u) const {
-  if (desc_.type == FilterDesc::Type::Box)
-    return {(2 * u.x - 1) * desc_.radius.x, (2 * u.y - 1) * desc_.radius.y};
+  if (desc_.type == FilterDesc::Type::Box) return {(2 * u.x - 1) * desc_.radius.x, (2 * u.y - 1) * desc_.radius.y};
   float pdf;
   float sx = x_.sample_continuous(u.x, &pdf);
   float sy = y_.sample_continuous(u.y, &pdf);

@@ -35,9 +35,9 @@ PixelBounds film_pixel_bounds(const FilmDesc& film);
 
 struct Film {
   int width = 0, height = 0;
-  std::vector<double> sum;         // 3 per pixel
-  std::vector<double> sum_sq;      // 3 per pixel: the sums of squares (the per-pixel variance)
-  std::vector<uint32_t> samples;   // samples taken per pixel (non-finite ones included, as zero)
+  std::vector<double> sum;        // 3 per pixel
+  std::vector<double> sum_sq;     // 3 per pixel: the sums of squares (the per-pixel variance)
+  std::vector<uint32_t> samples;  // samples taken per pixel (non-finite ones included, as zero)
   // The sample count each pixel is to reach in the pass under way (renderer.cpp): a render
   // stopped in the middle of a pass is resumed by finishing that pass first, so that the
   // result equals a render never stopped even where pixels take different counts.

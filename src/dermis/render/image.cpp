@@ -11,9 +11,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -52,8 +52,8 @@ OutputFormat output_format(const std::string& path) {
   if (ext == ".hdr") return {Writer::kPlugin, "hdr", false};
   if (ext == ".tif" || ext == ".tiff") return {Writer::kPlugin, "tiff", false};
   if (ext == ".jpg" || ext == ".jpeg") return {Writer::kPlugin, "jpeg", true};
-  throw std::runtime_error(fmt::format("{}: cannot write image: unknown extension '{}' (supported: {})", path,
-                                       ext, kSupportedExtensions));
+  throw std::runtime_error(
+      fmt::format("{}: cannot write image: unknown extension '{}' (supported: {})", path, ext, kSupportedExtensions));
 }
 
 // 32-bit float R, G, B and the extra channels, zip-compressed, tagged linear (as
@@ -72,8 +72,8 @@ void write_exr(const std::string& path, const Image& img) {
   }
   for (const Image::Channel& extra : img.extra_channels) {
     if (extra.values.size() != img.pixel_count())
-      throw std::invalid_argument(fmt::format("channel '{}' has {} values for {} pixels", extra.name,
-                                              extra.values.size(), img.pixel_count()));
+      throw std::invalid_argument(
+          fmt::format("channel '{}' has {} values for {} pixels", extra.name, extra.values.size(), img.pixel_count()));
     header.channels().insert(extra.name, Imf::Channel(Imf::FLOAT));
     char* values = reinterpret_cast<char*>(const_cast<float*>(extra.values.data()));
     fb.insert(extra.name, Imf::Slice(Imf::FLOAT, values, sizeof(float), sizeof(float) * std::size_t(img.width)));
@@ -153,8 +153,10 @@ Image read_image(const std::string& path) {
   for (std::size_t i = 0; i < img.pixel_count(); ++i) {
     for (std::size_t c = 0; c < 3; ++c) {
       float v = raw.data[i * nc + (gray ? 0 : c)];
-      if (raw.encoding == DecodedImage::Encoding::kSrgb) v = srgb_to_linear(v);
-      else if (raw.encoding == DecodedImage::Encoding::kGamma) v = std::pow(std::max(v, 0.0f), raw.gamma);
+      if (raw.encoding == DecodedImage::Encoding::kSrgb)
+        v = srgb_to_linear(v);
+      else if (raw.encoding == DecodedImage::Encoding::kGamma)
+        v = std::pow(std::max(v, 0.0f), raw.gamma);
       img.pixels[3 * i + c] = v;
     }
   }

@@ -60,9 +60,9 @@ RGB false_colour(float t) {
   // Six control points in sRGB-encoded display values, chosen by eye after the
   // "inferno" map of van der Walt & Smith (matplotlib, 2015): perceived lightness rises
   // monotonically; interpolated piecewise-linearly in display space.
-  static constexpr std::array<RGB, 6> kRamp = {
-      RGB(0.00f, 0.00f, 0.02f), RGB(0.26f, 0.04f, 0.41f), RGB(0.58f, 0.15f, 0.40f),
-      RGB(0.87f, 0.32f, 0.23f), RGB(0.99f, 0.65f, 0.04f), RGB(0.99f, 1.00f, 0.65f)};
+  static constexpr std::array<RGB, 6> kRamp = {RGB(0.00f, 0.00f, 0.02f), RGB(0.26f, 0.04f, 0.41f),
+                                               RGB(0.58f, 0.15f, 0.40f), RGB(0.87f, 0.32f, 0.23f),
+                                               RGB(0.99f, 0.65f, 0.04f), RGB(0.99f, 1.00f, 0.65f)};
   if (!(t > 0)) t = 0;  // also maps NaN to the bottom
   t = std::min(t, 1.0f);
   const float x = t * float(kRamp.size() - 1);

@@ -102,7 +102,7 @@ TEST(FalseColour, LuminanceRisesMonotonicallyAndEndsAreClamped) {
   EXPECT_EQ(false_colour(-3.0f), false_colour(0.0f));
   EXPECT_EQ(false_colour(7.0f), false_colour(1.0f));
   EXPECT_EQ(false_colour(std::nanf("")), false_colour(0.0f));
-  EXPECT_LT(false_colour(0).max(), 0.01f);   // near black
+  EXPECT_LT(false_colour(0).max(), 0.01f);       // near black
   EXPECT_GT(false_colour(1).luminance(), 0.8f);  // near white
 }
 
@@ -117,8 +117,8 @@ TEST(DifferenceImage, ScalesToThe99thPercentile) {
   double scale = 0;
   Image d = difference_image(a, b, &scale);
   EXPECT_NEAR(scale, 198.0, 1e-4);
-  EXPECT_EQ(d.at(197, 0), false_colour(1.0f));  // at the percentile
-  EXPECT_EQ(d.at(199, 0), false_colour(1.0f));  // above it, clamped
+  EXPECT_EQ(d.at(197, 0), false_colour(1.0f));                      // at the percentile
+  EXPECT_EQ(d.at(199, 0), false_colour(1.0f));                      // above it, clamped
   RGB half = d.at(98, 0), expected = false_colour(99.0f / 198.0f);  // luminance of gray = value
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(half[c], expected[c], 1e-5);
 }

@@ -1,14 +1,14 @@
 // read_image on files whose headers lie about their size: refused with a message before
 // the pixels are allocated.
+#include <gtest/gtest.h>
+#include <unistd.h>
+#include <zlib.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
-
-#include <gtest/gtest.h>
-#include <unistd.h>
-#include <zlib.h>
 
 #include "dermis/render/exr_header_check.h"
 #include "dermis/render/image.h"
@@ -16,9 +16,7 @@
 namespace dermis {
 namespace {
 
-std::string be32(uint32_t v) {
-  return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
-}
+std::string be32(uint32_t v) { return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; }
 
 // A PNG whose IHDR (with a correct CRC) claims width x height, followed by a few bytes of
 // pixel data and IEND.
@@ -31,7 +29,8 @@ std::string png_header_only(uint32_t width, uint32_t height) {
   const std::string pixels(16, '\0');
   std::string idat(compressBound(uLong(pixels.size())), '\0');
   uLongf size = uLongf(idat.size());
-  compress(reinterpret_cast<Bytef*>(idat.data()), &size, reinterpret_cast<const Bytef*>(pixels.data()), uLong(pixels.size()));
+  compress(reinterpret_cast<Bytef*>(idat.data()), &size, reinterpret_cast<const Bytef*>(pixels.data()),
+           uLong(pixels.size()));
   idat.resize(size);
   return std::string("\x89PNG\r\n\x1a\n", 8) + chunk(ihdr) + chunk("IDAT" + idat) + chunk("IEND");
 }
@@ -82,7 +81,8 @@ TEST(ReadImageLimits, ExrAttributeClaimingMoreThanTheFileHoldsIsRefused) {
   std::string err = read_error("lying.exr", exr_with_attribute(0, 1800000000u, 40));
   EXPECT_NE(err.find("could not read image: attribute \"comments\" (string) claims 1800000000 bytes but the file "
                      "holds only 40 more"),
-            std::string::npos) << err;
+            std::string::npos)
+      << err;
   err = read_error("negative.exr", exr_with_attribute(0, 0x80000000u, 40));
   EXPECT_NE(err.find("claims a negative size"), std::string::npos) << err;
   // The same lie in a file named .png: the magic, not the name, decides.
@@ -93,7 +93,8 @@ TEST(ReadImageLimits, ExrAttributeClaimingMoreThanTheFileHoldsIsRefused) {
 // What the guard lets through: every header Dermis writes, single-part; a size that fits;
 // files of other formats; and a multi-part file is read header by header.
 TEST(ReadImageLimits, ExrGuardPassesWhatFits) {
-  const std::string dir = std::filesystem::temp_directory_path().string() + "/dermis_exr_guard_" + std::to_string(::getpid());
+  const std::string dir =
+      std::filesystem::temp_directory_path().string() + "/dermis_exr_guard_" + std::to_string(::getpid());
   std::filesystem::create_directories(dir);
   write_image(dir + "/a.exr", Image(5, 3, RGB(0.25f)));
   EXPECT_EQ(exr_header_problem(dir + "/a.exr"), "");
@@ -103,9 +104,9 @@ TEST(ReadImageLimits, ExrGuardPassesWhatFits) {
   std::ofstream(dir + "/b.png", std::ios::binary) << png_header_only(4, 4);
   EXPECT_EQ(exr_header_problem(dir + "/b.png"), "");
   // Multi-part: the first header fits, the second lies.
-  std::ofstream(dir + "/multi.exr", std::ios::binary)
-      << exr_with_attribute(0x1000, 4, 4) + std::string(1, '\0') + std::string("comments\0string\0", 16) +
-             le32(1000) + std::string(8, 'y');
+  std::ofstream(dir + "/multi.exr", std::ios::binary) << exr_with_attribute(0x1000, 4, 4) + std::string(1, '\0') +
+                                                             std::string("comments\0string\0", 16) + le32(1000) +
+                                                             std::string(8, 'y');
   EXPECT_NE(exr_header_problem(dir + "/multi.exr").find("claims 1000 bytes but the file holds only 8 more"),
             std::string::npos);
   std::filesystem::remove_all(dir);

@@ -40,8 +40,8 @@ ImagePlugin load() {
   if (!handle) {
     std::string where;
     for (const std::string& t : tried) where += (where.empty() ? "" : "; ") + t;
-    throw std::runtime_error(fmt::format("the image plugin {} (OpenImageIO) could not be loaded: {}", kPluginName,
-                                         where));
+    throw std::runtime_error(
+        fmt::format("the image plugin {} (OpenImageIO) could not be loaded: {}", kPluginName, where));
   }
   ImagePlugin p;
   p.read = reinterpret_cast<decltype(p.read)>(::dlsym(handle, "dermis_plugin_read_image"));

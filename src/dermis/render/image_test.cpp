@@ -102,8 +102,8 @@ TEST_F(ImageFileTest, PngRoundTripWithinEightBitQuantisation) {
     // Encoded values are rounded to k/255: half a code step in sRGB space, i.e.
     // 0.5/255 times the slope of the decoding curve at that value.
     float encoded = linear_to_srgb(img.pixels[i]);
-    float slope = (srgb_to_linear(std::min(1.0f, encoded + 0.5f / 255)) -
-                   srgb_to_linear(std::max(0.0f, encoded - 0.5f / 255)));
+    float slope =
+        (srgb_to_linear(std::min(1.0f, encoded + 0.5f / 255)) - srgb_to_linear(std::max(0.0f, encoded - 0.5f / 255)));
     ASSERT_NEAR(back.pixels[i], img.pixels[i], slope * 1.001f + 1e-7f) << "float " << i;
   }
   // The sRGB curve, not a plain copy: linear srgb_to_linear(128.2/255) encodes to code 128.

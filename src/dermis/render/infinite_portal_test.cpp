@@ -49,7 +49,10 @@ std::pair<double, double> mean_radiance(const std::string& portal) {
 }
 
 TEST(InfinitePortal, LightComesOnlyFromThePortalsSide) {
-  const struct { std::string portal; double E; } cases[] = {
+  const struct {
+    std::string portal;
+    double E;
+  } cases[] = {
       {"", kPi},
       {"\"point3 portal\" [0 0 0  0 1 0  1 1 0  1 0 0]", kPi},                    // (p3 - p0) x (p1 - p0) = +z
       {"\"point3 portal\" [0 0 0  0 0 1  0 1 1  0 1 0]", kPi / 2},                // +x

@@ -62,7 +62,7 @@ struct PathStart {
   // exit, the camera's split-off reflection): the emission it meets first counts in full,
   // as after the camera.
   bool prev_specular = false;
-  int depth = 0;  // scattering events already taken
+  int depth = 0;                                 // scattering events already taken
   uint64_t first_dimension = kCameraDimensions;  // of vertex 0's block
   // Russian roulette at the path's first vertex (its first surface hit, once that
   // surface's emission is counted, or its first scattering event in a medium) on this

@@ -1,9 +1,9 @@
 #include "dermis/render/light_power_range.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <string>
-
-#include <fmt/format.h>
 
 namespace dermis {
 
@@ -27,13 +27,14 @@ void check_light_power(std::span<const Light> lights, const SourceLoc& loc) {
       what = fmt::format("the point light's power 4π·I = 4π × {:.3g} = {:.3g}", e, power);
       break;
     case Light::Type::Spot:
-      what = fmt::format("the spot light's power 2π·I·(1 − (cos(coneangle − conedelta) + cos(coneangle))/2) = {:.3g} "
-                         "(I = {:.3g})",
-                         power, e);
+      what = fmt::format(
+          "the spot light's power 2π·I·(1 − (cos(coneangle − conedelta) + cos(coneangle))/2) = {:.3g} "
+          "(I = {:.3g})",
+          power, e);
       break;
     case Light::Type::Sphere:
-      what = fmt::format("the area light's power 4π²·r²·L = 4π² × {:.3g}² × {:.3g} = {:.3g}", double(l.radius), e,
-                         power);
+      what =
+          fmt::format("the area light's power 4π²·r²·L = 4π² × {:.3g}² × {:.3g} = {:.3g}", double(l.radius), e, power);
       break;
     case Light::Type::Triangle: {
       double area = 0;
@@ -47,10 +48,10 @@ void check_light_power(std::span<const Light> lights, const SourceLoc& loc) {
       return;  // not checked (see the header)
   }
   const bool area_light = l.type == Light::Type::Sphere || l.type == Light::Type::Triangle;
-  throw SceneError(loc, fmt::format("{} is beyond the range of 32-bit floats ({:.3g}) in which lights are "
-                                    "sampled; lower \"{}\" or \"scale\"{}",
-                                    what, kMaxLightPower, area_light ? "L" : "I",
-                                    area_light ? " (or the shape's size)" : ""));
+  throw SceneError(
+      loc, fmt::format("{} is beyond the range of 32-bit floats ({:.3g}) in which lights are "
+                       "sampled; lower \"{}\" or \"scale\"{}",
+                       what, kMaxLightPower, area_light ? "L" : "I", area_light ? " (or the shape's size)" : ""));
 }
 
 }  // namespace dermis

@@ -1,10 +1,11 @@
 // The subsurface-object mask against the geometry of a sphere seen from the camera.
+#include "dermis/render/object_mask.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include "dermis/render/object_mask.h"
 #include "dermis/render/scene_assembly.h"
 #include "dermis/scene/parser.h"
 
@@ -13,9 +14,9 @@ namespace {
 
 // Camera at the origin looking down +z (pbrt's camera space, y up), fov 40 degrees on a
 // square film; a subsurface sphere of radius 1 at z = 5 on the axis, a diffuse one
-// beside it, and a diffuse floor below both (not in the mask). A pixel centre is in the mask exactly when its ray's angle to the axis is
-// below asin(1/5); tessellation moves the silhouette a little, so pixels within 3 % of
-// that angle are not checked.
+// beside it, and a diffuse floor below both (not in the mask). A pixel centre is in the mask exactly when its ray's
+// angle to the axis is below asin(1/5); tessellation moves the silhouette a little, so pixels within 3 % of that angle
+// are not checked.
 class ObjectMask : public testing::TestWithParam<const char*> {};
 
 TEST_P(ObjectMask, IsTheSubsurfaceSphereSilhouette) {
@@ -26,7 +27,8 @@ Camera "perspective" "float fov" 40
 Film "rgb" "integer xresolution" 48 "integer yresolution" 48
 WorldBegin
 AttributeBegin
-  Material "subsurface" "rgb reflectance" [0.5 0.5 0.5] "rgb mfp" [1 1 1] "string method" ")") + GetParam() + R"("
+  Material "subsurface" "rgb reflectance" [0.5 0.5 0.5] "rgb mfp" [1 1 1] "string method" ")") +
+                                      GetParam() + R"("
   Translate 0 0 5
   Shape "sphere" "float radius" 1
 AttributeEnd
@@ -50,7 +52,8 @@ AttributeEnd
     for (int x = 0; x < res; ++x) {
       // Screen position in [-1, 1] times tan(fov / 2); pbrt's x grows to the left of +x
       // in raster space, which does not matter for a sphere on the axis.
-      const double sx = (2 * (x + 0.5) / res - 1) * std::tan(fov / 2), sy = (2 * (y + 0.5) / res - 1) * std::tan(fov / 2);
+      const double sx = (2 * (x + 0.5) / res - 1) * std::tan(fov / 2),
+                   sy = (2 * (y + 0.5) / res - 1) * std::tan(fov / 2);
       const double angle = std::atan(std::sqrt(sx * sx + sy * sy));
       const bool in = mask[std::size_t(y) * res + x] != 0;
       if (std::abs(angle / silhouette - 1) < 0.03) continue;

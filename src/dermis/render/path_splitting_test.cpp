@@ -1,5 +1,6 @@
 #include "dermis/render/path_splitting.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,13 +9,11 @@
 #include <limits>
 #include <string>
 
-#include <fmt/format.h>
-
 #include "dermis/render/integrator.h"
 #include "dermis/render/renderer.h"
 #include "dermis/render/scene_preparation.h"
-#include "dermis/scene/parser.h"
 #include "dermis/render/subsurface/probe_method.h"
+#include "dermis/scene/parser.h"
 #include "support/lit_sphere_scene.h"
 
 namespace dermis {
@@ -116,7 +115,8 @@ Material "subsurface" "rgb reflectance" [0.85 0.55 0.4] "rgb mfp" [0.4 0.2 0.1] 
          method + "\n" + box({-1.2f, -1.2f, -0.6f}, {1.2f, 1.0f, 0.0f}) + box({-1.2f, 1.0f, -0.6f}, {1.2f, 1.6f, 2.0f});
 }
 
-const char* kMethods[] = {"\"string method\" \"randomwalk\"", "\"string method\" \"disk\" \"string profile\" \"burley\""};
+const char* kMethods[] = {"\"string method\" \"randomwalk\"",
+                          "\"string method\" \"disk\" \"string profile\" \"burley\""};
 
 // Splitting at a low threshold (nearly every exit of a path past the first) against none:
 // the same picture within 4 sigma, for the walk and for probes.

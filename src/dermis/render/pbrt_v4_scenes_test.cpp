@@ -76,7 +76,6 @@ TEST(PbrtV4Scenes, SssDragonRendersItsCheckerboardFloor) {
   EXPECT_LT(bright / dark, 3.0f) << "dark " << dark << " bright " << bright;
 }
 
-
 // Pixels whose hue is clearly one channel's: red (R above both others by 30%), green,
 // blue (by 10%; the killeroos' green is pale).
 struct HueCounts {
@@ -169,7 +168,9 @@ void expect_sss_dragon_lit_from_the_suns_side(const std::string& file, float sca
 TEST(PbrtV4Scenes, SssDragon50IsLitFromTheSunsSide) { expect_sss_dragon_lit_from_the_suns_side("dragon_50.pbrt", 50); }
 
 // The third scale: 250 times denser than at scale 1, otherwise the same scene.
-TEST(PbrtV4Scenes, SssDragon250IsLitFromTheSunsSide) { expect_sss_dragon_lit_from_the_suns_side("dragon_250.pbrt", 250); }
+TEST(PbrtV4Scenes, SssDragon250IsLitFromTheSunsSide) {
+  expect_sss_dragon_lit_from_the_suns_side("dragon_250.pbrt", 250);
+}
 
 // killeroo-coated-gold: a level-3 loopsubdiv killeroo in coatedconductor gold whose eta
 // and k are .spd files (stand-ins: Palik's gold, the data of pbrt-v4's metal-Au-eta/k),
@@ -185,11 +186,12 @@ TEST(PbrtV4Scenes, SssDragon250IsLitFromTheSunsSide) { expect_sss_dragon_lit_fro
 // floor and walls show the grid: the lines (8 of every 64 texels each way, 23% of the
 // area, linear reflectance 0.5 x 0.014 against 0.5 x 1) are the darker pixels.
 TEST(PbrtV4Scenes, KillerooCoatedGoldIsGoldOnAGrid) {
-  const RenderedScene k = render_pbrt_v4_scene("killeroo-coated-gold/killeroo-coated-gold.pbrt", 171, 128, 16,
-                                               [](const std::string& w) { return w.find("reduced to RGB") != std::string::npos; });
+  const RenderedScene k =
+      render_pbrt_v4_scene("killeroo-coated-gold/killeroo-coated-gold.pbrt", 171, 128, 16,
+                           [](const std::string& w) { return w.find("reduced to RGB") != std::string::npos; });
   const SceneDesc& d = k.desc;
   EXPECT_EQ(d.diagnostics.warnings.size(), 2u);
-  ASSERT_EQ(d.shapes.size(), 5u);  // light, floor, two walls, killeroo
+  ASSERT_EQ(d.shapes.size(), 5u);                             // light, floor, two walls, killeroo
   EXPECT_EQ(d.shapes[4].mesh.indices.size(), 3u * 64 * 528);  // 528 triangles, three levels
   ASSERT_GE(d.shapes[4].material, 0);
   const MaterialDesc& gold = d.materials[std::size_t(d.shapes[4].material)];

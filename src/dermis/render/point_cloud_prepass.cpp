@@ -93,18 +93,20 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
     if (mat.type != Material::Type::Subsurface) continue;
     if (!std::holds_alternative<PointCloudMethod>(sc.subsurface[mat.subsurface]->method)) continue;
     if (sc.shapes[i].instance >= 0)
-      throw std::runtime_error("subsurface method \"pointcloud\": objects inside ObjectBegin/ObjectInstance are not "
-                               "supported; use another method for instanced objects");
+      throw std::runtime_error(
+          "subsurface method \"pointcloud\": objects inside ObjectBegin/ObjectInstance are not "
+          "supported; use another method for instanced objects");
     objects[sc.object_of_shape[i]].push_back(int(i));
   }
   if (objects.empty()) {
     // Said rather than ignored: a wrong scene or a misspelt method would otherwise pass unseen.
-    for (const auto& [option, path] : {std::pair{"--load-pointcloud", &options.load_path},
-                                       std::pair{"--save-pointcloud", &options.save_path}})
+    for (const auto& [option, path] :
+         {std::pair{"--load-pointcloud", &options.load_path}, std::pair{"--save-pointcloud", &options.save_path}})
       if (!path->empty())
-        report.warnings.push_back(fmt::format("warning: {} {}: the scene has no object whose subsurface method is "
-                                              "\"pointcloud\"; no point cloud was {}",
-                                              option, *path, option[2] == 'l' ? "read" : "written"));
+        report.warnings.push_back(
+            fmt::format("warning: {} {}: the scene has no object whose subsurface method is "
+                        "\"pointcloud\"; no point cloud was {}",
+                        option, *path, option[2] == 'l' ? "read" : "written"));
     return report;
   }
   int k = 0;
@@ -143,7 +145,8 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
         count = adaptive ? pc::pilot_point_count(cap) : cap;
         if (!adaptive && wanted > double(params.max_points))
           report.warnings.push_back(fmt::format(
-              "{}: warning: point cloud of object {}: \"pointdensity\" {} asks for {:.3g} points (area {:.3g}, mfp {:.3g}); "
+              "{}: warning: point cloud of object {}: \"pointdensity\" {} asks for {:.3g} points (area {:.3g}, mfp "
+              "{:.3g}); "
               "using the \"maxpoints\" budget of {} (spacing {:.3g} instead of {:.3g}). Raise \"maxpoints\" or "
               "--points for a finer cloud",
               params.loc.str(), k, params.point_density, wanted, area, mfp, params.max_points,
@@ -153,7 +156,7 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
       const int samples = params.irradiance_samples;
       const int outside_medium = sc.shapes[shapes[0]].outside_medium;
       std::vector<float> variance;  // of each point's luminance estimate (the refinement's noise)
-      std::string rounds;  // each refinement round's count and miss, for the report
+      std::string rounds;           // each refinement round's count and miss, for the report
       for (;;) {
         {
           // The blue-noise distribution (seconds for 10^5 points, single-threaded) shows its
@@ -168,7 +171,8 @@ PointCloudReport build_point_clouds(RenderScene& sc, const PointCloudOptions& op
             placing.advance(int64_t(done - reported));
             reported = done;
           };
-          cloud.points = pc::distribute_points(positions, indices, count, mix64(options.seed ^ (0x9e37 + object)), dist);
+          cloud.points =
+              pc::distribute_points(positions, indices, count, mix64(options.seed ^ (0x9e37 + object)), dist);
           project_onto_spheres(cloud.points, spheres);
           placing.finish();
         }

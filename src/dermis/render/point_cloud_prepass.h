@@ -17,17 +17,17 @@
 namespace dermis {
 
 struct PointCloudOptions {
-  std::size_t points = 0;   // points per object; 0: from the material's "pointdensity"
-  std::string save_path;    // write the cloud(s) here (object k > 0 gets ".k" appended)
-  std::string load_path;    // read them instead of computing them
+  std::size_t points = 0;  // points per object; 0: from the material's "pointdensity"
+  std::string save_path;   // write the cloud(s) here (object k > 0 gets ".k" appended)
+  std::string load_path;   // read them instead of computing them
   uint64_t seed = 0;
   SamplerKind sampler = SamplerKind::Sobol;
 };
 
 struct PointCloudReport {
   std::size_t clouds = 0, points = 0, memory_bytes = 0, file_bytes = 0;
-  double prepass_seconds = 0;  // point distribution and irradiance (or loading)
-  double build_seconds = 0;    // octrees and local disk tables
+  double prepass_seconds = 0;         // point distribution and irradiance (or loading)
+  double build_seconds = 0;           // octrees and local disk tables
   std::vector<std::string> warnings;  // e.g. a cloud capped at its "maxpoints" budget
   std::vector<std::string> notes;     // how each cloud's point count was chosen
 };

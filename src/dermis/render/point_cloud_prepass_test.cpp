@@ -61,7 +61,9 @@ void expect_fresnel_plus_albedo(const RenderScene& sc) {
 TEST(PointCloudRender, FlatSlabReturnsFresnelPlusAlbedo) {
   for (int variant : {0, 1, 2}) {
     const bool local_disk = variant != 1;
-    SCOPED_TRACE(variant == 0 ? "local disk" : variant == 1 ? "plain octree" : "local disk, count from the illumination");
+    SCOPED_TRACE(variant == 0   ? "local disk"
+                 : variant == 1 ? "plain octree"
+                                : "local disk, count from the illumination");
     Diagnostics diag;
     PointCloudOptions o;
     o.points = variant == 2 ? 0 : 30000;  // ~0.8 mfp spacing on the top face
@@ -132,10 +134,12 @@ TEST(PointCloudRender, CloudFilesForASceneWithoutCloudsAreWarnedAbout) {
   const PreparationReport r = prepare_scene(*sc, prep);
   EXPECT_EQ(r.point_clouds.clouds, 0u);
   ASSERT_EQ(r.point_clouds.warnings.size(), 2u);
-  EXPECT_EQ(r.point_clouds.warnings[0], "warning: --load-pointcloud /nonexistent/cloud.bin: the scene has no object "
-                                        "whose subsurface method is \"pointcloud\"; no point cloud was read");
-  EXPECT_EQ(r.point_clouds.warnings[1], "warning: --save-pointcloud saved.bin: the scene has no object whose "
-                                        "subsurface method is \"pointcloud\"; no point cloud was written");
+  EXPECT_EQ(r.point_clouds.warnings[0],
+            "warning: --load-pointcloud /nonexistent/cloud.bin: the scene has no object "
+            "whose subsurface method is \"pointcloud\"; no point cloud was read");
+  EXPECT_EQ(r.point_clouds.warnings[1],
+            "warning: --save-pointcloud saved.bin: the scene has no object whose "
+            "subsurface method is \"pointcloud\"; no point cloud was written");
   EXPECT_FALSE(std::filesystem::exists("saved.bin"));
 }
 
@@ -160,8 +164,10 @@ TEST(PointCloudRender, TheCloudIsCappedAtItsBudgetWithAWarning) {
   std::vector<std::string> warnings;
   EXPECT_EQ(points_with("\"integer maxpoints\" 2000", &warnings), 2000u);
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_NE(warnings[0].find("<string>:7:1: warning: point cloud of object 1: \"pointdensity\" 1 asks for 4.32e+04 points"),
-            std::string::npos) << warnings[0];
+  EXPECT_NE(
+      warnings[0].find("<string>:7:1: warning: point cloud of object 1: \"pointdensity\" 1 asks for 4.32e+04 points"),
+      std::string::npos)
+      << warnings[0];
   EXPECT_NE(warnings[0].find("budget of 2000"), std::string::npos) << warnings[0];
   EXPECT_EQ(points_with("\"integer maxpoints\" 2000 \"float pointdensity\" 0.04", &warnings), 1728u);  // 0.04 * 43200
   EXPECT_TRUE(warnings.empty());
@@ -186,19 +192,22 @@ TEST(PointCloudRender, TheCountFollowsTheIllumination) {
   EXPECT_TRUE(sky.point_clouds.warnings.empty());
   ASSERT_EQ(sky.point_clouds.notes.size(), 1u);
   EXPECT_NE(sky.point_clouds.notes[0].find("point cloud of object 1: 1024 points represent the illumination to"),
-            std::string::npos) << sky.point_clouds.notes[0];
+            std::string::npos)
+      << sky.point_clouds.notes[0];
 
   const PreparationReport spot = prepared(spot_slab(), "\"integer irradiancesamples\" 2");
   EXPECT_EQ(spot.point_clouds.points, 43200u);
   EXPECT_TRUE(spot.point_clouds.warnings.empty());
   ASSERT_EQ(spot.point_clouds.notes.size(), 1u);
-  EXPECT_NE(spot.point_clouds.notes[0].find("by round: 1024 points: "), std::string::npos) << spot.point_clouds.notes[0];
+  EXPECT_NE(spot.point_clouds.notes[0].find("by round: 1024 points: "), std::string::npos)
+      << spot.point_clouds.notes[0];
 
   const PreparationReport budget = prepared(spot_slab(), "\"integer irradiancesamples\" 2 \"integer maxpoints\" 3000");
   EXPECT_EQ(budget.point_clouds.points, 3000u);
   ASSERT_EQ(budget.point_clouds.warnings.size(), 1u);
   EXPECT_NE(budget.point_clouds.warnings[0].find("<string>:7:1: warning: point cloud of object 1: 3000 points"),
-            std::string::npos) << budget.point_clouds.warnings[0];
+            std::string::npos)
+      << budget.point_clouds.warnings[0];
   EXPECT_NE(budget.point_clouds.warnings[0].find("coarser than the illumination needs"), std::string::npos);
   EXPECT_TRUE(budget.point_clouds.notes.empty());
 }

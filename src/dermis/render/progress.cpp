@@ -9,8 +9,8 @@
 namespace dermis {
 
 namespace {
-constexpr int64_t kRedrawIntervalNs = 100'000'000;    // at most 10 redraws a second
-constexpr int64_t kLineIntervalNs = 10'000'000'000;   // in line mode, a line at least every 10 s
+constexpr int64_t kRedrawIntervalNs = 100'000'000;   // at most 10 redraws a second
+constexpr int64_t kLineIntervalNs = 10'000'000'000;  // in line mode, a line at least every 10 s
 }  // namespace
 
 std::string format_duration(double seconds) {
@@ -98,7 +98,8 @@ void Progress::draw(int64_t t, bool final) {
   next_redraw_ns_.store(t + kRedrawIntervalNs, std::memory_order_relaxed);
   // A job may learn of work it need not do after counting some of it twice (adaptive
   // sampling): never more than the total is shown.
-  const int64_t done = total_ > 0 ? std::min(done_.load(std::memory_order_relaxed), total_) : done_.load(std::memory_order_relaxed);
+  const int64_t done =
+      total_ > 0 ? std::min(done_.load(std::memory_order_relaxed), total_) : done_.load(std::memory_order_relaxed);
   const double elapsed = double(t) * 1e-9;
   if (style_ == Style::kBar) {
     std::string bar = format_progress_bar(label_, done, total_, elapsed);
@@ -121,8 +122,9 @@ void Progress::draw(int64_t t, bool final) {
       if (d <= last_decile_ && t - last_line_ns_ < kLineIntervalNs) return;
       last_decile_ = std::max(last_decile_, d);
       last_line_ns_ = t;
-      std::fputs((format_progress_line(label_, done, total_, elapsed) + (note_.empty() ? "" : ", " + note_) + "\n").c_str(),
-                 out_);
+      std::fputs(
+          (format_progress_line(label_, done, total_, elapsed) + (note_.empty() ? "" : ", " + note_) + "\n").c_str(),
+          out_);
     }
   }
   std::fflush(out_);

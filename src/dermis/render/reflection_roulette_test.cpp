@@ -21,10 +21,11 @@ namespace {
 const char* kCoefficients = R"("rgb sigma_a" [0.05 0.15 0.3] "rgb sigma_s" [2 3 4] "float g" 0.3)";
 
 std::vector<std::string> objects() {
-  return {std::string("Material \"subsurface\" ") + kCoefficients + " \"float eta\" 1.4 \"string method\" \"randomwalk\"\n",
-          std::string("Material \"subsurface\" ") + kCoefficients +
-              " \"float eta\" 1.4 \"string method\" \"disk\" \"string profile\" \"burley\"\n",
-          std::string("Material \"dielectric\" \"float eta\" 1.5\n")};
+  return {
+      std::string("Material \"subsurface\" ") + kCoefficients + " \"float eta\" 1.4 \"string method\" \"randomwalk\"\n",
+      std::string("Material \"subsurface\" ") + kCoefficients +
+          " \"float eta\" 1.4 \"string method\" \"disk\" \"string profile\" \"burley\"\n",
+      std::string("Material \"dielectric\" \"float eta\" 1.5\n")};
 }
 
 // A grey floor under the unit sphere, seen in its lower half's reflection.

@@ -15,12 +15,12 @@
 #include "dermis/lights/light_selection.h"
 #include "dermis/materials/material.h"
 #include "dermis/materials/medium.h"
-#include "dermis/scene/subsurface_params.h"
 #include "dermis/materials/texture.h"
 #include "dermis/render/camera.h"
 #include "dermis/render/subsurface/coefficients.h"
 #include "dermis/render/subsurface/subsurface_method.h"
 #include "dermis/scene/scene_desc.h"
+#include "dermis/scene/subsurface_params.h"
 
 namespace dermis {
 
@@ -71,7 +71,7 @@ struct RenderScene {
   // stay within the shapes of the object they entered.
   std::vector<int> object_of_shape;
   std::vector<Light> lights;
-  LightSelection light_selection;     // which light next-event estimation samples
+  LightSelection light_selection;  // which light next-event estimation samples
   std::vector<int> infinite_lights;
   bool has_interfaces = false;        // any shape with an `interface` material
   std::vector<char> interface_shape;  // per shape: 1 when its material is `interface` (shadow rays pass)
@@ -84,7 +84,7 @@ struct RenderScene {
   FilmDesc film;
   RenderSettingsDesc settings;
   EstimatorSwitches switches;  // all on but in tests
-  bool prepared = false;  // scene_preparation.h has run
+  bool prepared = false;       // scene_preparation.h has run
 };
 
 }  // namespace dermis

@@ -58,7 +58,8 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
   ProcessGroup& group = opt.group ? *opt.group : single_process();
   std::vector<Tile> all_tiles, tiles;
   for (int y = 0; y < h; y += kTileSize)
-    for (int x = 0; x < w; x += kTileSize) all_tiles.push_back({x, y, std::min(x + kTileSize, w), std::min(y + kTileSize, h)});
+    for (int x = 0; x < w; x += kTileSize)
+      all_tiles.push_back({x, y, std::min(x + kTileSize, w), std::min(y + kTileSize, h)});
   for (std::size_t i = 0; i < all_tiles.size(); ++i)
     if (tile_owner(i, all_tiles.size(), group, opt.tile_assignment) == group.rank()) tiles.push_back(all_tiles[i]);
 
@@ -144,7 +145,7 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
   // more (adaptive_sampling.h), until none is left.
   const AdaptiveSampling& adaptive = opt.adaptive;
   const uint32_t spp = uint32_t(opt.spp);
-  const uint32_t min_spp = !adaptive.enabled() ? spp
+  const uint32_t min_spp = !adaptive.enabled()    ? spp
                            : adaptive.min_spp > 0 ? std::min<uint32_t>(uint32_t(adaptive.min_spp), spp)
                                                   : uint32_t(default_min_spp(opt.spp));
   // A resumed film finishes the pass it was stopped in (its pixels below their target).
@@ -236,7 +237,7 @@ RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) {
     });
     busy += std::chrono::duration<double>(Clock::now() - pass_start).count();
     if (done == std::numeric_limits<uint32_t>::max()) done = fewest_samples();  // a resumed pass finished
-    const bool finished = fewest_samples() >= spp;  // no pass follows: no checkpoint needed
+    const bool finished = fewest_samples() >= spp;                              // no pass follows: no checkpoint needed
     if (opt.checkpoint && !stop && !finished &&
         std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= opt.checkpoint_interval) {
       opt.checkpoint(film);

@@ -29,10 +29,10 @@ enum class TileAssignment {
 
 struct RenderOptions {
   int spp = 16;
-  int threads = 0;            // 0: all cores
+  int threads = 0;  // 0: all cores
   uint64_t seed = 0;
   SamplerKind sampler = SamplerKind::Sobol;
-  double time_limit = 0;      // seconds; 0: none
+  double time_limit = 0;                      // seconds; 0: none
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop early
   // Called from worker threads with the number of pixel samples just finished; with a
   // group, also at each pass boundary with the samples the other processes finished.
@@ -59,9 +59,9 @@ struct RenderOptions {
 
 struct RenderResult {
   int width = 0, height = 0;
-  std::vector<float> rgb;     // linear, row-major, top row first
-  uint64_t samples = 0;       // pixel samples in the image (a resumed film's included)
-  uint64_t nonfinite = 0;     // samples that were NaN or infinite (counted as zero)
+  std::vector<float> rgb;  // linear, row-major, top row first
+  uint64_t samples = 0;    // pixel samples in the image (a resumed film's included)
+  uint64_t nonfinite = 0;  // samples that were NaN or infinite (counted as zero)
   uint64_t rays = 0;
   uint64_t truncated = 0;
   uint32_t min_spp = 0, max_spp = 0;

@@ -1,5 +1,4 @@
 #include "dermis/render/renderer.h"
-#include "dermis/render/scene_preparation.h"
 
 #include <gtest/gtest.h>
 
@@ -8,6 +7,7 @@
 #include <limits>
 #include <optional>
 
+#include "dermis/render/scene_preparation.h"
 #include "support/pixel_statistics.h"
 #include "support/small_scene.h"
 

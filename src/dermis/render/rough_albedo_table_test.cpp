@@ -18,8 +18,8 @@
 #include "dermis/core/warp.h"
 #include "dermis/materials/bsdf.h"
 #include "dermis/render/subsurface/coefficients.h"
-#include "dermis/sss/walk/albedo_inversion.h"
 #include "dermis/sss/halfspace/halfspace.h"
+#include "dermis/sss/walk/albedo_inversion.h"
 #include "support/slab_albedo.h"
 
 namespace dermis {
@@ -62,8 +62,7 @@ TEST(RoughAlbedoTable, HalfspaceEqualsAMediumInsideARoughDielectric) {
     // correlated): adding their variances overstates the sum's, never understates it.
     const double sigma = std::sqrt(sqr(slab.stderr_) + sqr(r.specular_stderr) + sqr(r.albedo_stderr));
     std::printf("roughness %.2f: slab %.5f +- %.5f, half-space %.5f +- %.5f (specular %.4f, lost %.4f)\n", roughness,
-                slab.mean, slab.stderr_, simulated, std::hypot(r.specular_stderr, r.albedo_stderr), r.specular,
-                r.lost);
+                slab.mean, slab.stderr_, simulated, std::hypot(r.specular_stderr, r.albedo_stderr), r.specular, r.lost);
     EXPECT_NEAR(slab.mean, simulated, 4 * sigma);
   }
 }

@@ -1,8 +1,8 @@
 // Light sampling at rough glass (both sides of the surface), at a rough subsurface entry
-// (its reflection lobe) and at a walk's rough exits (through the boundary from inside) changes the noise, never the mean: each scene rendered with
-// and without it (EstimatorSwitches::rough_glass_nee, the estimator that finds emission there by
-// BSDF sampling alone), independent samples, region means within 4 standard errors of the
-// difference. The variance ratio (without / with) is printed; it must exceed one.
+// (its reflection lobe) and at a walk's rough exits (through the boundary from inside) changes the noise, never the
+// mean: each scene rendered with and without it (EstimatorSwitches::rough_glass_nee, the estimator that finds emission
+// there by BSDF sampling alone), independent samples, region means within 4 standard errors of the difference. The
+// variance ratio (without / with) is printed; it must exceed one.
 #include <gtest/gtest.h>
 
 #include <cstdio>

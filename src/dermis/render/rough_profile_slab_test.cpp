@@ -62,8 +62,10 @@ Shape "trianglemesh" "point3 P" [-60 -60 -30  60 -60 -30  60 60 -30  -60 60 -30
 }
 
 std::string subsurface(const std::string& method, double roughness) {
-  std::string m = "Material \"subsurface\" \"rgb reflectance\" [0.4 0.4 0.4] \"rgb mfp\" [1 1 1] \"float eta\" 1.4 "
-                  "\"float roughness\" " + num(roughness) + " \"string method\" \"" + method + "\"";
+  std::string m =
+      "Material \"subsurface\" \"rgb reflectance\" [0.4 0.4 0.4] \"rgb mfp\" [1 1 1] \"float eta\" 1.4 "
+      "\"float roughness\" " +
+      num(roughness) + " \"string method\" \"" + method + "\"";
   if (method == "pointcloud") m += " \"integer irradiancesamples\" 4 \"float pointdensity\" 4";
   return m;
 }
@@ -117,8 +119,8 @@ void expect_rough_bias_within_smooth_bias(Light light, int views, double excess)
     Bias bias[2];
     for (int rough = 0; rough < 2; ++rough) {
       const double roughness = rough ? kRoughness : 0.0;
-      bias[rough] = paired_bias(radiance_per_view(*slab(subsurface(method, roughness), light), views, 22),
-                                reference[rough]);
+      bias[rough] =
+          paired_bias(radiance_per_view(*slab(subsurface(method, roughness), light), views, 22), reference[rough]);
       std::printf("%s, %-12s roughness %.1f: %.5f vs volumetric %.5f, bias %+.2f%% +- %.2f%%\n", light_name,
                   method.c_str(), roughness, bias[rough].test, bias[rough].reference, 100 * bias[rough].relative,
                   100 * bias[rough].stderr_);

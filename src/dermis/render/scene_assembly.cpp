@@ -1,8 +1,5 @@
 #include "dermis/render/scene_assembly.h"
 
-#include "dermis/render/light_power_range.h"
-#include "dermis/render/scene_extent.h"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -10,9 +7,11 @@
 #include <map>
 #include <string>
 
+#include "dermis/render/image.h"
+#include "dermis/render/light_power_range.h"
+#include "dermis/render/scene_extent.h"
 #include "dermis/scene/shape_tessellation.h"
 #include "dermis/scene/subsurface_params.h"
-#include "dermis/render/image.h"
 
 namespace dermis {
 
@@ -145,17 +144,39 @@ Texture make_texture(const TextureDesc& d) {
   t.variation = d.variation;
   t.wrap = d.wrap == "black" ? Texture::Wrap::Black : d.wrap == "clamp" ? Texture::Wrap::Clamp : Texture::Wrap::Repeat;
   switch (d.type) {
-    case TextureDesc::Type::Constant: t.type = Texture::Type::Constant; break;
-    case TextureDesc::Type::Scale: t.type = Texture::Type::Scale; break;
-    case TextureDesc::Type::Checkerboard: t.type = Texture::Type::Checkerboard; break;
-    case TextureDesc::Type::Mix: t.type = Texture::Type::Mix; break;
-    case TextureDesc::Type::DirectionMix: t.type = Texture::Type::DirectionMix; break;
-    case TextureDesc::Type::Bilerp: t.type = Texture::Type::Bilerp; break;
-    case TextureDesc::Type::Dots: t.type = Texture::Type::Dots; break;
-    case TextureDesc::Type::FBm: t.type = Texture::Type::FBm; break;
-    case TextureDesc::Type::Wrinkled: t.type = Texture::Type::Wrinkled; break;
-    case TextureDesc::Type::Windy: t.type = Texture::Type::Windy; break;
-    case TextureDesc::Type::Marble: t.type = Texture::Type::Marble; break;
+    case TextureDesc::Type::Constant:
+      t.type = Texture::Type::Constant;
+      break;
+    case TextureDesc::Type::Scale:
+      t.type = Texture::Type::Scale;
+      break;
+    case TextureDesc::Type::Checkerboard:
+      t.type = Texture::Type::Checkerboard;
+      break;
+    case TextureDesc::Type::Mix:
+      t.type = Texture::Type::Mix;
+      break;
+    case TextureDesc::Type::DirectionMix:
+      t.type = Texture::Type::DirectionMix;
+      break;
+    case TextureDesc::Type::Bilerp:
+      t.type = Texture::Type::Bilerp;
+      break;
+    case TextureDesc::Type::Dots:
+      t.type = Texture::Type::Dots;
+      break;
+    case TextureDesc::Type::FBm:
+      t.type = Texture::Type::FBm;
+      break;
+    case TextureDesc::Type::Wrinkled:
+      t.type = Texture::Type::Wrinkled;
+      break;
+    case TextureDesc::Type::Windy:
+      t.type = Texture::Type::Windy;
+      break;
+    case TextureDesc::Type::Marble:
+      t.type = Texture::Type::Marble;
+      break;
     case TextureDesc::Type::ImageMap: {
       t.type = Texture::Type::Image;
       Image img;
@@ -354,7 +375,8 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
       hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
     };
     for (const ShapeDesc& d : o.shapes) {
-      if (d.area_light) diag.warn(d.loc, "area lights inside object instances are not supported (as in pbrt-v4); ignored");
+      if (d.area_light)
+        diag.warn(d.loc, "area lights inside object instances are not supported (as in pbrt-v4); ignored");
       Shape s = make_shape(d, d.object_to_world, default_material);
       check_shape_extent(s, Transform(), d.loc);
       if (s.type == Shape::Type::Sphere) {

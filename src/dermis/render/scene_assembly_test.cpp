@@ -37,13 +37,12 @@ TEST(SceneAssembly, AnUntexturedSceneSkipsSphereUvs) {
 // Each triangle of an emitting mesh without normals carries the normal triangle_normal
 // gives (ReverseOrientation included); with shading normals, it is looked up per sample.
 TEST(SceneAssembly, FlatTriangleLightsKeepTheirNormal) {
-  const std::string quad =
-      "\"point3 P\" [ 0 0 0  1 0 0  1 1 0  0 1 0 ] \"integer indices\" [ 0 1 2  0 2 3 ]";
+  const std::string quad = "\"point3 P\" [ 0 0 0  1 0 0  1 1 0  0 1 0 ] \"integer indices\" [ 0 1 2  0 2 3 ]";
   for (const char* orientation : {"", "ReverseOrientation\n"}) {
-    SceneDesc d = parse_scene_string(std::string("WorldBegin\nAttributeBegin\n") + orientation +
-                                         "AreaLightSource \"diffuse\"\nShape \"trianglemesh\" " + quad +
-                                         "\nAttributeEnd\n",
-                                     "flat.pbrt");
+    SceneDesc d =
+        parse_scene_string(std::string("WorldBegin\nAttributeBegin\n") + orientation +
+                               "AreaLightSource \"diffuse\"\nShape \"trianglemesh\" " + quad + "\nAttributeEnd\n",
+                           "flat.pbrt");
     Diagnostics diag;
     auto sc = assemble_scene(d, diag);
     ASSERT_EQ(sc->lights.size(), 2u);

@@ -1,8 +1,8 @@
 #include "dermis/render/scene_extent.h"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 namespace dermis {
 
@@ -17,9 +17,9 @@ void check_scene_point(const Vec3& p, const SourceLoc& loc, std::string_view wha
 void check_box_extent(const Vec3& lo, const Vec3& hi, const Transform& to_world, const SourceLoc& loc,
                       std::string_view what) {
   for (int corner = 0; corner < 8; ++corner)
-    check_scene_point(to_world.point(Vec3((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y,
-                                          (corner & 4) ? hi.z : lo.z)),
-                      loc, what);
+    check_scene_point(
+        to_world.point(Vec3((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z)), loc,
+        what);
 }
 
 void check_shape_extent(const Shape& s, const Transform& to_world, const SourceLoc& loc) {

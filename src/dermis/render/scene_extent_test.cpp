@@ -1,11 +1,12 @@
 // Scenes reaching beyond the coordinates Embree can trace are refused at their directive
 // (they used to abort in Embree's ray.valid() assertion).
-#include <string>
+#include "dermis/render/scene_extent.h"
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "dermis/render/scene_assembly.h"
-#include "dermis/render/scene_extent.h"
 #include "dermis/scene/parser.h"
 
 namespace dermis {
@@ -15,8 +16,10 @@ namespace {
 std::string assembly_error(const std::string& world, const std::string& eye = "0 0 5") {
   Diagnostics diag;
   try {
-    assemble_scene(parse_scene_string("LookAt " + eye + "  0 0 0  0 1 0\nCamera \"perspective\"\nFilm \"rgb\" "
-                                      "\"integer xresolution\" 4 \"integer yresolution\" 4\nWorldBegin\n" + world,
+    assemble_scene(parse_scene_string("LookAt " + eye +
+                                          "  0 0 0  0 1 0\nCamera \"perspective\"\nFilm \"rgb\" "
+                                          "\"integer xresolution\" 4 \"integer yresolution\" 4\nWorldBegin\n" +
+                                          world,
                                       "far.pbrt"),
                    diag);
   } catch (const SceneError& e) {
@@ -44,8 +47,9 @@ TEST(SceneExtent, FarOrHugeShapesAreRefusedAtTheShape) {
 }
 
 TEST(SceneExtent, FarInstancesAndLightsAreRefused) {
-  std::string err = assembly_error("ObjectBegin \"o\"\nShape \"sphere\"\nObjectEnd\nTranslate 0 0 -5e17\n"
-                                   "ObjectInstance \"o\"\n");
+  std::string err = assembly_error(
+      "ObjectBegin \"o\"\nShape \"sphere\"\nObjectEnd\nTranslate 0 0 -5e17\n"
+      "ObjectInstance \"o\"\n");
   EXPECT_NE(err.find("far.pbrt:9:1: error: the instanced object lies at"), std::string::npos) << err;
   err = assembly_error("LightSource \"point\" \"point3 from\" [3e17 0 0]\nShape \"sphere\"\n");
   EXPECT_NE(err.find("far.pbrt:5:1: error: the point light lies at"), std::string::npos) << err;

@@ -2,6 +2,9 @@
 // file, a PLY mesh plain or gzip-compressed, an OBJ through Assimp, a Loop subdivision,
 // the BVH) reports 0, non-decreasing fractions and 1; a cancel flag set during a stage
 // stops the load with Interrupted (not a SceneError), before the stage ends.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
 #include <atomic>
 #include <cstdint>
 #include <cstring>
@@ -10,9 +13,6 @@
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <fmt/format.h>
-#include <gtest/gtest.h>
 
 #include "dermis/core/load_monitor.h"
 #include "dermis/render/scene_assembly.h"
@@ -104,7 +104,8 @@ TEST(SceneLoading, PlyStagesReportMonotoneProgressPlainAndGzip) {
   dir.write("m.ply", ply);
   dir.write("m.ply.gz", test::gzip(ply, 1));
   for (const char* file : {"m.ply", "m.ply.gz"}) {
-    const std::string path = dir.write("s.pbrt", scene_with(fmt::format("Shape \"plymesh\" \"string filename\" \"{}\"", file)));
+    const std::string path =
+        dir.write("s.pbrt", scene_with(fmt::format("Shape \"plymesh\" \"string filename\" \"{}\"", file)));
     Recorder r;
     const LoadMonitor m = r.monitor();
     const SceneDesc desc = parse_scene_file(path, {}, &m);
@@ -185,8 +186,8 @@ TEST(SceneLoading, LoopSubdivisionStopsInsideALevel) {
       const int a = j * n + i;
       indices += fmt::format("{} {} {} {} {} {} ", a, a + 1, a + n + 1, a, a + n + 1, a + n);
     }
-  const std::string grid = "Shape \"loopsubdiv\" \"integer levels\" 1 \"point3 P\" [" + points +
-                           "] \"integer indices\" [" + indices + "]";
+  const std::string grid =
+      "Shape \"loopsubdiv\" \"integer levels\" 1 \"point3 P\" [" + points + "] \"integer indices\" [" + indices + "]";
   Recorder r;
   r.on_call = [&r](const std::string& stage, double f) {
     if (stage == "subdividing (loopsubdiv)" && f > 0) r.cancel = true;

@@ -4,12 +4,11 @@
 // and the same surface tilted geometrically; the scenes have no noise (a delta light or
 // one emitter of uniform radiance seen by a mirror), so the tolerances are float rounding,
 // except where a path's random choices remain (4 standard errors there).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "dermis/core/vec.h"
 #include "dermis/render/scene_preparation.h"
@@ -79,9 +78,10 @@ double mean_red(const testing::PixelStatistics& st) {
 TEST(ShadingNormals, LambertianSurfaceFollowsTheInterpolatedNormal) {
   const double tilt = 60;
   for (const double light_deg : {0.0, 30.0, -30.0}) {
-    const std::string light = fmt::format("LightSource \"distant\" \"point3 from\" [{} 0 {}] \"point3 to\" [0 0 0] "
-                                          "\"rgb L\" [1 1 1]\nMaterial \"diffuse\" \"rgb reflectance\" [0.5 0.5 0.5]\n",
-                                          std::sin(light_deg * kDeg), std::cos(light_deg * kDeg));
+    const std::string light = fmt::format(
+        "LightSource \"distant\" \"point3 from\" [{} 0 {}] \"point3 to\" [0 0 0] "
+        "\"rgb L\" [1 1 1]\nMaterial \"diffuse\" \"rgb reflectance\" [0.5 0.5 0.5]\n",
+        std::sin(light_deg * kDeg), std::cos(light_deg * kDeg));
     const auto smooth = testing::pixel_statistics(*scene_from(camera("0 0 50") + light + quad(0, tilted(tilt))), 4, 1);
     const auto flat = testing::pixel_statistics(*scene_from(camera("0 0 50") + light + quad(0, tilted(0))), 4, 1);
     const double flat_value = mean_red(flat);
@@ -149,8 +149,9 @@ TEST(ShadingNormals, ReflectionIntoTheSurfaceCarriesNoLight) {
 // The dielectric boundary of a subsurface material: its reflection (a pure absorber
 // inside, so that nothing else returns) follows the shading normal as the mirror's does.
 TEST(ShadingNormals, SubsurfaceEntryReflectsAboutTheInterpolatedNormal) {
-  const std::string head = camera("0 0 50") + emitter_at_40() +
-                           "Material \"subsurface\" \"rgb sigma_a\" [1 1 1] \"rgb sigma_s\" [0 0 0] \"float eta\" 1.33\n";
+  const std::string head =
+      camera("0 0 50") + emitter_at_40() +
+      "Material \"subsurface\" \"rgb sigma_a\" [1 1 1] \"rgb sigma_s\" [0 0 0] \"float eta\" 1.33\n";
   const auto smooth = testing::pixel_statistics(*scene_from(head + quad(0, tilted(20))), 256, 7);
   const auto turned = testing::pixel_statistics(*scene_from(head + quad(20, "")), 256, 7);
   const auto flat = testing::pixel_statistics(*scene_from(head + quad(0, "")), 256, 7);
@@ -211,8 +212,9 @@ TEST(ShadingNormals, WalkLeavesThroughTheInterpolatedNormal) {
   // The slab [-10, 10]^2 x [-1, 0], each face with vertices of its own and its normals.
   auto slab = [](const std::string& bottom_normal) {
     const std::string top = "-10 -10 0 10 -10 0 10 10 0 -10 10 0", bottom = "-10 -10 -1 -10 10 -1 10 10 -1 10 -10 -1";
-    const std::string sides = "-10 -10 -1 10 -10 -1 10 -10 0 -10 -10 0  10 -10 -1 10 10 -1 10 10 0 10 -10 0  "
-                              "10 10 -1 -10 10 -1 -10 10 0 10 10 0  -10 10 -1 -10 -10 -1 -10 -10 0 -10 10 0";
+    const std::string sides =
+        "-10 -10 -1 10 -10 -1 10 -10 0 -10 -10 0  10 -10 -1 10 10 -1 10 10 0 10 -10 0  "
+        "10 10 -1 -10 10 -1 -10 10 0 10 10 0  -10 10 -1 -10 -10 -1 -10 -10 0 -10 10 0";
     std::string normals = "0 0 1 0 0 1 0 0 1 0 0 1 ";
     for (int i = 0; i < 4; ++i) normals += bottom_normal + " ";
     for (const char* n : {"0 -1 0", "1 0 0", "0 1 0", "-1 0 0"})
@@ -223,13 +225,12 @@ TEST(ShadingNormals, WalkLeavesThroughTheInterpolatedNormal) {
     return "Shape \"trianglemesh\" \"point3 P\" [" + top + " " + bottom + " " + sides + "] \"normal N\" [" + normals +
            "] \"integer indices\" [" + indices + "]\n";
   };
-  const std::string head =
-      camera("0 0 50") +
-      "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2] \"bool twosided\" true\n"
-      "Shape \"trianglemesh\" \"point3 P\" [-100 -100 -30 100 -100 -30 100 100 -30 -100 100 -30] "
-      "\"integer indices\" [0 1 2 0 2 3]\nAttributeEnd\n"
-      "Material \"subsurface\" \"rgb sigma_a\" [1 1 1] \"rgb sigma_s\" [0 0 0] \"float eta\" 1.33 "
-      "\"string boundary\" \"dielectric\"\n";
+  const std::string head = camera("0 0 50") +
+                           "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2] \"bool twosided\" true\n"
+                           "Shape \"trianglemesh\" \"point3 P\" [-100 -100 -30 100 -100 -30 100 100 -30 -100 100 -30] "
+                           "\"integer indices\" [0 1 2 0 2 3]\nAttributeEnd\n"
+                           "Material \"subsurface\" \"rgb sigma_a\" [1 1 1] \"rgb sigma_s\" [0 0 0] \"float eta\" 1.33 "
+                           "\"string boundary\" \"dielectric\"\n";
   const std::string down_tilted = fmt::format("{} 0 {}", std::sin(tilt * kDeg), -std::cos(tilt * kDeg));
   const auto smooth = testing::pixel_statistics(*scene_from(head + slab(down_tilted)), 3000, 13);
   const auto flat = testing::pixel_statistics(*scene_from(head + slab("0 0 -1")), 3000, 14);

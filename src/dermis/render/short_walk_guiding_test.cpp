@@ -24,14 +24,16 @@ WorldBegin
 LightSource "infinite" "rgb L" [1 1 1]
 Material "subsurface" )" +
          material + R"(
-Shape "sphere" "float radius" )" + std::to_string(radius) + "\n";
+Shape "sphere" "float radius" )" +
+         std::to_string(radius) + "\n";
 }
 
 const WalkMethod& walk_of(const RenderScene& sc) { return std::get<WalkMethod>(sc.subsurface[0]->method); }
 
 TEST(ShortWalkGuiding, TheObjectsMeanChordIsItsThickness) {
   Diagnostics diag;
-  auto sc = build_render_scene(parse_scene_string(sphere(3, R"("rgb reflectance" [0.3 0.3 0.3] "rgb mfp" [1 1 1])")), diag);
+  auto sc =
+      build_render_scene(parse_scene_string(sphere(3, R"("rgb reflectance" [0.3 0.3 0.3] "rgb mfp" [1 1 1])")), diag);
   const std::vector<double> chords = subsurface_object_chords(*sc);
   ASSERT_EQ(chords.size(), 1u);
   EXPECT_NEAR(chords[0], 4.0 * 3 / 3, 1e-5);  // 2D/3 of a sphere
@@ -49,8 +51,8 @@ TEST(ShortWalkGuiding, RaisesTheDefaultsShareOnlyWhereEveryChannelsWalksAreShort
     EXPECT_EQ(w.step(0).p_guided(c), kShortWalkGuidedShare) << "channel " << c;
   }
   for (std::size_t v = 0; v < kWalkStrategies.size(); ++v) {
-    const double expected =
-        kWalkStrategies[v].p_guided == kWalkStrategies[0].p_guided ? kShortWalkGuidedShare : kWalkStrategies[v].p_guided;
+    const double expected = kWalkStrategies[v].p_guided == kWalkStrategies[0].p_guided ? kShortWalkGuidedShare
+                                                                                       : kWalkStrategies[v].p_guided;
     EXPECT_NEAR(w.step(int(v)).p_guided(1), expected, 1e-6) << "strategy " << v;  // 0 stays 0, 0.8 stays 0.8
   }
   // The pilot's report says which share the default took, and why.
@@ -124,7 +126,8 @@ TEST(ShortWalkGuiding, OffersBackwardGuidingOnlyWhereTheFarSideIsInReach) {
   }
   // Left to the pilot: the backward strategies alone guide backward.
   auto free = build_render_scene(parse_scene_string(sphere(1, milk)), diag);
-  for (int v = 0; v < all; ++v) EXPECT_EQ(walk_of(*free).backward_guiding(v), kWalkStrategies[std::size_t(v)].backward_guiding) << v;
+  for (int v = 0; v < all; ++v)
+    EXPECT_EQ(walk_of(*free).backward_guiding(v), kWalkStrategies[std::size_t(v)].backward_guiding) << v;
 }
 
 }  // namespace

@@ -24,7 +24,8 @@ Integrator "volpath" "integer maxdepth" 20
 WorldBegin
 LightSource "infinite" "rgb L" [1 1 1]
 Material "subsurface" "rgb reflectance" [0.9 0.8 0.7] "rgb mfp" [0.25 0.2 0.15] "float eta" 1.33
-  "string profile" "burley" "string method" ")") + method + R"("
+  "string profile" "burley" "string method" ")") +
+         method + R"("
 Shape "trianglemesh" "point3 P" [-0.0875 -0.0875 0  1.0875 -0.0875 0  1.0875 1.0875 0  -0.0875 1.0875 0
                                   0 0 1  1 0 1  1 1 1  0 1 1
                                   0.45 0.2 1  0.5 0.2 1  0.5 0.8 1  0.45 0.8 1

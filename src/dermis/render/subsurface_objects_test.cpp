@@ -1,9 +1,8 @@
 // Subsurface objects made of several shapes (render_scene.h object_of_shape): walks and
 // probes cross between the shapes of one object, which are the shapes sharing a
 // subsurface material (pbrt-v4's rule) or the materials naming one "sssgroup".
-#include <gtest/gtest.h>
-
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
@@ -50,8 +49,8 @@ testing::PixelStatistics render(const std::string& scene, uint64_t seed, int spp
 TEST(SubsurfaceObjects, ASphereSplitInTwoShapesRendersLikeTheWholeSphere) {
   for (const char* method : {"randomwalk", "disk"}) {
     SCOPED_TRACE(method);
-    const std::string params = fmt::format(
-        "\"rgb reflectance\" [0.8 0.6 0.4] \"rgb mfp\" [0.6 0.4 0.25] \"string method\" \"{}\"", method);
+    const std::string params =
+        fmt::format("\"rgb reflectance\" [0.8 0.6 0.4] \"rgb mfp\" [0.6 0.4 0.25] \"string method\" \"{}\"", method);
     const std::string shared = "Material \"subsurface\" " + params;
     const testing::PixelStatistics whole = render(sphere_meshes(false, shared, ""), 11);
     testing::expect_same_region_means(whole, render(sphere_meshes(true, shared, ""), 12), 4, 4);
@@ -85,14 +84,16 @@ TEST(SubsurfaceObjects, AnOpaqueCoreDarkensTheWalkAsItDoesTheVolumetricReference
   for (const char* core : {"0", "0.7"}) {
     SCOPED_TRACE(core);
     const std::string core_shape = std::string("AttributeBegin\n  Material \"diffuse\" \"rgb reflectance\" [") + core +
-                                   " " + core + " " + core + "]\n  Translate 0 0 0.3\n  Shape \"sphere\" \"float radius\" 0.5\n"
+                                   " " + core + " " + core +
+                                   "]\n  Translate 0 0 0.3\n  Shape \"sphere\" \"float radius\" 0.5\n"
                                    "AttributeEnd\n";
     const std::string walk = std::string("Material \"subsurface\" ") + coefficients +
                              " \"float eta\" 1.4 \"string boundary\" \"dielectric\"\nShape \"sphere\"\n" + core_shape;
-    const std::string volume = std::string("MakeNamedMedium \"m\" \"string type\" \"homogeneous\" ") + coefficients +
-                               "\nAttributeBegin\n  MediumInterface \"m\" \"\"\n  Material \"dielectric\" \"float eta\" 1.4\n"
-                               "  Shape \"sphere\"\nAttributeEnd\nAttributeBegin\n  MediumInterface \"m\" \"m\"\n" +
-                               core_shape.substr(std::string("AttributeBegin\n").size());
+    const std::string volume =
+        std::string("MakeNamedMedium \"m\" \"string type\" \"homogeneous\" ") + coefficients +
+        "\nAttributeBegin\n  MediumInterface \"m\" \"\"\n  Material \"dielectric\" \"float eta\" 1.4\n"
+        "  Shape \"sphere\"\nAttributeEnd\nAttributeBegin\n  MediumInterface \"m\" \"m\"\n" +
+        core_shape.substr(std::string("AttributeBegin\n").size());
     testing::expect_same_region_means(render(walk, 41, 128), render(volume, 42, 128), 4, 4);
   }
 }

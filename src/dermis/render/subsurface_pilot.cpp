@@ -193,7 +193,7 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
   std::vector<PilotPixel> pixels(std::size_t(count) * std::size_t(strategies));
   FilterSampler filter(sc.film.filter);
   const uint64_t pilot_seed = mix64(opt.seed ^ 0x5eb5a11f0ull);  // not the image's numbers
-  std::vector<std::vector<int>> every_material;  // strategy offered[i] for every material
+  std::vector<std::vector<int>> every_material;                  // strategy offered[i] for every material
   for (int v : offered) every_material.emplace_back(sc.subsurface.size(), v);
 
   // Pilot pixel k, every strategy offered: two samples each, with the same numbers.
@@ -351,13 +351,15 @@ std::string describe_probe_strategy(const ProbeMethod& probe, int strategy) {
 std::string describe_gain(const SubsurfaceChoice& c, const std::string& method, const std::string& what,
                           double handicap, const char* handicap_reason = "its heavier-tailed weights") {
   if (c.strategy == 0 && c.first_stage_only)
-    return fmt::format("material {} ({}): {} (the default: no other strategy can be {:.0f} % faster, measured on "
-                       "{} pilot pixels, the first of two stages)",
-                       c.material, method, what, (kPilotWorthwhileGain - 1) * 100, c.pixels);
+    return fmt::format(
+        "material {} ({}): {} (the default: no other strategy can be {:.0f} % faster, measured on "
+        "{} pilot pixels, the first of two stages)",
+        c.material, method, what, (kPilotWorthwhileGain - 1) * 100, c.pixels);
   if (c.strategy == 0)
-    return fmt::format("material {} ({}): {} (the default: no other strategy is significantly faster on {} pilot "
-                       "pixels)",
-                       c.material, method, what, c.pixels);
+    return fmt::format(
+        "material {} ({}): {} (the default: no other strategy is significantly faster on {} pilot "
+        "pixels)",
+        c.material, method, what, c.pixels);
   // A standard error above half the gain: the default's pilot samples held a few very
   // large values (a heavy-tailed estimator); the choice stands (its gain is significant),
   // the figure is rough.
@@ -391,20 +393,21 @@ std::string describe_subsurface_choice(const RenderScene& sc, const SubsurfaceCh
       share = fmt::format("{:g}, {:g}, {:g} (R, G, B)", step.p_guided(0), step.p_guided(1), step.p_guided(2));
   }
   const bool walk_guides_backward = walk && walk->backward_guiding(c.strategy);
-  const std::string what = fmt::format(
-      "guided share {}, {}{}{}", share,
-      m.channel_per_walk(c.strategy)
-          ? fmt::format("one colour channel per walk at the camera's first entry{}",
-                        p.channel_per_walk_given ? " (given)" : "")
-                         : fmt::format("channel preference {:g}{}",
-                                       p.channel_preference_given ? p.channel_preference : w.channel_preference,
-                                       p.channel_preference_given ? " (given)" : ""),
-      w.exit_sky_sampled ? "" : ", uniform skies not light-sampled at exits",
-      walk_guides_backward ? fmt::format(", guided toward the far side too{}", p.backward_guiding_given ? " (given)" : "")
-                           : "");
-  return describe_gain(c, to_string(m.params.method), what, pilot_handicap(p, c.strategy),
-                       backward_by_choice(p, c.strategy) ? "what its far-side terms cost per ray"
-                                                         : "its heavier-tailed weights");
+  const std::string what =
+      fmt::format("guided share {}, {}{}{}", share,
+                  m.channel_per_walk(c.strategy)
+                      ? fmt::format("one colour channel per walk at the camera's first entry{}",
+                                    p.channel_per_walk_given ? " (given)" : "")
+                      : fmt::format("channel preference {:g}{}",
+                                    p.channel_preference_given ? p.channel_preference : w.channel_preference,
+                                    p.channel_preference_given ? " (given)" : ""),
+                  w.exit_sky_sampled ? "" : ", uniform skies not light-sampled at exits",
+                  walk_guides_backward
+                      ? fmt::format(", guided toward the far side too{}", p.backward_guiding_given ? " (given)" : "")
+                      : "");
+  return describe_gain(
+      c, to_string(m.params.method), what, pilot_handicap(p, c.strategy),
+      backward_by_choice(p, c.strategy) ? "what its far-side terms cost per ray" : "its heavier-tailed weights");
 }
 
 }  // namespace dermis

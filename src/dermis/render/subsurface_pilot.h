@@ -34,9 +34,9 @@ namespace dermis {
 
 // What the pilot measured of one strategy on one material.
 struct StrategyMeasure {
-  int64_t pixels = 0;     // pilot pixels whose samples both entered the material first
-  double variance = 0;    // of one camera sample, R + G + B
-  double rays = 0;        // per camera sample
+  int64_t pixels = 0;   // pilot pixels whose samples both entered the material first
+  double variance = 0;  // of one camera sample, R + G + B
+  double rays = 0;      // per camera sample
   // The standard error of log(variance / the default's variance), from the pixels both
   // measured (paired: the strategies share their random numbers up to the walk, so
   // their estimates' common noise cancels). 0 for the default itself.
@@ -94,13 +94,13 @@ bool no_strategy_can_gain(const std::vector<StrategyMeasure>& measures, int64_t 
 inline constexpr double kPilotWorthwhileGain = 1.05;
 
 struct SubsurfaceChoice {
-  int material = -1;  // RenderScene::subsurface index
-  int strategy = 0;   // the walk's kWalkStrategies
-  int pixels = 0;     // pilot pixels that measured it
-  double gain = 1;    // estimated efficiency of the choice over the default's (strategy 0)
-  double gain_se = 0;  // its standard error
+  int material = -1;              // RenderScene::subsurface index
+  int strategy = 0;               // the walk's kWalkStrategies
+  int pixels = 0;                 // pilot pixels that measured it
+  double gain = 1;                // estimated efficiency of the choice over the default's (strategy 0)
+  double gain_se = 0;             // its standard error
   bool first_stage_only = false;  // settled after the first of the pilot's two stages
-  std::string description;  // for the user: describe_subsurface_choice
+  std::string description;        // for the user: describe_subsurface_choice
 };
 
 struct SubsurfacePilotOptions {

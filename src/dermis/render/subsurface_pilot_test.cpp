@@ -48,8 +48,7 @@ TEST(SubsurfacePilot, ChoosesTheLeastVarianceTimesCostWhenSignificant) {
   EXPECT_EQ(best_strategy(few, 32, 2), 0);
   EXPECT_EQ(best_strategy({measure(1, 1, 0), measure(1, 2, 0.01)}, 32, 2), 0);
   // Not comparable (no paired pixels): the default.
-  EXPECT_EQ(best_strategy({measure(1, 10, 0), measure(0.1, 10, std::numeric_limits<double>::infinity())}, 32, 2),
-            0);
+  EXPECT_EQ(best_strategy({measure(1, 10, 0), measure(0.1, 10, std::numeric_limits<double>::infinity())}, 32, 2), 0);
 }
 
 // A strategy with more guided flights than the default is chosen only where its estimate,
@@ -81,8 +80,9 @@ TEST(SubsurfacePilot, AHeavierTailedStrategyMustBeatItsHandicap) {
     const bool backward = kWalkStrategies[std::size_t(v)].backward_guiding;
     heavier_strategies += more_guided;
     backward_strategies += backward;
-    EXPECT_EQ(pilot_handicap(free_share, v),
-              backward ? kBackwardGuidingHandicap : more_guided ? kHeavierStrategyHandicap : 1.0)
+    EXPECT_EQ(pilot_handicap(free_share, v), backward      ? kBackwardGuidingHandicap
+                                             : more_guided ? kHeavierStrategyHandicap
+                                                           : 1.0)
         << v;
     EXPECT_EQ(pilot_handicap(pinned_share, v), backward ? kBackwardGuidingHandicap : 1.0) << v;
     EXPECT_EQ(pilot_handicap(backward_given, v), more_guided ? kHeavierStrategyHandicap : 1.0) << v;
@@ -212,12 +212,14 @@ TEST(SubsurfacePilot, StopsAfterItsFirstStageWhereTheDefaultIsClear) {
   o.spp = 16;
   o.seed = 1;
   Diagnostics diag;
-  auto dark_sphere = build_render_scene(parse_scene_string(testing::lit_sphere_header(32) + dark + "\nShape \"sphere\"\n"), diag);
+  auto dark_sphere =
+      build_render_scene(parse_scene_string(testing::lit_sphere_header(32) + dark + "\nShape \"sphere\"\n"), diag);
   const RenderResult d = render_image(*dark_sphere, o);
   ASSERT_EQ(d.subsurface_choices.size(), 1u);
   EXPECT_EQ(d.subsurface_choices[0].strategy, 0);
   EXPECT_TRUE(d.subsurface_choices[0].first_stage_only) << d.subsurface_choices[0].description;
-  auto milk = build_render_scene(parse_scene_string(testing::lit_sphere_header(32) + kMilk + "\nShape \"sphere\"\n"), diag);
+  auto milk =
+      build_render_scene(parse_scene_string(testing::lit_sphere_header(32) + kMilk + "\nShape \"sphere\"\n"), diag);
   const RenderResult m = render_image(*milk, o);
   ASSERT_EQ(m.subsurface_choices.size(), 1u);
   EXPECT_NE(m.subsurface_choices[0].strategy, 0);
@@ -266,9 +268,9 @@ TEST(SubsurfacePilot, DescribesTheChoiceAndARoughGain) {
   ASSERT_TRUE(kWalkStrategies[std::size_t(c.strategy)].backward_guiding);
   const std::string backward = describe_subsurface_choice(*sc, c);
   EXPECT_NE(backward.find("guided toward the far side too"), std::string::npos) << backward;
-  EXPECT_NE(backward.find(fmt::format("divided by {:g} for what its far-side terms cost per ray",
-                                      kBackwardGuidingHandicap)),
-            std::string::npos)
+  EXPECT_NE(
+      backward.find(fmt::format("divided by {:g} for what its far-side terms cost per ray", kBackwardGuidingHandicap)),
+      std::string::npos)
       << backward;
   c.strategy = 0;
   EXPECT_NE(describe_subsurface_choice(*sc, c).find("the default: no other strategy is significantly faster"),

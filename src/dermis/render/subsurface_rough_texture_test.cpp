@@ -33,17 +33,19 @@ void expect_same_picture(const std::string& a, const std::string& b, int spp) {
 TEST(SubsurfaceTexturedRoughness, AConstantTextureRendersAsTheConstant) {
   const std::string texture = "Texture \"r\" \"float\" \"constant\" \"float value\" 0.0625\n";
   const std::string albedo = R"("rgb reflectance" [0.7 0.5 0.3] "rgb mfp" [0.4 0.3 0.2] "float eta" 1.4 )";
-  const std::string coefficients = R"("rgb sigma_a" [0.05 0.15 0.3] "rgb sigma_s" [2 3 4] "float g" 0.3 "float eta" 1.4 )";
+  const std::string coefficients =
+      R"("rgb sigma_a" [0.05 0.15 0.3] "rgb sigma_s" [2 3 4] "float g" 0.3 "float eta" 1.4 )";
   struct Case {
     const char* what;
     std::string params;
     int spp;
   };
-  for (const Case& c :
-       {Case{"walk, dielectric boundary", albedo + R"("string method" "randomwalk" "string boundary" "dielectric")", 64},
-        Case{"walk, diffuse boundary", coefficients + R"("string method" "randomwalk" "string boundary" "diffuse")", 64},
-        Case{"disk", coefficients + R"("string method" "disk")", 64},
-        Case{"volumetric", albedo + R"("string method" "volumetric")", 256}}) {
+  for (const Case& c : {Case{"walk, dielectric boundary",
+                             albedo + R"("string method" "randomwalk" "string boundary" "dielectric")", 64},
+                        Case{"walk, diffuse boundary",
+                             coefficients + R"("string method" "randomwalk" "string boundary" "diffuse")", 64},
+                        Case{"disk", coefficients + R"("string method" "disk")", 64},
+                        Case{"volumetric", albedo + R"("string method" "volumetric")", 256}}) {
     SCOPED_TRACE(c.what);
     const std::string textured =
         kHeader + texture + "Material \"subsurface\" " + c.params + " \"texture roughness\" \"r\"\nShape \"sphere\"\n";
@@ -56,12 +58,13 @@ TEST(SubsurfaceTexturedRoughness, AConstantTextureRendersAsTheConstant) {
 // The volumetric reference's medium at an entry point with a constant roughness texture
 // is, number for number, the medium of the same constant (its inversion at a node).
 TEST(SubsurfaceTexturedRoughness, TheVolumetricMediumAtAnEntryIsTheConstantsMedium) {
-  const std::string material = R"(Material "subsurface" "rgb reflectance" [0.7 0.5 0.3] "rgb mfp" [0.4 0.3 0.2] "float eta" 1.4 "string method" "volumetric" )";
+  const std::string material =
+      R"(Material "subsurface" "rgb reflectance" [0.7 0.5 0.3] "rgb mfp" [0.4 0.3 0.2] "float eta" 1.4 "string method" "volumetric" )";
   Diagnostics diag;
-  auto textured = build_render_scene(
-      parse_scene_string(kHeader + "Texture \"r\" \"float\" \"constant\" \"float value\" 0.0625\n" +
-                         material + "\"texture roughness\" \"r\"\nShape \"sphere\"\n"),
-      diag);
+  auto textured =
+      build_render_scene(parse_scene_string(kHeader + "Texture \"r\" \"float\" \"constant\" \"float value\" 0.0625\n" +
+                                            material + "\"texture roughness\" \"r\"\nShape \"sphere\"\n"),
+                         diag);
   auto constant = build_render_scene(
       parse_scene_string(kHeader + material + "\"float roughness\" 0.0625\nShape \"sphere\"\n"), diag);
   ASSERT_EQ(textured->volumetric_media.size(), 1u);
@@ -77,14 +80,17 @@ TEST(SubsurfaceTexturedRoughness, TheVolumetricMediumAtAnEntryIsTheConstantsMedi
 
 TEST(SubsurfaceTexturedRoughness, ACheckerboardWalkEqualsAMediumInsideTheSameTexturedDielectric) {
   const std::string texture =
-      "Texture \"r\" \"float\" \"checkerboard\" \"float uscale\" 16 \"float vscale\" 8 \"float tex1\" 0.02 \"float tex2\" 0.6\n";
+      "Texture \"r\" \"float\" \"checkerboard\" \"float uscale\" 16 \"float vscale\" 8 \"float tex1\" 0.02 \"float "
+      "tex2\" 0.6\n";
   const char* coefficients = R"("rgb sigma_a" [0.05 0.15 0.3] "rgb sigma_s" [2 3 4] "float g" 0.3)";
-  const std::string walk = kHeader + texture + "Material \"subsurface\" " + coefficients +
-                           R"( "float eta" 1.4 "texture roughness" "r" "string method" "randomwalk" "string boundary" "dielectric")"
-                           "\nShape \"sphere\"\n";
+  const std::string walk =
+      kHeader + texture + "Material \"subsurface\" " + coefficients +
+      R"( "float eta" 1.4 "texture roughness" "r" "string method" "randomwalk" "string boundary" "dielectric")"
+      "\nShape \"sphere\"\n";
   const std::string volume = kHeader + texture + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " +
                              coefficients + "\nMediumInterface \"m\" \"\"\n" +
-                             R"(Material "dielectric" "float eta" 1.4 "texture roughness" "r")" + "\nShape \"sphere\"\n";
+                             R"(Material "dielectric" "float eta" 1.4 "texture roughness" "r")" +
+                             "\nShape \"sphere\"\n";
   expect_same_picture(walk, volume, 128);
 }
 
@@ -112,9 +118,11 @@ Texture "r" "float" "checkerboard" "float uscale" 1 "float vscale" 1 "float tex1
   "integer indices" [0 1 2  0 2 3   4 6 5  4 7 6   0 5 1  0 4 5   1 6 2  1 5 6   2 7 3  2 6 7   3 4 0  3 7 4]
 )";
   const char* coefficients = R"("rgb sigma_a" [0.05 0.15 0.3] "rgb sigma_s" [2 3 4] "float g" 0.3)";
-  const std::string walk = header + "Material \"subsurface\" " + coefficients +
-                           R"( "float eta" 1.4 "texture roughness" "r" "string method" "randomwalk" "string boundary" "dielectric")"
-                           "\n" + slab;
+  const std::string walk =
+      header + "Material \"subsurface\" " + coefficients +
+      R"( "float eta" 1.4 "texture roughness" "r" "string method" "randomwalk" "string boundary" "dielectric")"
+      "\n" +
+      slab;
   const std::string volume = header + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " + coefficients +
                              "\nMediumInterface \"m\" \"\"\n" +
                              R"(Material "dielectric" "float eta" 1.4 "texture roughness" "r")" + "\n" + slab;

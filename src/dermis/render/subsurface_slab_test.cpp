@@ -25,10 +25,12 @@ Film "rgb" "integer xresolution" 3 "integer yresolution" 3
 Integrator "volpath" "integer maxdepth" 50
 WorldBegin
 LightSource "infinite" "rgb L" [1 1 1]
-)" + material + R"(
-Shape "trianglemesh" "point3 P" [)" + lo + " " + lo + " " + bottom + "  " + top + " " + lo + " " + bottom + "  " +
-         top + " " + top + " " + bottom + "  " + lo + " " + top + " " + bottom + "  " + lo + " " + lo + " 0  " + top +
-         " " + lo + " 0  " + top + " " + top + " 0  " + lo + " " + top + R"( 0]
+)" + material +
+         R"(
+Shape "trianglemesh" "point3 P" [)" +
+         lo + " " + lo + " " + bottom + "  " + top + " " + lo + " " + bottom + "  " + top + " " + top + " " + bottom +
+         "  " + lo + " " + top + " " + bottom + "  " + lo + " " + lo + " 0  " + top + " " + lo + " 0  " + top + " " +
+         top + " 0  " + lo + " " + top + R"( 0]
   "integer indices" [0 2 1  0 3 2   4 5 6  4 6 7   0 1 5  0 5 4   1 2 6  1 6 5   2 3 7  2 7 6   3 0 4  3 4 7]
 )";
 }
@@ -47,8 +49,9 @@ class FlatSlab : public ::testing::TestWithParam<SlabCase> {};
 
 TEST_P(FlatSlab, ReturnsFresnelPlusTransmittedAlbedo) {
   const SlabCase c = GetParam();
-  std::string material = std::string("Material \"subsurface\" \"rgb reflectance\" [0.8 0.5 0.25] \"rgb mfp\" [1.0 0.6 0.3] ") +
-                         "\"float eta\" 1.33 \"string method\" \"" + c.method + "\" \"string profile\" \"" + c.profile + "\"";
+  std::string material =
+      std::string("Material \"subsurface\" \"rgb reflectance\" [0.8 0.5 0.25] \"rgb mfp\" [1.0 0.6 0.3] ") +
+      "\"float eta\" 1.33 \"string method\" \"" + c.method + "\" \"string profile\" \"" + c.profile + "\"";
   Diagnostics diag;
   auto probe = build_render_scene(parse_scene_string(slab_scene(material, 1)), diag);
   ASSERT_EQ(probe->subsurface.size(), 1u);
@@ -59,7 +62,7 @@ TEST_P(FlatSlab, ReturnsFresnelPlusTransmittedAlbedo) {
   RGB expected;
   for (int ch = 0; ch < 3; ++ch) {
     double e = std::string(c.method) == "sphere-lines-retry" ? m.lines()->fallback_weight(ch)
-                                                              : energy_within(m.profile().channel[ch], radius);
+                                                             : energy_within(m.profile().channel[ch], radius);
     expected[ch] = float(F + (1 - F) * e);
   }
   auto st = testing::pixel_statistics(*sc, 4000, 17);
@@ -108,14 +111,16 @@ WorldBegin
 LightSource "infinite" "rgb L" [0.4 0.4 0.5]
 LightSource "point" "rgb I" [20 20 20] "point3 from" [2 -3 4]
 ObjectBegin "blob"
-  Material "subsurface" "rgb reflectance" [0.8 0.6 0.4] "rgb mfp" [0.3 0.2 0.1] "string method" ")") + method + R"("
+  Material "subsurface" "rgb reflectance" [0.8 0.6 0.4] "rgb mfp" [0.3 0.2 0.1] "string method" ")") +
+                        method + R"("
   Shape "sphere" "float radius" 0.8
 ObjectEnd
 AttributeBegin Translate -1 0 0 ObjectInstance "blob" AttributeEnd
 AttributeBegin Translate 1 0 0 Scale 0.7 0.7 0.7 ObjectInstance "blob" AttributeEnd
 AttributeBegin
   Translate 0 1.5 0
-  Material "subsurface" "rgb reflectance" [0.5 0.7 0.9] "rgb mfp" [0.2 0.2 0.2] "string method" ")" + method + R"("
+  Material "subsurface" "rgb reflectance" [0.5 0.7 0.9] "rgb mfp" [0.2 0.2 0.2] "string method" ")" +
+                        method + R"("
   Shape "sphere" "float radius" 0.6
 AttributeEnd
 )";

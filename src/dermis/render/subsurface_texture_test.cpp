@@ -30,7 +30,9 @@ namespace {
 constexpr float kSquare = 4;  // scene units per checkerboard square
 const RGB kTex1(0.8f, 0.5f, 0.25f), kTex2(0.3f, 0.6f, 0.9f);
 
-std::string rgb(RGB v) { return "[" + std::to_string(v[0]) + " " + std::to_string(v[1]) + " " + std::to_string(v[2]) + "]"; }
+std::string rgb(RGB v) {
+  return "[" + std::to_string(v[0]) + " " + std::to_string(v[1]) + " " + std::to_string(v[2]) + "]";
+}
 std::string num(float v) { return std::to_string(v); }
 
 // A box 2 half x 2 half x depth with its top face at z = 0 and uv = (x, y) / kSquare.
@@ -53,12 +55,14 @@ LightSource "infinite" "rgb L" [1 1 1]
 Texture "albedo" "spectrum" "checkerboard" "rgb tex1" )") +
          rgb(kTex1) + " \"rgb tex2\" " + rgb(kTex2) + R"(
 Material "subsurface" "texture reflectance" "albedo" "rgb mfp" [1 1 1] "float eta" 1.33 "string method" ")" +
-         method + "\"" + (cloud ? R"( "integer irradiancesamples" 4 "float pointdensity" 4 "float illuminationerror" 0)" : "") + R"(
+         method + "\"" +
+         (cloud ? R"( "integer irradiancesamples" 4 "float pointdensity" 4 "float illuminationerror" 0)" : "") + R"(
 Shape "trianglemesh" "point3 P" [)" +
          nh + " " + nh + " " + d + "  " + h + " " + nh + " " + d + "  " + h + " " + h + " " + d + "  " + nh + " " + h +
          " " + d + "  " + nh + " " + nh + " 0  " + h + " " + nh + " 0  " + h + " " + h + " 0  " + nh + " " + h + R"( 0]
-  "point2 uv" [)" + nuv + " " + nuv + " " + uv + " " + nuv + " " + uv + " " + uv + " " + nuv + " " + uv + " " + nuv +
-         " " + nuv + " " + uv + " " + nuv + " " + uv + " " + uv + " " + nuv + " " + uv + R"(]
+  "point2 uv" [)" +
+         nuv + " " + nuv + " " + uv + " " + nuv + " " + uv + " " + uv + " " + nuv + " " + uv + " " + nuv + " " + nuv +
+         " " + uv + " " + nuv + " " + uv + " " + uv + " " + nuv + " " + uv + R"(]
   "integer indices" [0 2 1  0 3 2   4 5 6  4 6 7   0 1 5  0 5 4   1 2 6  1 6 5   2 3 7  2 7 6   3 0 4  3 4 7]
 )";
 }
@@ -81,7 +85,8 @@ RGB square_albedo(const std::string& method, RGB reflectance, const RenderScene&
   p.reflectance = reflectance;
   p.mfp = RGB(1);
   const sss::ProfileRGB profile = make_profile(p);
-  if (method == "pointcloud") return RGB(float(profile[0].albedo()), float(profile[1].albedo()), float(profile[2].albedo()));
+  if (method == "pointcloud")
+    return RGB(float(profile[0].albedo()), float(profile[1].albedo()), float(profile[2].albedo()));
   const double reach = std::get<ProbeMethod>(scene.subsurface.at(0)->method).max_radius(profile);
   RGB e;
   for (int c = 0; c < 3; ++c)
@@ -101,8 +106,10 @@ TEST(SubsurfaceTextures, CheckerboardSlabReturnsEachSquaresReflectanceForEveryMe
     Diagnostics diag;
     auto sc = build_render_scene(parse_scene_string(checker_slab(method)), diag);
     // Centres of a tex1 square (floor(u) + floor(v) even) and a tex2 square.
-    const struct { Vec3 p; RGB reflectance; } squares[] = {{{0.5f * kSquare, 0.5f * kSquare, 0}, kTex1},
-                                                          {{1.5f * kSquare, 0.5f * kSquare, 0}, kTex2}};
+    const struct {
+      Vec3 p;
+      RGB reflectance;
+    } squares[] = {{{0.5f * kSquare, 0.5f * kSquare, 0}, kTex1}, {{1.5f * kSquare, 0.5f * kSquare, 0}, kTex2}};
     for (const auto& square : squares) {
       const RGB A = square_albedo(method, square.reflectance, *sc);
       // The point cloud's estimate is nearly noiseless (a gather per sample): fewer samples.
@@ -146,9 +153,9 @@ TEST(SubsurfaceTextures, ATexturedScaleRendersAsTheSameConstantScale) {
         R"("rgb reflectance" [0.7 0.5 0.3] "rgb mfp" [1 1 1] "string profile" "skin6" "string method" "disk")",
         R"("rgb reflectance" [0.7 0.5 0.3] "rgb mfp" [1 0.75 0.5] "string method" "volumetric")"}) {
     SCOPED_TRACE(params);
-    testing::expect_same_picture(header + "Material \"subsurface\" " + params + " \"texture scale\" \"s\"\nShape \"sphere\"\n",
-                                 header + "Material \"subsurface\" " + params + " \"float scale\" 2.5\nShape \"sphere\"\n",
-                                 64, 51);
+    testing::expect_same_picture(
+        header + "Material \"subsurface\" " + params + " \"texture scale\" \"s\"\nShape \"sphere\"\n",
+        header + "Material \"subsurface\" " + params + " \"float scale\" 2.5\nShape \"sphere\"\n", 64, 51);
   }
 }
 

@@ -27,7 +27,8 @@ TEST(SubsurfaceRandomWalk, DielectricBoundaryEqualsAMediumInsideADielectric) {
     SCOPED_TRACE(sampling);
     std::string walk = kHeader + "Material \"subsurface\" " + kCoefficients +
                        " \"float eta\" 1.4 \"string method\" \"randomwalk\" \"string boundary\" \"dielectric\" "
-                       "\"string walksampling\" \"" + sampling + "\"\nShape \"sphere\"\n";
+                       "\"string walksampling\" \"" +
+                       sampling + "\"\nShape \"sphere\"\n";
     std::string volume = kHeader + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " + kCoefficients +
                          "\nMediumInterface \"m\" \"\"\nMaterial \"dielectric\" \"float eta\" 1.4\nShape \"sphere\"\n";
     expect_same_picture(walk, volume, 96);
@@ -102,10 +103,10 @@ TEST(SubsurfaceRandomWalk, SobolSamplerGivesTheMeanOfIndependentSampling) {
 // followed) against choosing one by Fresnel: the same mean within 4σ.
 TEST(SubsurfaceRandomWalk, SplittingTheEntryKeepsTheMean) {
   Diagnostics diag;
-  auto sc = build_render_scene(
-      parse_scene_string(kHeader + "Material \"subsurface\" " + kCoefficients +
-                         " \"float eta\" 1.4 \"string method\" \"randomwalk\"\nShape \"sphere\"\n"),
-      diag);
+  auto sc =
+      build_render_scene(parse_scene_string(kHeader + "Material \"subsurface\" " + kCoefficients +
+                                            " \"float eta\" 1.4 \"string method\" \"randomwalk\"\nShape \"sphere\"\n"),
+                         diag);
   const auto split = testing::pixel_statistics(*sc, 192, 70);
   sc->switches.split_first_hit = false;
   testing::expect_same_region_means(split, testing::pixel_statistics(*sc, 192, 71), 4, 4);
@@ -115,11 +116,11 @@ TEST(SubsurfaceRandomWalk, SplittingTheEntryKeepsTheMean) {
 // light averaged and each going on with 1/n of its weight, against one: the same picture
 // within 4 sigma, for the walk's exit lobe and for probes (disk, Burley).
 TEST(SubsurfaceRandomWalk, SeveralExitsAtTheFirstEntryKeepTheMean) {
-  for (const char* method : {"\"string method\" \"randomwalk\"",
-                             "\"string method\" \"disk\" \"string profile\" \"burley\""}) {
+  for (const char* method :
+       {"\"string method\" \"randomwalk\"", "\"string method\" \"disk\" \"string profile\" \"burley\""}) {
     SCOPED_TRACE(method);
-    const std::string object = std::string("Material \"subsurface\" ") + kCoefficients + " \"float eta\" 1.4 " + method +
-                               "\nShape \"sphere\"\n";
+    const std::string object = std::string("Material \"subsurface\" ") + kCoefficients + " \"float eta\" 1.4 " +
+                               method + "\nShape \"sphere\"\n";
     const std::string one = kHeader + object;
     std::string four = kHeader + object;
     four.replace(four.find("\"integer maxdepth\""), 0, "\"integer subsurfacesamples\" 4 ");
@@ -152,9 +153,9 @@ AttributeEnd
   const std::string walk = kHeader + small_light + floor + "Material \"subsurface\" " + kCoefficients +
                            " \"float eta\" 1.4 \"string method\" \"randomwalk\" \"string boundary\" \"dielectric\"\n"
                            "Shape \"sphere\"\n";
-  const std::string volume = kHeader + small_light + floor + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " +
-                             kCoefficients +
-                             "\nMediumInterface \"m\" \"\"\nMaterial \"dielectric\" \"float eta\" 1.4\nShape \"sphere\"\n";
+  const std::string volume =
+      kHeader + small_light + floor + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" " + kCoefficients +
+      "\nMediumInterface \"m\" \"\"\nMaterial \"dielectric\" \"float eta\" 1.4\nShape \"sphere\"\n";
   expect_same_picture(walk, volume, 128);
 
   // The variance: a sphere that absorbs all it lets in (no scattering, sigma_a 50 per unit)
@@ -224,7 +225,8 @@ AttributeEnd
     SCOPED_TRACE(sampling);
     const std::string walk = header + "Material \"subsurface\" " + kCoefficients +
                              " \"float eta\" 1.4 \"string method\" \"randomwalk\" \"string boundary\" \"dielectric\" "
-                             "\"string walksampling\" \"" + sampling + "\" \"bool backwardguiding\" true\n" + box;
+                             "\"string walksampling\" \"" +
+                             sampling + "\" \"bool backwardguiding\" true\n" + box;
     expect_same_picture(walk, volume, 1024);
   }
 }
@@ -256,6 +258,8 @@ TEST(SubsurfaceRandomWalk, MatchedBoundaryEqualsAnAbsorbingMediumInsideAnInterfa
 }  // namespace
 }  // namespace dermis
 
+#include <cstdio>
+
 #include "dermis/core/frame.h"
 #include "dermis/core/rng.h"
 #include "dermis/core/warp.h"
@@ -263,8 +267,6 @@ TEST(SubsurfaceRandomWalk, MatchedBoundaryEqualsAnAbsorbingMediumInsideAnInterfa
 #include "dermis/render/integrator.h"
 #include "dermis/render/subsurface/coefficients.h"
 #include "support/slab_albedo.h"
-
-#include <cstdio>
 
 namespace dermis {
 namespace {
@@ -363,7 +365,8 @@ TEST(SubsurfaceRandomWalk, VanDeHulstFitMissesTheReflectanceBehindADielectric) {
   exact.boundary = fit.boundary = SubsurfaceParams::Boundary::Dielectric;
   fit.albedo_inversion_fit = true;
   const Coefficients e = resolve_coefficients(exact), f = resolve_coefficients(fit);
-  double alpha_exact = e.sigma_s[0] / (e.sigma_a[0] + e.sigma_s[0]), alpha_fit = f.sigma_s[0] / (f.sigma_a[0] + f.sigma_s[0]);
+  double alpha_exact = e.sigma_s[0] / (e.sigma_a[0] + e.sigma_s[0]),
+         alpha_fit = f.sigma_s[0] / (f.sigma_a[0] + f.sigma_s[0]);
   std::printf("A = 0.6 behind eta 1.4: alpha exact %.5f, van de Hulst %.5f\n", alpha_exact, alpha_fit);
   EXPECT_GT(alpha_exact - alpha_fit, 0.01);
 }

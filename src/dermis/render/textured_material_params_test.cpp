@@ -32,8 +32,9 @@ struct TexturedParam {
 };
 
 std::string value_text(const TexturedParam& t, float v) {
-  return t.spectrum ? "\"rgb " + t.name + "\" [" + std::to_string(v) + " " + std::to_string(v) + " " + std::to_string(v) + "]"
-                    : "\"float " + t.name + "\" " + std::to_string(v);
+  return t.spectrum
+             ? "\"rgb " + t.name + "\" [" + std::to_string(v) + " " + std::to_string(v) + " " + std::to_string(v) + "]"
+             : "\"float " + t.name + "\" " + std::to_string(v);
 }
 
 // The plane z = 0 (uv = (x, y) / kSquare) with `material`; `texture` declares the checkerboard.
@@ -43,9 +44,9 @@ std::string plane_scene(const std::string& texture, const std::string& material)
          "\"integer yresolution\" 2\nIntegrator \"volpath\" \"integer maxdepth\" 50\nWorldBegin\n"
          "LightSource \"infinite\" \"rgb L\" [0.2 0.2 0.2]\n"
          "LightSource \"distant\" \"point3 from\" [1 0.5 2] \"point3 to\" [0 0 0] \"rgb L\" [3 3 3]\n" +
-         texture + "Material " + material + "\nShape \"trianglemesh\" \"point3 P\" [" + nh + " " + nh + " 0  " + h + " " +
-         nh + " 0  " + h + " " + h + " 0  " + nh + " " + h + " 0] \"point2 uv\" [" + nuv + " " + nuv + " " + uv + " " +
-         nuv + " " + uv + " " + uv + " " + nuv + " " + uv + "] \"integer indices\" [0 1 2  0 2 3]\n";
+         texture + "Material " + material + "\nShape \"trianglemesh\" \"point3 P\" [" + nh + " " + nh + " 0  " + h +
+         " " + nh + " 0  " + h + " " + h + " 0  " + nh + " " + h + " 0] \"point2 uv\" [" + nuv + " " + nuv + " " + uv +
+         " " + nuv + " " + uv + " " + uv + " " + nuv + " " + uv + "] \"integer indices\" [0 1 2  0 2 3]\n";
 }
 
 struct Mean {
@@ -94,9 +95,11 @@ TEST(TexturedMaterialParams, EachSquareReturnsWhatItsConstantReturns) {
                                 value_text({"", "tex1", t.spectrum, 0, 0}, t.value1) + " " +
                                 value_text({"", "tex2", t.spectrum, 0, 0}, t.value2) + "\n";
     Diagnostics diag;
-    const SceneDesc textured_desc = parse_scene_string(plane_scene(texture, t.material + " \"texture " + t.name + "\" \"checks\""));
-    EXPECT_TRUE(textured_desc.diagnostics.warnings.empty()) << t.material << " " << t.name << ": "
-                                                          << (textured_desc.diagnostics.warnings.empty() ? "" : textured_desc.diagnostics.warnings[0]);
+    const SceneDesc textured_desc =
+        parse_scene_string(plane_scene(texture, t.material + " \"texture " + t.name + "\" \"checks\""));
+    EXPECT_TRUE(textured_desc.diagnostics.warnings.empty())
+        << t.material << " " << t.name << ": "
+        << (textured_desc.diagnostics.warnings.empty() ? "" : textured_desc.diagnostics.warnings[0]);
     auto textured = build_render_scene(textured_desc, diag);
     // The centres of a tex1 square (floor(u) + floor(v) even) and of a tex2 square.
     const Vec3 centre[2] = {{0.5f * kSquare, 0.5f * kSquare, 0}, {1.5f * kSquare, 0.5f * kSquare, 0}};
@@ -104,13 +107,15 @@ TEST(TexturedMaterialParams, EachSquareReturnsWhatItsConstantReturns) {
     double contrast = 0;  // how far apart the two constants' means are, in standard errors
     Mean constant_mean[2];
     for (int s = 0; s < 2; ++s) {
-      auto constant = build_render_scene(parse_scene_string(plane_scene("", t.material + " " + value_text(t, value[s]))), diag);
+      auto constant =
+          build_render_scene(parse_scene_string(plane_scene("", t.material + " " + value_text(t, value[s]))), diag);
       const Mean a = mean_at(*textured, centre[s], 17, n);
       const Mean b = mean_at(*constant, centre[s], 29, n);
       constant_mean[s] = b;
       for (int c = 0; c < 3; ++c) {
         const double se = std::sqrt(a.var_of_mean[c] + b.var_of_mean[c]);
-        EXPECT_NEAR(a.mean[c], b.mean[c], 4 * se) << t.material << ", textured " << t.name << " = " << value[s] << ", channel " << c;
+        EXPECT_NEAR(a.mean[c], b.mean[c], 4 * se)
+            << t.material << ", textured " << t.name << " = " << value[s] << ", channel " << c;
       }
       std::printf("%s, %s %.2f: textured %.5f, constant %.5f (se %.5f)\n", t.material.c_str(), t.name.c_str(), value[s],
                   a.mean[1], b.mean[1], std::sqrt(a.var_of_mean[1] + b.var_of_mean[1]));

@@ -3,12 +3,11 @@
 // found by the scattered directions alone at MIS weight one) keeps the picture: the same
 // scene rendered with the rule and without it agrees region by region within 4 standard
 // errors.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <memory>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "dermis/lights/environment_map.h"
 #include "dermis/lights/light_selection.h"
@@ -79,8 +78,9 @@ AttributeEnd
 // light samples no longer taken fails (over the whole image by 11-19 sigma for the walk,
 // 10 for the probes when they had this rule).
 TEST(UniformSkyGivingWay, AtSubsurfaceExitsKeepsThePicture) {
-  const std::string key = "LightSource \"point\" \"point3 from\" [1 -2 2] \"rgb I\" [100 100 100]\n"
-                          "LightSource \"infinite\" \"rgb L\" [2.4 2.4 2.4]\n";
+  const std::string key =
+      "LightSource \"point\" \"point3 from\" [1 -2 2] \"rgb I\" [100 100 100]\n"
+      "LightSource \"infinite\" \"rgb L\" [2.4 2.4 2.4]\n";
   const std::string header = testing::lit_sphere_header(16, key);
   {
     // The rule applies on the lit side and not on the unlit one, where asked for.
@@ -168,28 +168,28 @@ TEST(UniformSkyGivingWay, AlwaysAtAWalksExitsKeepsThePicture) {
 // while the way on still weighs the sky at MIS weight one fails by far.
 TEST(UniformSkyGivingWay, NeverAtAProbesExitsKeepsThePicture) {
   for (const std::string& header : {std::string(kLoneSkyHeader), testing::lit_sphere_header(16)})
-  for (const char* method : {"disk", "sphere-lines"}) {
-    SCOPED_TRACE(method);
-    const std::string scene =
-        header + subsurface_sphere_on_floor(fmt::format("\"string method\" \"{}\" \"string profile\" \"burley\"", method));
-    Diagnostics diag;
-    auto uniform = build_render_scene(parse_scene_string(scene), diag);
-    auto image = build_render_scene(parse_scene_string(scene), diag);
-    ASSERT_EQ(uniform->subsurface.size(), 1u);
-    EXPECT_EQ(uniform->subsurface[0]->exit_sky_rule(0), SkyRule::GivesWay);
-    const int sky = sky_light(*image);
-    ASSERT_GE(sky, 0);
-    const std::vector<float> constant{0.6f, 0.7f, 0.8f, 0.6f, 0.7f, 0.8f};
-    image->lights[std::size_t(sky)].environment =
-        std::make_shared<const EnvironmentMap>(2, 1, constant, Transform(), 1.0f, EnvironmentMap::Mapping::LatLong);
-    image->light_selection = LightSelection(image->lights, image->embree->bounds_radius());
-    ASSERT_TRUE(uniform->light_selection.has_uniform_sky());
-    ASSERT_FALSE(image->light_selection.has_uniform_sky());
-    const auto a = testing::pixel_statistics(*uniform, 128, 93);
-    const auto b = testing::pixel_statistics(*image, 128, 94);
-    testing::expect_same_region_means(a, b, 4, 4);
-    testing::expect_same_region_means(a, b, 16, 16);  // the whole image as one region
-  }
+    for (const char* method : {"disk", "sphere-lines"}) {
+      SCOPED_TRACE(method);
+      const std::string scene = header + subsurface_sphere_on_floor(fmt::format(
+                                             "\"string method\" \"{}\" \"string profile\" \"burley\"", method));
+      Diagnostics diag;
+      auto uniform = build_render_scene(parse_scene_string(scene), diag);
+      auto image = build_render_scene(parse_scene_string(scene), diag);
+      ASSERT_EQ(uniform->subsurface.size(), 1u);
+      EXPECT_EQ(uniform->subsurface[0]->exit_sky_rule(0), SkyRule::GivesWay);
+      const int sky = sky_light(*image);
+      ASSERT_GE(sky, 0);
+      const std::vector<float> constant{0.6f, 0.7f, 0.8f, 0.6f, 0.7f, 0.8f};
+      image->lights[std::size_t(sky)].environment =
+          std::make_shared<const EnvironmentMap>(2, 1, constant, Transform(), 1.0f, EnvironmentMap::Mapping::LatLong);
+      image->light_selection = LightSelection(image->lights, image->embree->bounds_radius());
+      ASSERT_TRUE(uniform->light_selection.has_uniform_sky());
+      ASSERT_FALSE(image->light_selection.has_uniform_sky());
+      const auto a = testing::pixel_statistics(*uniform, 128, 93);
+      const auto b = testing::pixel_statistics(*image, 128, 94);
+      testing::expect_same_region_means(a, b, 4, 4);
+      testing::expect_same_region_means(a, b, 16, 16);  // the whole image as one region
+    }
 }
 
 }  // namespace

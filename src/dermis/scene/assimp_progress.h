@@ -7,7 +7,6 @@
 #pragma once
 
 #include <assimp/ProgressHandler.hpp>
-
 #include <stdexcept>
 
 #include "dermis/core/load_monitor.h"

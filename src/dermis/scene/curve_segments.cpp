@@ -1,9 +1,9 @@
 #include "dermis/scene/curve_segments.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 namespace dermis {
 
@@ -36,9 +36,10 @@ std::size_t curve_segment_count(std::size_t point_count, CurveBasis basis, int d
   const std::size_t d = std::size_t(degree);
   if (basis == CurveBasis::Bezier) {
     if (point_count < d + 1 || (point_count - 1) % d != 0)
-      throw std::invalid_argument(fmt::format("{} control points do not make a degree-{} Bézier curve: it needs {} + "
-                                              "n * {} (n >= 0)",
-                                              point_count, degree, d + 1, d));
+      throw std::invalid_argument(
+          fmt::format("{} control points do not make a degree-{} Bézier curve: it needs {} + "
+                      "n * {} (n >= 0)",
+                      point_count, degree, d + 1, d));
     return (point_count - 1) / d;
   }
   if (point_count < d + 1)
@@ -51,9 +52,10 @@ CurveSegments curve_to_bezier_segments(const std::vector<Vec3>& points, CurveBas
                                        float width0, float width1, const std::vector<Vec3>& normals) {
   const std::size_t n = curve_segment_count(points.size(), basis, degree);
   if (kind == CurveKind::Ribbon && normals.size() != n + 1)
-    throw std::invalid_argument(fmt::format("a ribbon curve of {} segments needs {} normals \"N\" (one per segment "
-                                            "end), got {}",
-                                            n, n + 1, normals.size()));
+    throw std::invalid_argument(
+        fmt::format("a ribbon curve of {} segments needs {} normals \"N\" (one per segment "
+                    "end), got {}",
+                    n, n + 1, normals.size()));
   CurveSegments c;
   c.kind = kind;
   c.points.resize(4 * n);

@@ -19,8 +19,8 @@ enum class CurveKind { Flat, Cylinder, Ribbon };  // pbrt-v4's "type": flat, cyl
 struct CurveSegments {
   CurveKind kind = CurveKind::Flat;
   std::vector<Vec3> points;
-  std::vector<float> widths;   // per control point: the width along the curve is linear
-  std::vector<Vec3> normals;   // ribbons: per control point (unit), else empty
+  std::vector<float> widths;  // per control point: the width along the curve is linear
+  std::vector<Vec3> normals;  // ribbons: per control point (unit), else empty
   std::size_t segment_count() const { return points.size() / 4; }
 };
 

@@ -1,10 +1,10 @@
 #include "dermis/scene/diagnostics.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <vector>
-
-#include <fmt/format.h>
 
 namespace dermis {
 
@@ -26,7 +26,9 @@ std::string bounded(const std::string& message) {
 }  // namespace
 
 SceneError::SceneError(const SourceLoc& loc, const std::string& message)
-    : std::runtime_error(fmt::format("{}: error: {}", loc.str(), bounded(message))), loc_(loc), message_(bounded(message)) {}
+    : std::runtime_error(fmt::format("{}: error: {}", loc.str(), bounded(message))),
+      loc_(loc),
+      message_(bounded(message)) {}
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
   std::vector<std::size_t> row(b.size() + 1);
@@ -36,7 +38,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
     row[0] = i;
     for (std::size_t j = 1; j <= b.size(); ++j) {
       const std::size_t above = row[j];
-      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
+      const bool same =
+          std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
       row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
       diagonal = above;
     }

@@ -1,9 +1,9 @@
 #include "dermis/scene/file_access.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <filesystem>
-
-#include <fmt/format.h>
 
 namespace dermis {
 
@@ -46,9 +46,10 @@ std::string FileAccess::roots_text(const std::vector<std::string>& roots) const 
 void FileAccess::check_read(const std::string& path, const std::string& as_written, const SourceLoc& at,
                             const std::string& what) const {
   if (!confined_ || inside(path, roots_)) return;
-  throw SceneError(at, fmt::format("{} '{}' is outside the directories this scene may read ({}; --confine), at '{}' "
-                                   "once resolved: move it inside, or allow its directory with --allow-path",
-                                   what, excerpt(as_written), roots_text(roots_), excerpt(resolved(path).string(), 200)));
+  throw SceneError(at,
+                   fmt::format("{} '{}' is outside the directories this scene may read ({}; --confine), at '{}' "
+                               "once resolved: move it inside, or allow its directory with --allow-path",
+                               what, excerpt(as_written), roots_text(roots_), excerpt(resolved(path).string(), 200)));
 }
 
 void FileAccess::check_write(const std::string& path, const std::string& as_written, const SourceLoc& at,
@@ -58,9 +59,10 @@ void FileAccess::check_write(const std::string& path, const std::string& as_writ
   if (const std::string cwd = resolved(".").string(); std::find(roots.begin(), roots.end(), cwd) == roots.end())
     roots.push_back(cwd);
   if (inside(path, roots)) return;
-  throw SceneError(at, fmt::format("{} '{}' is outside the directories this scene may write ({}; --confine), at '{}' "
-                                   "once resolved: give the output with -o",
-                                   what, excerpt(as_written), roots_text(roots), excerpt(resolved(path).string(), 200)));
+  throw SceneError(at,
+                   fmt::format("{} '{}' is outside the directories this scene may write ({}; --confine), at '{}' "
+                               "once resolved: give the output with -o",
+                               what, excerpt(as_written), roots_text(roots), excerpt(resolved(path).string(), 200)));
 }
 
 }  // namespace dermis

@@ -18,9 +18,10 @@ struct Layout {
   test::TempDir dir;
   std::string scene_dir;
   Layout() {
-    dir.write("assets/tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                                "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                                "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    dir.write("assets/tri.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+              "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+              "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
     dir.write("assets/tex.png", "the parser does not read images");
     dir.write("assets/flat.spd", "400 1\n700 1\n");
     dir.write("assets/part.pbrt", "Shape \"sphere\"\n");
@@ -33,10 +34,17 @@ struct Layout {
 // Each line names one file through `prefix` ("../assets/", an absolute path, "link/").
 std::string world_naming(const std::string& prefix) {
   return "WorldBegin\n"
-         "Shape \"plymesh\" \"string filename\" \"" + prefix + "tri.ply\"\n"
-         "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"" + prefix + "tex.png\"\n"
-         "Material \"diffuse\" \"spectrum reflectance\" \"" + prefix + "flat.spd\"\n"
-         "Include \"" + prefix + "part.pbrt\"\n";
+         "Shape \"plymesh\" \"string filename\" \"" +
+         prefix +
+         "tri.ply\"\n"
+         "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"" +
+         prefix +
+         "tex.png\"\n"
+         "Material \"diffuse\" \"spectrum reflectance\" \"" +
+         prefix +
+         "flat.spd\"\n"
+         "Include \"" +
+         prefix + "part.pbrt\"\n";
 }
 
 // The line of the first refused file, with the others commented out in turn.
@@ -62,7 +70,7 @@ TEST(FileAccess, ConfinedRefusesEveryKindOfFileOutsideAtItsName) {
         ADD_FAILURE() << "accepted: " << text;
       } catch (const SceneError& e) {
         EXPECT_EQ(e.loc().line, refused + 1) << e.what();
-        EXPECT_EQ(e.loc().column, int(lines[std::size_t(refused)].find("\"" + prefix))+ 1) << e.what();
+        EXPECT_EQ(e.loc().column, int(lines[std::size_t(refused)].find("\"" + prefix)) + 1) << e.what();
         // The name as written (cut to 64 bytes in the message: the absolute one is long).
         EXPECT_NE(std::string(e.what()).find(std::string(kinds[refused - 1]) + prefix.substr(0, 40)), std::string::npos)
             << e.what();

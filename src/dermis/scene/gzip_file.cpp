@@ -1,5 +1,8 @@
 #include "dermis/scene/gzip_file.h"
 
+#include <fmt/format.h>
+#include <zlib.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
@@ -7,9 +10,6 @@
 #include <filesystem>
 #include <memory>
 #include <vector>
-
-#include <fmt/format.h>
-#include <zlib.h>
 
 namespace dermis {
 

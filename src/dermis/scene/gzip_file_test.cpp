@@ -1,12 +1,13 @@
 // read_file_contents: plain files as they are, gzip (by its magic) inflated; corrupt,
 // truncated and oversized gzip data reported with the file's name.
-#include <cstdint>
-#include <string>
+#include "dermis/scene/gzip_file.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
-#include "dermis/scene/gzip_file.h"
+#include <cstdint>
+#include <string>
+
 #include "dermis/scene/scene_test_util.h"
 
 namespace dermis {
@@ -82,8 +83,8 @@ TEST(GzipFile, TruncatedDataIsAnErrorNamingTheFile) {
   test::TempDir dir;
   const std::string z = gzip(sample_text());
   ASSERT_GT(z.size(), 100u);
-  for (size_t keep : {size_t(2), size_t(5), size_t(10), size_t(11), z.size() / 2, z.size() - 8, z.size() - 4,
-                      z.size() - 1}) {
+  for (size_t keep :
+       {size_t(2), size_t(5), size_t(10), size_t(11), z.size() / 2, z.size() - 8, z.size() - 4, z.size() - 1}) {
     std::string path = dir.write("cut.pbrt.gz", z.substr(0, keep));
     std::string what = read_error(path);
     EXPECT_EQ(what, path + ": gzip data is corrupt/truncated (zlib: unexpected end of file)") << keep << " bytes kept";
@@ -131,8 +132,9 @@ TEST(GzipFile, DecompressionBombStopsAtTheLimit) {
   ASSERT_LT(z.size(), 20000u);  // about 1000:1
   std::string path = dir.write("bomb.gz", z);
   EXPECT_EQ(read_error(path, uint64_t(1) << 20),
-            path + ": gzip data inflates to more than 1048576 bytes, the limit for one file "
-                   "(a corrupt file or a decompression bomb?)");
+            path +
+                ": gzip data inflates to more than 1048576 bytes, the limit for one file "
+                "(a corrupt file or a decompression bomb?)");
   EXPECT_EQ(read_file_contents(path, zeros.size()).size(), zeros.size());
   EXPECT_NE(read_error(path, zeros.size() - 1).find("inflates to more than"), std::string::npos);
 }

@@ -108,8 +108,8 @@ Topology build_topology(const LoopMesh& m, const LoopProgress& progress, double 
         if (!preceded) start = i, ++starts;
       }
       if (starts != 1)
-        throw std::invalid_argument(fmt::format("vertex {} is where {} separate fans of triangles meet (not a manifold)",
-                                                v, starts));
+        throw std::invalid_argument(
+            fmt::format("vertex {} is where {} separate fans of triangles meet (not a manifold)", v, starts));
     }
     std::vector<uint32_t>& r = t.ring[v];
     uint32_t n, p;
@@ -132,10 +132,12 @@ Topology build_topology(const LoopMesh& m, const LoopProgress& progress, double 
     }
     if (!t.boundary[v]) {
       if (r.back() != r.front() || r.size() != fs.size() + 1)
-        throw std::invalid_argument(fmt::format("vertex {} is where separate fans of triangles meet (not a manifold)", v));
+        throw std::invalid_argument(
+            fmt::format("vertex {} is where separate fans of triangles meet (not a manifold)", v));
       r.pop_back();  // the closed fan came back to its first neighbour
     } else if (r.size() != fs.size() + 1) {
-      throw std::invalid_argument(fmt::format("vertex {} is where separate fans of triangles meet (not a manifold)", v));
+      throw std::invalid_argument(
+          fmt::format("vertex {} is where separate fans of triangles meet (not a manifold)", v));
     }
   }
   return t;
@@ -185,7 +187,8 @@ LoopMesh loop_refine(const LoopMesh& m, const LoopProgress& progress) {
       q = (a + b) * 0.5;  // boundary edge: the B-spline's midpoint rule
     } else {
       // Interior edge: 3/8 (a + b) + 1/8 (c + d) (Loop 1987, fig. 3.2).
-      q = (a + b) * 0.375 + (Vec3d(m.positions[uint32_t(ed.opposite[0])]) + Vec3d(m.positions[uint32_t(ed.opposite[1])])) * 0.125;
+      q = (a + b) * 0.375 +
+          (Vec3d(m.positions[uint32_t(ed.opposite[0])]) + Vec3d(m.positions[uint32_t(ed.opposite[1])])) * 0.125;
     }
     out.positions[nv + e] = Vec3(q);
   }
@@ -267,7 +270,8 @@ std::vector<Vec3> loop_limit_normals(const LoopMesh& m, const LoopProgress& prog
       } else {
         const double theta = kPiD / double(n - 1);
         t2 = (q(0) + q(n - 1)) * std::sin(theta);
-        for (std::size_t i = 1; i + 1 < n; ++i) t2 = t2 + q(i) * ((2 * std::cos(theta) - 2) * std::sin(double(i) * theta));
+        for (std::size_t i = 1; i + 1 < n; ++i)
+          t2 = t2 + q(i) * ((2 * std::cos(theta) - 2) * std::sin(double(i) * theta));
       }
     }
     Vec3d nrm = cross(t1, t2);

@@ -60,7 +60,7 @@ TEST(LoopSubdivision, VertexAndTriangleCountsPerLevelAreExact) {
   std::size_t v = 4, e = 6, f = 4;
   for (int level = 1; level <= 4; ++level) {
     m = loop_refine(m);
-    v += e;           // one new vertex per edge
+    v += e;             // one new vertex per edge
     e = 2 * e + 3 * f;  // each edge split in two, three new edges inside each triangle
     f *= 4;
     EXPECT_EQ(m.positions.size(), v) << "level " << level;
@@ -188,7 +188,8 @@ TEST(LoopSubdivision, NonManifoldMeshesAreRefused) {
 TEST(LoopSubdivision, ParsedAsPbrtV4Shape) {
   SceneDesc s = test::parse_world(
       "LightSource \"point\"\n"
-      "Shape \"loopsubdiv\" \"point3 P\" [1 1 1  1 -1 -1  -1 1 -1  -1 -1 1] \"integer indices\" [0 1 2 0 3 1 0 2 3 1 3 2]\n"
+      "Shape \"loopsubdiv\" \"point3 P\" [1 1 1  1 -1 -1  -1 1 -1  -1 -1 1] \"integer indices\" [0 1 2 0 3 1 0 2 3 1 3 "
+      "2]\n"
       "Shape \"loopsubdiv\" \"integer levels\" 1 \"point3 P\" [1 1 1  1 -1 -1  -1 1 -1  -1 -1 1] "
       "\"integer indices\" [0 1 2 0 3 1 0 2 3 1 3 2]\n");
   EXPECT_TRUE(s.diagnostics.warnings.empty());
@@ -196,8 +197,9 @@ TEST(LoopSubdivision, ParsedAsPbrtV4Shape) {
   EXPECT_EQ(s.shapes[0].mesh.normals.size(), s.shapes[0].mesh.positions.size());
   EXPECT_EQ(s.shapes[1].mesh.indices.size(), 3u * 4 * 4);
   try {
-    test::parse_world("Shape \"loopsubdiv\" \"point3 P\" [0 0 0 1 0 0 0 1 0 0 -1 0 0 0 1] "
-                      "\"integer indices\" [0 1 2 1 0 3 0 1 4]\n");
+    test::parse_world(
+        "Shape \"loopsubdiv\" \"point3 P\" [0 0 0 1 0 0 0 1 0 0 -1 0 0 0 1] "
+        "\"integer indices\" [0 1 2 1 0 3 0 1 4]\n");
     ADD_FAILURE() << "a non-manifold mesh was accepted";
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("more than two triangles"), std::string::npos) << e.what();

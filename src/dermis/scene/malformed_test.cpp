@@ -46,7 +46,8 @@ void expect_scene_error(const std::string& text, int line, int column, const std
 const Case kCases[] = {
     // Negative or overflowing light: negative or infinite pixels.
     {"WorldBegin\nLightSource \"point\" \"rgb I\" @[1 -1 1]\n", "\"I\" must be finite and >= 0"},
-    {"WorldBegin\nAreaLightSource \"diffuse\" \"rgb L\" [@1e39 1 1]\nShape \"sphere\"\n", "beyond the range of 32-bit floats"},
+    {"WorldBegin\nAreaLightSource \"diffuse\" \"rgb L\" [@1e39 1 1]\nShape \"sphere\"\n",
+     "beyond the range of 32-bit floats"},
     {"WorldBegin\nLightSource \"infinite\" \"float scale\" @-2\n", "\"scale\" must be finite and >= 0"},
     // Each factor in range, the product not: 1e20 x 1e20 is infinite in float.
     {"WorldBegin\nLightSource \"point\" \"rgb I\" [1e20 1 1] \"float scale\" @1e20\n",
@@ -65,12 +66,14 @@ const Case kCases[] = {
     {"WorldBegin\nMaterial @\"difuse\"\n", "unknown Material type 'difuse' (did you mean 'diffuse'?)"},
     {"WorldBegin\nMaterial @\"plastic\"\n", "unknown Material type 'plastic' (a pbrt-v3 material"},
     {"WorldBegin\nMakeNamedMaterial \"m\" \"string type\" @\"coateddifuse\"\n", "(did you mean 'coateddiffuse'?)"},
-    {"WorldBegin\nLightSource @\"laser\" \"rgb I\" [1 1 1]\n", "unknown LightSource type 'laser' (pbrt-v4 has point, spot"},
+    {"WorldBegin\nLightSource @\"laser\" \"rgb I\" [1 1 1]\n",
+     "unknown LightSource type 'laser' (pbrt-v4 has point, spot"},
     {"WorldBegin\nAreaLightSource @\"difuse\"\n", "unknown AreaLightSource type 'difuse' (did you mean 'diffuse'?)"},
     {"Camera @\"fisheye\"\nWorldBegin\n", "unknown Camera type 'fisheye' (pbrt-v4 has perspective, orthographic"},
     {"Camera @\"perspectiv\"\nWorldBegin\n", "(did you mean 'perspective'?)"},
     {"WorldBegin\nShape @\"sphear\"\n", "unknown Shape type 'sphear' (did you mean 'sphere'?)"},
-    {"WorldBegin\nTexture \"t\" \"spectrum\" @\"imagemapp\"\n", "unknown Texture type 'imagemapp' (did you mean 'imagemap'?)"},
+    {"WorldBegin\nTexture \"t\" \"spectrum\" @\"imagemapp\"\n",
+     "unknown Texture type 'imagemapp' (did you mean 'imagemap'?)"},
     {"WorldBegin\nMakeNamedMedium \"f\" \"string type\" @\"plasma\"\n", "unknown MakeNamedMedium type 'plasma'"},
     {"Film @\"film\"\nWorldBegin\n", "unknown Film type 'film'"},
     {"PixelFilter @\"gauss\"\nWorldBegin\n", "unknown PixelFilter type 'gauss'"},
@@ -97,7 +100,8 @@ const Case kCases[] = {
     {"WorldBegin\nMaterial \"diffuse\" \"texture reflectance\" @\"wood\"\n", "unknown spectrum texture \"wood\""},
     // Resolved at use (pbrt-v4): the error is at the name once a shape needs it.
     {"MediumInterface @\"smoke\"\nWorldBegin\nShape \"sphere\"\n", "unknown medium \"smoke\""},
-    {"MakeNamedMedium \"a\" \"string type\" \"homogeneous\"\nMediumInterface \"a\" @\"b\"\nWorldBegin\nShape \"sphere\"\n",
+    {"MakeNamedMedium \"a\" \"string type\" \"homogeneous\"\nMediumInterface \"a\" @\"b\"\nWorldBegin\nShape "
+     "\"sphere\"\n",
      "unknown medium \"b\""},
     {"WorldBegin\nObjectInstance @\"tree\"\n", "unknown object \"tree\""},
     {"WorldBegin\n@AttributeEnd\n", "AttributeEnd without a matching AttributeBegin"},
@@ -109,7 +113,8 @@ const Case kCases[] = {
     {"Translate 1 2@\n", "Translate expects 3 numbers, found the end of the file"},
     {"Film \"rgb\" \"integer xresolution\" @-5\n", "xresolution must be positive"},
     {"Film \"rgb\" \"integer yresolution\" @0\n", "yresolution must be positive"},
-    {"Film \"rgb\" \"integer xresolution\" @100000000 \"integer yresolution\" 10\n", "a film of 100000000x10 pixels is too large"},
+    {"Film \"rgb\" \"integer xresolution\" @100000000 \"integer yresolution\" 10\n",
+     "a film of 100000000x10 pixels is too large"},
     {"Film \"rgb\" \"integer yresolution\" 65536 \"integer xresolution\" @65536\n", "too large"},
     {"Scale 1 @0 1\n", "Scale by zero"},
     {"  @LookAt 0 0 0  0 0 0  0 1 0\n", "degenerate LookAt"},
@@ -121,8 +126,7 @@ const Case kCases[] = {
      "unknown medium preset \"Jelly\" (valid: Apple, Chicken1"},
     {"MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"float g\" @1.5\n", "g must be in (-1, 1)"},
     {"@MakeNamedMedium \"m\"\n", "needs \"string type\""},
-    {"WorldBegin\n@Shape \"plymesh\" \"string filename\" \"no/such/mesh.ply\"\n",
-     "could not read mesh file '"},
+    {"WorldBegin\n@Shape \"plymesh\" \"string filename\" \"no/such/mesh.ply\"\n", "could not read mesh file '"},
     {"WorldBegin\n@Shape \"objmesh\" \"string filename\" \"missing.obj\"\n", "missing.obj': No such file"},
     {"WorldBegin\nInclude @\"nowhere.pbrt\"\n", "could not read included file"},
     {"WorldBegin\nShape \"sphere\"\n@WorldBegin\n", "WorldBegin given twice"},
@@ -133,7 +137,8 @@ const Case kCases[] = {
     {"WorldBegin\nLightSource \"point\" \"spectrum I\" @\"metal-Unobtainium\"\n", "unknown named spectrum"},
     {"WorldBegin\nLightSource \"point\" \"spectrum I\" [400 1 @380 2]\n", "wavelengths must increase"},
     {"WorldBegin\nLightSource \"point\" \"blackbody I\" @-10\n", "temperature must be positive"},
-    {"WorldBegin\nMakeNamedMaterial \"m\" \"string type\" \"diffuse\"\nMakeNamedMaterial @\"m\" \"string type\" \"diffuse\"\n",
+    {"WorldBegin\nMakeNamedMaterial \"m\" \"string type\" \"diffuse\"\nMakeNamedMaterial @\"m\" \"string type\" "
+     "\"diffuse\"\n",
      "defined twice"},
     {"WorldBegin\nTexture \"t\" @\"color3\" \"constant\"\n", "\"spectrum\" or \"float\""},
     {"WorldBegin\nTexture \"t\" \"spectrum\" \"imagemap\" \"string filename\" @\"absent.png\"\n", "could not read"},
@@ -181,11 +186,13 @@ TEST(MalformedScenes, MissingSceneFile) {
 
 TEST(MalformedScenes, BrokenPlyFileNamesTheFileAndTheReason) {
   test::TempDir dir;
-  dir.write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                       "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
-  dir.write("short.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                         "property float z\nend_header\n0 0 0\n1 0\n");
+  dir.write("bad.ply",
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+            "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+  dir.write("short.ply",
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            "property float z\nend_header\n0 0 0\n1 0\n");
   expect_scene_error("WorldBegin\nShape \"plymesh\" \"string filename\" \"bad.ply\"\n", 2, 1,
                      "references vertex 7 but the file has 3 vertices", dir.path());
   expect_scene_error("WorldBegin\nShape \"plymesh\" \"string filename\" \"short.ply\"\n", 2, 1,
@@ -194,9 +201,10 @@ TEST(MalformedScenes, BrokenPlyFileNamesTheFileAndTheReason) {
 
 TEST(MalformedScenes, BrokenGzipFilesNameTheFile) {
   test::TempDir dir;
-  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                          "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                          "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   const std::string zply = test::gzip(ply), zpbrt = test::gzip("Shape \"sphere\"\n");
   std::string corrupt_ply = zply;
   corrupt_ply[corrupt_ply.size() - 6] ^= 0x55;  // the trailer's CRC-32
@@ -205,14 +213,20 @@ TEST(MalformedScenes, BrokenGzipFilesNameTheFile) {
   dir.write("cut.pbrt.gz", zpbrt.substr(0, zpbrt.size() - 3));
   const std::string d = dir.path() + "/";
   expect_scene_error("WorldBegin\nShape \"plymesh\" \"string filename\" \"cut.ply.gz\"\n", 2, 1,
-                     "could not read mesh file '" + d + "cut.ply.gz': gzip data is corrupt/truncated "
-                     "(zlib: unexpected end of file)", dir.path());
+                     "could not read mesh file '" + d +
+                         "cut.ply.gz': gzip data is corrupt/truncated "
+                         "(zlib: unexpected end of file)",
+                     dir.path());
   expect_scene_error("WorldBegin\nShape \"plymesh\" \"string filename\" \"bad.ply.gz\"\n", 2, 1,
-                     "could not read mesh file '" + d + "bad.ply.gz': gzip data is corrupt/truncated "
-                     "(zlib: incorrect data check)", dir.path());
+                     "could not read mesh file '" + d +
+                         "bad.ply.gz': gzip data is corrupt/truncated "
+                         "(zlib: incorrect data check)",
+                     dir.path());
   expect_scene_error("WorldBegin\n  Include \"cut.pbrt.gz\"\n", 2, 11,
-                     "could not read included file '" + d + "cut.pbrt.gz': gzip data is corrupt/truncated "
-                     "(zlib: unexpected end of file)", dir.path());
+                     "could not read included file '" + d +
+                         "cut.pbrt.gz': gzip data is corrupt/truncated "
+                         "(zlib: unexpected end of file)",
+                     dir.path());
   std::string main = dir.write("main.pbrt.gz", zpbrt.substr(0, 12));
   try {
     parse_scene_file(main);
@@ -227,9 +241,10 @@ TEST(MalformedScenes, BrokenGzipFilesNameTheFile) {
 
 TEST(MalformedScenes, NanInPlyFileIsRejected) {
   test::TempDir dir;
-  dir.write("nan.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                       "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n");
+  dir.write("nan.ply",
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+            "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n");
   expect_scene_error("WorldBegin\n  Shape \"plymesh\" \"string filename\" \"nan.ply\"\n", 2, 3,
                      "nan.ply': vertex 1 has a non-finite coordinate", dir.path());
 }

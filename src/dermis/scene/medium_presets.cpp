@@ -1,8 +1,8 @@
 #include "dermis/scene/medium_presets.h"
 
-#include <cctype>
-
 #include <fmt/format.h>
+
+#include <cctype>
 
 #include "dermis/scene/diagnostics.h"
 

@@ -1,10 +1,11 @@
 // The named measured media of pbrt-v4: every name, values against the papers, use by name.
-#include <set>
-#include <string>
+#include "dermis/scene/medium_presets.h"
 
 #include <gtest/gtest.h>
 
-#include "dermis/scene/medium_presets.h"
+#include <set>
+#include <string>
+
 #include "dermis/scene/parser.h"
 #include "dermis/scene/scene_test_util.h"
 
@@ -18,14 +19,53 @@ void expect_rgb_rel(RGB a, RGB b, float rel) {
 }
 
 // pbrt-v4's names (src/pbrt/media.cpp, GetMediumScatteringProperties), spelled as there.
-constexpr const char* kPbrtNames[] = {
-    "Apple", "Chicken1", "Chicken2", "Cream", "Ketchup", "Marble", "Potato", "Skimmilk", "Skin1", "Skin2",
-    "Spectralon", "Wholemilk", "Lowfat Milk", "Reduced Milk", "Regular Milk", "Espresso", "Mint Mocha Coffee",
-    "Lowfat Soy Milk", "Regular Soy Milk", "Lowfat Chocolate Milk", "Regular Chocolate Milk", "Coke", "Pepsi",
-    "Sprite", "Gatorade", "Chardonnay", "White Zinfandel", "Merlot", "Budweiser Beer", "Coors Light Beer", "Clorox",
-    "Apple Juice", "Cranberry Juice", "Grape Juice", "Ruby Grapefruit Juice", "White Grapefruit Juice", "Shampoo",
-    "Strawberry Shampoo", "Head & Shoulders Shampoo", "Lemon Tea Powder", "Orange Powder", "Pink Lemonade Powder",
-    "Cappuccino Powder", "Salt Powder", "Sugar Powder", "Suisse Mocha Powder", "Pacific Ocean Surface Water"};
+constexpr const char* kPbrtNames[] = {"Apple",
+                                      "Chicken1",
+                                      "Chicken2",
+                                      "Cream",
+                                      "Ketchup",
+                                      "Marble",
+                                      "Potato",
+                                      "Skimmilk",
+                                      "Skin1",
+                                      "Skin2",
+                                      "Spectralon",
+                                      "Wholemilk",
+                                      "Lowfat Milk",
+                                      "Reduced Milk",
+                                      "Regular Milk",
+                                      "Espresso",
+                                      "Mint Mocha Coffee",
+                                      "Lowfat Soy Milk",
+                                      "Regular Soy Milk",
+                                      "Lowfat Chocolate Milk",
+                                      "Regular Chocolate Milk",
+                                      "Coke",
+                                      "Pepsi",
+                                      "Sprite",
+                                      "Gatorade",
+                                      "Chardonnay",
+                                      "White Zinfandel",
+                                      "Merlot",
+                                      "Budweiser Beer",
+                                      "Coors Light Beer",
+                                      "Clorox",
+                                      "Apple Juice",
+                                      "Cranberry Juice",
+                                      "Grape Juice",
+                                      "Ruby Grapefruit Juice",
+                                      "White Grapefruit Juice",
+                                      "Shampoo",
+                                      "Strawberry Shampoo",
+                                      "Head & Shoulders Shampoo",
+                                      "Lemon Tea Powder",
+                                      "Orange Powder",
+                                      "Pink Lemonade Powder",
+                                      "Cappuccino Powder",
+                                      "Salt Powder",
+                                      "Sugar Powder",
+                                      "Suisse Mocha Powder",
+                                      "Pacific Ocean Surface Water"};
 
 TEST(MediumPresets, EveryNameOfPbrtV4IsFound) {
   EXPECT_EQ(std::size(kPbrtNames), 47u);
@@ -90,7 +130,8 @@ TEST(MediumPresets, UsedByMediaAndSubsurfaceWithSuggestionsForNearMisses) {
   EXPECT_NE(error_of("Material \"subsurface\" \"string name\" \"Expresso\"\n")
                 .find("unknown subsurface preset \"Expresso\" (did you mean 'Espresso'?)"),
             std::string::npos);
-  EXPECT_NE(error_of("Material \"subsurface\" \"string name\" \"Jelly\"\n").find("unknown subsurface preset \"Jelly\" (valid:"),
+  EXPECT_NE(error_of("Material \"subsurface\" \"string name\" \"Jelly\"\n")
+                .find("unknown subsurface preset \"Jelly\" (valid:"),
             std::string::npos);
 }
 

@@ -1,5 +1,6 @@
 #include "dermis/scene/mesh_cache.h"
 
+#include <fmt/format.h>
 #include <zlib.h>
 
 #include <chrono>
@@ -10,8 +11,6 @@
 #include <iterator>
 #include <system_error>
 #include <type_traits>
-
-#include <fmt/format.h>
 
 #include "dermis/source_hashes.h"  // generated (cmake/source_hashes.cmake)
 

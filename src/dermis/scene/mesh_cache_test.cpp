@@ -2,14 +2,14 @@
 // mesh or an error) whenever the file or the cache is not what the cache says.
 #include "dermis/scene/mesh_cache.h"
 
+#include <gtest/gtest.h>
+
 #include <atomic>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <utility>
 #include <vector>
-#include <fstream>
-
-#include <gtest/gtest.h>
 
 #include "dermis/source_hashes.h"
 
@@ -58,7 +58,7 @@ TEST_F(MeshCacheTest, TheCachedMeshIsTheImportBitForBit) {
   ASSERT_FALSE(direct.mesh.uvs.empty());
   ASSERT_EQ(direct.notes.size(), 1u);  // the point
 
-  EXPECT_FALSE(load_cached_mesh(cache.string(), obj.string()));  // nothing cached yet
+  EXPECT_FALSE(load_cached_mesh(cache.string(), obj.string()));                         // nothing cached yet
   expect_same(import_mesh_cached(obj.string(), nullptr, cache.string(), 0.0), direct);  // imported, then cached
   ASSERT_TRUE(fs::exists(cache_file()));
   const std::optional<ImportedMesh> cached = load_cached_mesh(cache.string(), obj.string());

@@ -1,6 +1,11 @@
 #include "dermis/scene/mesh_import.h"
 
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <fmt/format.h>
+
 #include <array>
+#include <assimp/Importer.hpp>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -9,11 +14,6 @@
 #include <stdexcept>
 #include <unordered_map>
 #include <vector>
-
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
-#include <fmt/format.h>
 
 #include "dermis/scene/assimp_progress.h"
 
@@ -70,7 +70,8 @@ std::vector<uint32_t> first_identical_vertex(const aiMesh* m) {
       const aiVector3D& n = m->mNormals[v];
       k.bits[3] = bits(n.x), k.bits[4] = bits(n.y), k.bits[5] = bits(n.z);
     }
-    if (m->HasTextureCoords(0)) k.bits[6] = bits(m->mTextureCoords[0][v].x), k.bits[7] = bits(m->mTextureCoords[0][v].y);
+    if (m->HasTextureCoords(0))
+      k.bits[6] = bits(m->mTextureCoords[0][v].x), k.bits[7] = bits(m->mTextureCoords[0][v].y);
     const auto [it, inserted] = first.try_emplace(k, unique);
     if (inserted) ++unique;
     remap[v] = it->second;
@@ -145,8 +146,8 @@ void validate_mesh(const TriangleMeshDesc& mesh) {
   const size_t n = mesh.positions.size();
   for (size_t i = 0; i < mesh.indices.size(); ++i)
     if (mesh.indices[i] >= n)
-      throw std::runtime_error(fmt::format("index {} (value {}) is out of range: the mesh has {} vertices", i,
-                                           mesh.indices[i], n));
+      throw std::runtime_error(
+          fmt::format("index {} (value {}) is out of range: the mesh has {} vertices", i, mesh.indices[i], n));
   for (size_t i = 0; i < n; ++i) {
     const Vec3& p = mesh.positions[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))

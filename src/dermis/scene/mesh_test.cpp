@@ -1,5 +1,7 @@
 // Shapes: inline meshes, PLY (ASCII, binary, triangle strips), OBJ through Assimp, and
 // the tessellated disk and bilinear patches.
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -7,8 +9,6 @@
 #include <fstream>
 #include <map>
 #include <set>
-
-#include <gtest/gtest.h>
 
 #include "dermis/scene/parser.h"
 #include "dermis/scene/ply_reader.h"
@@ -66,7 +66,8 @@ TEST(ShapeTriangleMesh, ValuesAsWritten) {
 }
 
 TEST(ShapeSphere, RadiusAndPartialTessellated) {
-  SceneDesc s = parse_world("LightSource \"point\"\nShape \"sphere\" \"float radius\" 2.5\nShape \"sphere\" \"float zmax\" 0.5\n");
+  SceneDesc s = parse_world(
+      "LightSource \"point\"\nShape \"sphere\" \"float radius\" 2.5\nShape \"sphere\" \"float zmax\" 0.5\n");
   EXPECT_EQ(s.shapes[0].type, ShapeDesc::Type::Sphere);
   EXPECT_FLOAT_EQ(s.shapes[0].radius, 2.5f);
   EXPECT_EQ(s.shapes[1].type, ShapeDesc::Type::TriangleMesh);  // quadric_shapes_test.cpp
@@ -110,8 +111,8 @@ TEST(ShapeBilinear, PlanarPatchIsTwoTrianglesWithPbrtOrientation) {
 
 TEST(ShapeBilinear, NonPlanarPatchIsAGridOnTheSurface) {
   // Hyperbolic paraboloid z = u v over the unit square.
-  SceneDesc s = parse_world(
-      "Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 1] \"integer indices\" [0 1 2 3]\n");
+  SceneDesc s =
+      parse_world("Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 1] \"integer indices\" [0 1 2 3]\n");
   const TriangleMeshDesc& m = s.shapes[0].mesh;
   EXPECT_EQ(m.indices.size(), size_t(6 * kBilinearGrid * kBilinearGrid));
   for (const Vec3& p : m.positions) EXPECT_NEAR(p.z, p.x * p.y, 1e-6);

@@ -21,7 +21,7 @@ enum class NamedSpectrumKind {
 };
 
 struct NamedSpectrumTable {
-  const char* name;               // as pbrt-v4 spells it
+  const char* name;  // as pbrt-v4 spells it
   NamedSpectrumKind kind;
   std::span<const double> pairs;  // wavelength (nm, increasing), value, wavelength, value, ...
 };

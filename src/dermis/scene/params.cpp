@@ -1,10 +1,10 @@
 #include "dermis/scene/params.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <map>
 #include <sstream>
-
-#include <fmt/format.h>
 
 namespace dermis {
 
@@ -15,15 +15,22 @@ enum class ValueKind { Numbers, Strings, Bools, NumbersOrString };
 // Canonical name and value kind of each parameter type (pbrt-v3 aliases included).
 bool canonical_type(const std::string& written, std::string& canonical, ValueKind& kind) {
   static const std::map<std::string, std::pair<std::string, ValueKind>> kTypes = {
-      {"integer", {"integer", ValueKind::Numbers}},   {"float", {"float", ValueKind::Numbers}},
-      {"point2", {"point2", ValueKind::Numbers}},     {"vector2", {"vector2", ValueKind::Numbers}},
-      {"point3", {"point3", ValueKind::Numbers}},     {"point", {"point3", ValueKind::Numbers}},
-      {"vector3", {"vector3", ValueKind::Numbers}},   {"vector", {"vector3", ValueKind::Numbers}},
-      {"normal3", {"normal3", ValueKind::Numbers}},   {"normal", {"normal3", ValueKind::Numbers}},
-      {"rgb", {"rgb", ValueKind::Numbers}},           {"color", {"rgb", ValueKind::Numbers}},
+      {"integer", {"integer", ValueKind::Numbers}},
+      {"float", {"float", ValueKind::Numbers}},
+      {"point2", {"point2", ValueKind::Numbers}},
+      {"vector2", {"vector2", ValueKind::Numbers}},
+      {"point3", {"point3", ValueKind::Numbers}},
+      {"point", {"point3", ValueKind::Numbers}},
+      {"vector3", {"vector3", ValueKind::Numbers}},
+      {"vector", {"vector3", ValueKind::Numbers}},
+      {"normal3", {"normal3", ValueKind::Numbers}},
+      {"normal", {"normal3", ValueKind::Numbers}},
+      {"rgb", {"rgb", ValueKind::Numbers}},
+      {"color", {"rgb", ValueKind::Numbers}},
       {"blackbody", {"blackbody", ValueKind::Numbers}},
       {"spectrum", {"spectrum", ValueKind::NumbersOrString}},
-      {"bool", {"bool", ValueKind::Bools}},           {"string", {"string", ValueKind::Strings}},
+      {"bool", {"bool", ValueKind::Bools}},
+      {"string", {"string", ValueKind::Strings}},
       {"texture", {"texture", ValueKind::Strings}},
   };
   auto it = kTypes.find(written);
@@ -45,16 +52,17 @@ void add_value(ParsedParam& p, ValueKind kind, const Token& t, const TokenStream
   switch (kind) {
     case ValueKind::Numbers:
       if (t.kind != Token::Kind::Number)
-        throw SceneError(loc, fmt::format("parameter \"{} {}\" expects numbers, found {} '{}'", p.param.type,
-                                          name, token_kind_name(t.kind), excerpt(t.text)));
+        throw SceneError(loc, fmt::format("parameter \"{} {}\" expects numbers, found {} '{}'", p.param.type, name,
+                                          token_kind_name(t.kind), excerpt(t.text)));
       if (p.type == "integer" && t.number != std::floor(t.number))
-        throw SceneError(loc, fmt::format("parameter \"integer {}\" expects integers, found '{}'", name, excerpt(t.text)));
+        throw SceneError(loc,
+                         fmt::format("parameter \"integer {}\" expects integers, found '{}'", name, excerpt(t.text)));
       p.param.numbers.push_back(t.number);
       break;
     case ValueKind::Strings:
       if (t.kind != Token::Kind::String)
-        throw SceneError(loc, fmt::format("parameter \"{} {}\" expects quoted strings, found {} '{}'",
-                                          p.param.type, name, token_kind_name(t.kind), t.text));
+        throw SceneError(loc, fmt::format("parameter \"{} {}\" expects quoted strings, found {} '{}'", p.param.type,
+                                          name, token_kind_name(t.kind), t.text));
       p.param.strings.push_back(t.text);
       break;
     case ValueKind::Bools: {
@@ -85,9 +93,7 @@ void add_value(ParsedParam& p, ValueKind kind, const Token& t, const TokenStream
 
 }  // namespace
 
-size_t ParsedParam::size() const {
-  return param.numbers.size() + param.strings.size() + param.bools.size();
-}
+size_t ParsedParam::size() const { return param.numbers.size() + param.strings.size() + param.bools.size(); }
 
 SourceLoc ParsedParam::value_at(size_t i) const {
   if (i >= value_pos.size()) return value_loc;
@@ -158,15 +164,15 @@ const ParsedParam& ParamList::expect_type(const ParsedParam& p, std::initializer
   p.used = true;
   for (const char* t : types)
     if (p.type == t) return p;
-  throw SceneError(p.param.loc, fmt::format("parameter '{}' has type '{}', expected {}", p.param.name,
-                                            p.param.type, type_list(types)));
+  throw SceneError(p.param.loc, fmt::format("parameter '{}' has type '{}', expected {}", p.param.name, p.param.type,
+                                            type_list(types)));
 }
 
 namespace {
 void expect_one(const ParsedParam& p) {
   if (p.size() != 1)
-    throw SceneError(p.value_loc, fmt::format("parameter \"{} {}\" expects exactly one value, got {}",
-                                              p.param.type, p.param.name, p.size()));
+    throw SceneError(p.value_loc, fmt::format("parameter \"{} {}\" expects exactly one value, got {}", p.param.type,
+                                              p.param.name, p.size()));
 }
 }  // namespace
 
@@ -218,8 +224,7 @@ std::vector<double> ParamList::get_numbers(const std::string& name, std::initial
   const ParsedParam* p = find(name);
   if (!p) return {};
   expect_type(*p, types);
-  if (!p->param.strings.empty())
-    throw SceneError(p->value_loc, fmt::format("parameter '{}' expects numbers", name));
+  if (!p->param.strings.empty()) throw SceneError(p->value_loc, fmt::format("parameter '{}' expects numbers", name));
   if (arity > 1 && p->param.numbers.size() % arity != 0)
     throw SceneError(p->value_loc, fmt::format("parameter \"{} {}\" needs a multiple of {} values, got {}",
                                                p->param.type, name, arity, p->param.numbers.size()));
@@ -238,8 +243,8 @@ std::optional<Vec3> ParamList::get_vec3(const std::string& name, std::initialize
   if (!p) return std::nullopt;
   std::vector<Vec3> v = get_vec3s(name, types);
   if (v.size() != 1)
-    throw SceneError(p->value_loc, fmt::format("parameter \"{} {}\" expects 3 values, got {}", p->param.type,
-                                               name, p->param.numbers.size()));
+    throw SceneError(p->value_loc, fmt::format("parameter \"{} {}\" expects 3 values, got {}", p->param.type, name,
+                                               p->param.numbers.size()));
   return v[0];
 }
 

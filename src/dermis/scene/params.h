@@ -17,16 +17,16 @@
 namespace dermis {
 
 struct ParsedParam {
-  Param param;                 // as written (type spelled as in the file)
-  std::string type;            // canonical type: integer float point2 vector2 point3 vector3
-                               // normal3 rgb spectrum blackbody bool string texture
-  SourceLoc value_loc;         // first token of the value ('[' or the single value)
-  std::vector<std::pair<int, int>> value_pos;  // line and column of every value
-  std::string base_dir;        // where a file named in the value (a .spd spectrum) is looked for
+  Param param;                                    // as written (type spelled as in the file)
+  std::string type;                               // canonical type: integer float point2 vector2 point3 vector3
+                                                  // normal3 rgb spectrum blackbody bool string texture
+  SourceLoc value_loc;                            // first token of the value ('[' or the single value)
+  std::vector<std::pair<int, int>> value_pos;     // line and column of every value
+  std::string base_dir;                           // where a file named in the value (a .spd spectrum) is looked for
   std::shared_ptr<const FileAccess> file_access;  // which files it may reach; null: any
   mutable bool used = false;
 
-  size_t size() const;         // number of values of whatever kind
+  size_t size() const;  // number of values of whatever kind
   SourceLoc value_at(size_t i) const;
 };
 

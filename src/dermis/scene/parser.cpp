@@ -1,13 +1,12 @@
 #include "dermis/scene/parser.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
-
-#include <fmt/format.h>
-
-#include <cmath>
 
 #include "dermis/scene/gzip_file.h"
 #include "dermis/scene/named_spectra_data.h"
@@ -39,13 +38,47 @@ std::string read_text(const std::string& path, std::string& why, LoadStage& stag
 }
 
 // The directives this parser knows (pbrt-v4's), for suggestions.
-constexpr const char* kDirectives[] = {
-    "Identity", "Translate", "Scale", "Rotate", "LookAt", "Transform", "ConcatTransform", "CoordinateSystem",
-    "CoordSysTransform", "ActiveTransform", "TransformTimes", "ReverseOrientation", "AttributeBegin",
-    "AttributeEnd", "TransformBegin", "TransformEnd", "Camera", "Film", "PixelFilter", "Sampler", "Integrator",
-    "Accelerator", "ColorSpace", "Option", "WorldBegin", "WorldEnd", "Include", "Import", "Shape", "ObjectBegin",
-    "ObjectEnd", "ObjectInstance", "Material", "MakeNamedMaterial", "NamedMaterial", "Texture", "LightSource",
-    "AreaLightSource", "MakeNamedMedium", "MediumInterface", "Attribute"};
+constexpr const char* kDirectives[] = {"Identity",
+                                       "Translate",
+                                       "Scale",
+                                       "Rotate",
+                                       "LookAt",
+                                       "Transform",
+                                       "ConcatTransform",
+                                       "CoordinateSystem",
+                                       "CoordSysTransform",
+                                       "ActiveTransform",
+                                       "TransformTimes",
+                                       "ReverseOrientation",
+                                       "AttributeBegin",
+                                       "AttributeEnd",
+                                       "TransformBegin",
+                                       "TransformEnd",
+                                       "Camera",
+                                       "Film",
+                                       "PixelFilter",
+                                       "Sampler",
+                                       "Integrator",
+                                       "Accelerator",
+                                       "ColorSpace",
+                                       "Option",
+                                       "WorldBegin",
+                                       "WorldEnd",
+                                       "Include",
+                                       "Import",
+                                       "Shape",
+                                       "ObjectBegin",
+                                       "ObjectEnd",
+                                       "ObjectInstance",
+                                       "Material",
+                                       "MakeNamedMaterial",
+                                       "NamedMaterial",
+                                       "Texture",
+                                       "LightSource",
+                                       "AreaLightSource",
+                                       "MakeNamedMedium",
+                                       "MediumInterface",
+                                       "Attribute"};
 
 // " (did you mean 'Shape'?)" for a near miss, else a hint that the file may not be a scene.
 std::string did_you_mean(const std::string& name) {
@@ -170,7 +203,8 @@ void SceneParser::run(TokenStream& ts, const std::string& dir) {
     if (monitor_ && monitor_->cancelled()) throw Interrupted();
     const Token d = ts.next();
     if (d.kind != Token::Kind::Identifier)
-      throw SceneError(ts.loc(d), fmt::format("expected a directive, found {} '{}'", token_kind_name(d.kind), excerpt(d.text)));
+      throw SceneError(ts.loc(d),
+                       fmt::format("expected a directive, found {} '{}'", token_kind_name(d.kind), excerpt(d.text)));
     directive(d, ts);
   }
 }
@@ -193,8 +227,9 @@ void SceneParser::finish(const std::string& main_file, const std::string& name) 
   // left open, is an error. Both are what a file cut short looks like (a download or a copy
   // that stopped), and rendering it would hide that.
   if (!in_world_)
-    throw SceneError({name, 1, 1}, "the scene ends before WorldBegin: a scene describes its camera and film, then "
-                                   "WorldBegin, then its lights and shapes (is the file empty or cut short?)");
+    throw SceneError({name, 1, 1},
+                     "the scene ends before WorldBegin: a scene describes its camera and film, then "
+                     "WorldBegin, then its lights and shapes (is the file empty or cut short?)");
   // Media named before their definition, resolved now that every definition has been read.
   if (!pending_media_.empty()) {
     s_.camera.medium = resolve_medium(s_.camera.medium);
@@ -211,11 +246,12 @@ void SceneParser::finish(const std::string& main_file, const std::string& name) 
     throw SceneError(s_.objects[open_object_].loc,
                      fmt::format("ObjectBegin \"{}\" has no matching ObjectEnd", s_.objects[open_object_].name));
   // pbrt-v4 renders such a scene black without a word; say why once.
-  const bool lit = !s_.lights.empty() ||
-                   std::any_of(s_.shapes.begin(), s_.shapes.end(), [](const ShapeDesc& sh) { return sh.area_light.has_value(); });
+  const bool lit = !s_.lights.empty() || std::any_of(s_.shapes.begin(), s_.shapes.end(),
+                                                     [](const ShapeDesc& sh) { return sh.area_light.has_value(); });
   if (!lit && in_world_)
-    s_.diagnostics.warn(world_loc_, "the scene has no lights (no supported LightSource and no shape with an "
-                                    "AreaLightSource): it renders black");
+    s_.diagnostics.warn(world_loc_,
+                        "the scene has no lights (no supported LightSource and no shape with an "
+                        "AreaLightSource): it renders black");
   for (const Block& b : blocks_)
     throw SceneError(b.loc, b.kind == BlockKind::Attribute
                                 ? "AttributeBegin has no matching AttributeEnd (is the file cut short?)"
@@ -230,7 +266,8 @@ void SceneParser::finish(const std::string& main_file, const std::string& name) 
     }
     s_.instances[p.index].object = it->second;
   }
-  s_.base_directory = main_file.empty() ? s_.base_directory : fs::path(resolve_path(main_file, ".")).parent_path().string();
+  s_.base_directory =
+      main_file.empty() ? s_.base_directory : fs::path(resolve_path(main_file, ".")).parent_path().string();
 }
 
 // ---------------------------------------------------------------- arguments
@@ -433,9 +470,9 @@ void SceneParser::block_end(const Token& d, TokenStream& ts, BlockKind kind) {
   if (b.kind == BlockKind::Object)
     throw SceneError(loc, fmt::format("{} closes the ObjectBegin at {} (use ObjectEnd)", d.text, b.loc.str()));
   if (b.kind != kind)
-    throw SceneError(loc, fmt::format("{} closes the {} at {}", d.text,
-                                      b.kind == BlockKind::Attribute ? "AttributeBegin" : "TransformBegin",
-                                      b.loc.str()));
+    throw SceneError(loc,
+                     fmt::format("{} closes the {} at {}", d.text,
+                                 b.kind == BlockKind::Attribute ? "AttributeBegin" : "TransformBegin", b.loc.str()));
   if (kind == BlockKind::Attribute)
     gs_ = b.saved;
   else
@@ -488,9 +525,11 @@ void SceneParser::film(const Token& d, TokenStream& ts) {
     s_.diagnostics.warn(loc, fmt::format("Film \"{}\" is written as an \"rgb\" film", type));
   FilmDesc& f = s_.film;
   f.xres = pl.get_int("xresolution", f.xres);
-  if (f.xres <= 0) throw SceneError(pl.find("xresolution")->value_loc, fmt::format("xresolution must be positive, got {}", f.xres));
+  if (f.xres <= 0)
+    throw SceneError(pl.find("xresolution")->value_loc, fmt::format("xresolution must be positive, got {}", f.xres));
   f.yres = pl.get_int("yresolution", f.yres);
-  if (f.yres <= 0) throw SceneError(pl.find("yresolution")->value_loc, fmt::format("yresolution must be positive, got {}", f.yres));
+  if (f.yres <= 0)
+    throw SceneError(pl.find("yresolution")->value_loc, fmt::format("yresolution must be positive, got {}", f.yres));
   f.filename = pl.get_string("filename", f.filename);
   if (file_access_ && pl.has("filename"))  // written relative to the working directory, as pbrt-v4 does
     file_access_->check_write(resolve_path(f.filename, "."), f.filename, pl.find("filename")->value_loc,
@@ -506,7 +545,8 @@ void SceneParser::film(const Token& d, TokenStream& ts) {
     // The film holds 28 bytes per pixel: a resolution that cannot be allocated is an error
     // here, at the value, not a std::bad_alloc later (--res is checked again by the app).
     constexpr double kMaxFilmPixels = double(1u << 28);
-    const double pixels = std::ceil(double(f.xres) * (f.crop[1] - f.crop[0])) * std::ceil(double(f.yres) * (f.crop[3] - f.crop[2]));
+    const double pixels =
+        std::ceil(double(f.xres) * (f.crop[1] - f.crop[0])) * std::ceil(double(f.yres) * (f.crop[3] - f.crop[2]));
     if (pixels > kMaxFilmPixels) {
       const ParsedParam* at = pl.find("xresolution") ? pl.find("xresolution") : pl.find("yresolution");
       throw SceneError(at ? at->value_loc : loc,
@@ -533,8 +573,8 @@ void SceneParser::film(const Token& d, TokenStream& ts) {
         names += fmt::format(", \"{}\"", camera);
       }
       if (!known)  // an error in pbrt-v4 too
-        throw SceneError(p->value_loc, fmt::format("unknown Film \"sensor\" \"{}\" (pbrt-v4's sensors: {})", sensor,
-                                                   names));
+        throw SceneError(p->value_loc,
+                         fmt::format("unknown Film \"sensor\" \"{}\" (pbrt-v4's sensors: {})", sensor, names));
       s_.diagnostics.warn(p->param.loc,
                           fmt::format("Film \"sensor\" \"{}\": camera sensor responses are not modelled; rendered "
                                       "with the \"cie1931\" sensor (the CIE 1931 observer, linear sRGB), so colours "
@@ -585,21 +625,24 @@ void SceneParser::sampler(const Token& d, TokenStream& ts) {
     s_.settings.sampler = SamplerKind::Sobol;
   } else if (type == "halton" || type == "pmj02bn" || type == "stratified") {
     s_.diagnostics.warn(type_loc, fmt::format("Sampler \"{}\" is not available; using \"sobol\" (Owen-scrambled "
-                                              "Sobol', the nearest Dermis has)", type));
+                                              "Sobol', the nearest Dermis has)",
+                                              type));
     s_.settings.sampler = SamplerKind::Sobol;
   } else {
     throw SceneError(type_loc, fmt::format("unknown Sampler \"{}\" (pbrt-v4 has zsobol, sobol, paddedsobol, halton, "
-                                           "pmj02bn, stratified, independent)", type));
+                                           "pmj02bn, stratified, independent)",
+                                           type));
   }
   // Dermis always randomises by Owen scrambling; pbrt-v4's other randomisations are refused.
   const std::string randomization = pl.get_string("randomization", "owen");
   if (randomization != "owen" && randomization != "fastowen")
-    s_.diagnostics.warn(pl.find("randomization")->value_loc,
-                        fmt::format("Sampler \"randomization\" \"{}\" is not available; using Owen scrambling",
-                                    randomization));
+    s_.diagnostics.warn(
+        pl.find("randomization")->value_loc,
+        fmt::format("Sampler \"randomization\" \"{}\" is not available; using Owen scrambling", randomization));
   s_.settings.spp = pl.get_int("pixelsamples", s_.settings.spp);
   if (s_.settings.spp <= 0)
-    throw SceneError(pl.find("pixelsamples")->value_loc, fmt::format("pixelsamples must be positive, got {}", s_.settings.spp));
+    throw SceneError(pl.find("pixelsamples")->value_loc,
+                     fmt::format("pixelsamples must be positive, got {}", s_.settings.spp));
   s_.settings.seed = pl.get_int("seed", s_.settings.seed);
   // Dermis' adaptive sampling (pbrt-v4 has none): Cycles' noise threshold and minimum.
   s_.settings.noise_threshold = pl.get_float("noisethreshold", float(s_.settings.noise_threshold));
@@ -633,7 +676,8 @@ void SceneParser::integrator(const Token& d, TokenStream& ts) {
     throw SceneError(pl.find("subsurfacesamples")->value_loc,
                      fmt::format("subsurfacesamples must lie in [1, 64], got {}", s_.settings.subsurface_samples));
   s_.settings.split_threshold = pl.get_float("splitthreshold", s_.settings.split_threshold);
-  if (!(s_.settings.split_threshold == 0 || (s_.settings.split_threshold >= 1 && std::isfinite(s_.settings.split_threshold))))
+  if (!(s_.settings.split_threshold == 0 ||
+        (s_.settings.split_threshold >= 1 && std::isfinite(s_.settings.split_threshold))))
     throw SceneError(pl.find("splitthreshold")->value_loc,
                      fmt::format("splitthreshold must be 0 (no splitting) or a finite number of at least 1, got {}",
                                  s_.settings.split_threshold));
@@ -663,7 +707,8 @@ SceneDesc parse_scene_string(const std::string& text, const std::string& name, c
 std::vector<std::string> set_material_parameters(SceneDesc& scene, std::size_t index, const std::string& params_text,
                                                  const std::string& source_name) {
   if (index >= scene.materials.size())
-    throw std::out_of_range(fmt::format("material {} does not exist (the scene has {})", index, scene.materials.size()));
+    throw std::out_of_range(
+        fmt::format("material {} does not exist (the scene has {})", index, scene.materials.size()));
   const std::size_t warnings_before = scene.diagnostics.warnings.size();
   SceneParser parser(scene);
   MaterialDesc m = parser.rebuild_material(scene.materials[index], params_text, source_name);

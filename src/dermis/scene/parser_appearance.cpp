@@ -1,10 +1,10 @@
 // Material, MakeNamedMaterial, NamedMaterial, Texture, LightSource, AreaLightSource,
 // MakeNamedMedium, MediumInterface.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
 #include <limits>
-
-#include <fmt/format.h>
 
 #include "dermis/scene/medium_presets.h"
 #include "dermis/scene/pbrt_v4_types.h"
@@ -46,14 +46,15 @@ RGB emission_param(const ParamList& pl, const std::string& name, Diagnostics& di
 float light_scale_param(const ParamList& pl, RGB emission, const char* name) {
   const float scale = pl.get_float("scale", 1);
   if (!(scale >= 0) || !std::isfinite(scale))
-    throw SceneError(pl.find("scale")->value_loc, fmt::format("a light's \"scale\" must be finite and >= 0, got {}", scale));
+    throw SceneError(pl.find("scale")->value_loc,
+                     fmt::format("a light's \"scale\" must be finite and >= 0, got {}", scale));
   const double product = double(emission.max()) * double(scale);
   if (product > double(std::numeric_limits<float>::max()))
-    throw SceneError(pl.find("scale")->value_loc,
-                     fmt::format("a light's \"scale\" {:g} times its \"{}\" {:g} is {:g}, beyond the range of 32-bit "
-                                 "floats ({:g}): the light would be infinite",
-                                 double(scale), name, double(emission.max()), product,
-                                 double(std::numeric_limits<float>::max())));
+    throw SceneError(
+        pl.find("scale")->value_loc,
+        fmt::format("a light's \"scale\" {:g} times its \"{}\" {:g} is {:g}, beyond the range of 32-bit "
+                    "floats ({:g}): the light would be infinite",
+                    double(scale), name, double(emission.max()), product, double(std::numeric_limits<float>::max())));
   return scale;
 }
 
@@ -80,9 +81,10 @@ RGBTexture SceneParser::spectrum_or_texture(const ParamList& pl, const std::stri
     std::string tex = *pl.get_texture(name);
     auto it = spectrum_textures_.find(tex);
     if (it == spectrum_textures_.end())
-      throw SceneError(p->value_loc, fmt::format("unknown spectrum texture \"{}\" for \"{}\"{} (defined: {})", tex,
-                                                 name, float_textures_.count(tex) ? " (a float texture has that name)" : "",
-                                                 names_of(spectrum_textures_)));
+      throw SceneError(p->value_loc,
+                       fmt::format("unknown spectrum texture \"{}\" for \"{}\"{} (defined: {})", tex, name,
+                                   float_textures_.count(tex) ? " (a float texture has that name)" : "",
+                                   names_of(spectrum_textures_)));
     t.texture = it->second;
     return t;
   }
@@ -96,9 +98,10 @@ float SceneParser::float_or_texture(const ParamList& pl, const std::string& name
   const std::string tex = *pl.get_texture(name);
   auto it = float_textures_.find(tex);
   if (it == float_textures_.end())
-    throw SceneError(p->value_loc, fmt::format("unknown float texture \"{}\" for \"{}\"{} (defined: {})", tex, name,
-                                               spectrum_textures_.count(tex) ? " (a spectrum texture has that name)" : "",
-                                               names_of(float_textures_)));
+    throw SceneError(p->value_loc,
+                     fmt::format("unknown float texture \"{}\" for \"{}\"{} (defined: {})", tex, name,
+                                 spectrum_textures_.count(tex) ? " (a spectrum texture has that name)" : "",
+                                 names_of(float_textures_)));
   texture = it->second;
   return def;
 }
@@ -131,8 +134,8 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
   auto coating = [&]() {
     m.thickness = float_or_texture(pl, "thickness", 0.01f, m.thickness_texture);
     if (!(m.thickness >= 0) || !std::isfinite(m.thickness))
-      throw SceneError(pl.find("thickness")->value_loc, fmt::format("thickness must be finite and >= 0, got {}",
-                                                                    m.thickness));
+      throw SceneError(pl.find("thickness")->value_loc,
+                       fmt::format("thickness must be finite and >= 0, got {}", m.thickness));
     m.g = float_or_texture(pl, "g", 0, m.g_texture);
     if (!(m.g > -1 && m.g < 1))
       throw SceneError(pl.find("g")->value_loc, fmt::format("g must lie in (-1, 1), got {}", m.g));
@@ -144,12 +147,12 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
         throw SceneError(pl.find("albedo")->value_loc, fmt::format("albedo must lie in [0, 1], got {}", m.albedo[c]));
     m.max_depth = pl.get_int("maxdepth", 10);
     if (m.max_depth < 1 || m.max_depth > 100000)
-      throw SceneError(pl.find("maxdepth")->value_loc, fmt::format("maxdepth must lie in [1, 100000], got {}",
-                                                                   m.max_depth));
+      throw SceneError(pl.find("maxdepth")->value_loc,
+                       fmt::format("maxdepth must lie in [1, 100000], got {}", m.max_depth));
     m.n_samples = pl.get_int("nsamples", 1);
     if (m.n_samples < 1 || m.n_samples > 1024)
-      throw SceneError(pl.find("nsamples")->value_loc, fmt::format("nsamples must lie in [1, 1024], got {}",
-                                                                   m.n_samples));
+      throw SceneError(pl.find("nsamples")->value_loc,
+                       fmt::format("nsamples must lie in [1, 1024], got {}", m.n_samples));
   };
   if (type == "diffuse") {
     m.type = MaterialDesc::Type::Diffuse;
@@ -194,8 +197,8 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
       for (const char* ignored : {"conductor.eta", "conductor.k"})
         if (const ParsedParam* q = pl.find(ignored)) {
           q->used = true;
-          s_.diagnostics.warn(q->param.loc, fmt::format("coatedconductor: \"reflectance\" given, so \"{}\" is ignored",
-                                                        ignored));
+          s_.diagnostics.warn(q->param.loc,
+                              fmt::format("coatedconductor: \"reflectance\" given, so \"{}\" is ignored", ignored));
         }
     } else {
       m.conductor_eta = rgb_param(pl, "conductor.eta", *named_spectrum_rgb("metal-Cu-eta"), s_.diagnostics);
@@ -221,8 +224,8 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
     if (!p) throw SceneError(loc, "mix material needs \"string materials\" [ \"first\" \"second\" ]");
     pl.expect_type(*p, {"string"});
     if (p->param.strings.size() != 2)
-      throw SceneError(p->value_loc, fmt::format("\"materials\" of a mix must name two materials, got {}",
-                                                 p->param.strings.size()));
+      throw SceneError(p->value_loc,
+                       fmt::format("\"materials\" of a mix must name two materials, got {}", p->param.strings.size()));
     for (int i = 0; i < 2; ++i) {
       const std::string& name = p->param.strings[std::size_t(i)];
       auto it = named_materials_.find(name);
@@ -243,8 +246,10 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
     m.type = MaterialDesc::Type::Subsurface;
     m.subsurface = read_subsurface_params(pl, loc, s_.diagnostics, [&](const ParsedParam& p, bool is_float) {
       int texture = -1;
-      if (is_float) float_or_texture(pl, p.param.name, 0, texture);
-      else texture = spectrum_or_texture(pl, p.param.name, RGB(1.0f)).texture;
+      if (is_float)
+        float_or_texture(pl, p.param.name, 0, texture);
+      else
+        texture = spectrum_or_texture(pl, p.param.name, RGB(1.0f)).texture;
       return texture;
     });
     m.eta = m.subsurface.eta;
@@ -253,8 +258,9 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
     // diffuse surface of the "reflectance" given (pbrt-v4's alternative to sigma_a and
     // the melanin concentrations), else 0.5. Its other parameters are known, so they
     // are not warned one by one.
-    s_.diagnostics.warn(loc, "material \"hair\" is not supported: rendered as diffuse (its \"reflectance\" if "
-                             "given, else 0.5)");
+    s_.diagnostics.warn(loc,
+                        "material \"hair\" is not supported: rendered as diffuse (its \"reflectance\" if "
+                        "given, else 0.5)");
     m.type = MaterialDesc::Type::Diffuse;
     m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));
     for (const char* known : {"sigma_a", "eumelanin", "pheomelanin", "eta", "beta_m", "beta_n", "alpha"})
@@ -330,7 +336,8 @@ void SceneParser::named_material(const Token& d, TokenStream& ts) {
   std::string name = string_arg(ts, d, &name_loc);
   auto it = named_materials_.find(name);
   if (it == named_materials_.end())
-    throw SceneError(name_loc, fmt::format("unknown named material \"{}\" (defined: {})", name, names_of(named_materials_)));
+    throw SceneError(name_loc,
+                     fmt::format("unknown named material \"{}\" (defined: {})", name, names_of(named_materials_)));
   gs_.material = it->second;
 }
 
@@ -370,8 +377,8 @@ void SceneParser::texture(const Token& d, TokenStream& ts) {
     auto& table = t.is_float ? float_textures_ : spectrum_textures_;
     auto it = table.find(other);
     if (it == table.end())
-      throw SceneError(p->value_loc, fmt::format("unknown {} texture \"{}\" (defined: {})", value_type, other,
-                                                 names_of(table)));
+      throw SceneError(p->value_loc,
+                       fmt::format("unknown {} texture \"{}\" (defined: {})", value_type, other, names_of(table)));
     index = it->second;
     return def;
   };
@@ -400,7 +407,8 @@ void SceneParser::texture(const Token& d, TokenStream& ts) {
     } else if (t.mapping != "spherical" && t.mapping != "cylindrical") {
       throw SceneError(pl.find("mapping")->value_loc,
                        fmt::format("texture mapping must be \"uv\", \"spherical\", \"cylindrical\" or \"planar\", got "
-                                   "\"{}\"", t.mapping));
+                                   "\"{}\"",
+                                   t.mapping));
     }
   };
   auto octaves_param = [&](const char* pname, int def) {
@@ -420,8 +428,9 @@ void SceneParser::texture(const Token& d, TokenStream& ts) {
     t.invert = pl.get_bool("invert", false);
     t.encoding = pl.get_string("encoding", t.encoding);
     if (t.encoding != "sRGB" && t.encoding != "linear" && t.encoding.rfind("gamma ", 0) != 0)
-      throw SceneError(pl.find("encoding")->value_loc,
-                       fmt::format("encoding must be \"sRGB\", \"linear\" or \"gamma <value>\", got \"{}\"", t.encoding));
+      throw SceneError(
+          pl.find("encoding")->value_loc,
+          fmt::format("encoding must be \"sRGB\", \"linear\" or \"gamma <value>\", got \"{}\"", t.encoding));
     t.wrap = pl.get_string("wrap", t.wrap);
     if (t.wrap != "repeat" && t.wrap != "black" && t.wrap != "clamp" && t.wrap != "octahedralsphere")
       throw SceneError(pl.find("wrap")->value_loc,
@@ -487,8 +496,9 @@ void SceneParser::texture(const Token& d, TokenStream& ts) {
     t.value = value_or_texture("inside", RGB(1), t.tex1);
     t.value2 = value_or_texture("outside", RGB(0), t.tex2);
   } else if (cls == "fbm" || cls == "wrinkled" || cls == "marble") {
-    t.type = cls == "fbm" ? TextureDesc::Type::FBm : cls == "wrinkled" ? TextureDesc::Type::Wrinkled
-                                                                       : TextureDesc::Type::Marble;
+    t.type = cls == "fbm"        ? TextureDesc::Type::FBm
+             : cls == "wrinkled" ? TextureDesc::Type::Wrinkled
+                                 : TextureDesc::Type::Marble;
     t.mapping = "3d";
     t.octaves = octaves_param("octaves", 8);
     t.roughness = pl.get_float("roughness", 0.5f);
@@ -527,8 +537,8 @@ void SceneParser::light_source(const Token& d, TokenStream& ts) {
   l.light_to_world = gs_.ctm;
   l.medium = gs_.outside_medium;
   for (const char* ignored : {"power", "illuminance"})
-    if (const ParsedParam* p = pl.find(ignored); p && !(std::string(ignored) == "illuminance" &&
-                                                        (type == "infinite" || type == "distant"))) {
+    if (const ParsedParam* p = pl.find(ignored);
+        p && !(std::string(ignored) == "illuminance" && (type == "infinite" || type == "distant"))) {
       p->used = true;
       s_.diagnostics.warn(p->param.loc, fmt::format("\"{}\" ignored: Dermis uses the given radiance/intensity and "
                                                     "\"scale\" only",
@@ -575,7 +585,8 @@ void SceneParser::light_source(const Token& d, TokenStream& ts) {
       const std::string m = pl.get_string("mapping", "equalarea");
       if (m != "equalarea" && m != "latlong")
         throw SceneError(p->value_loc, fmt::format("infinite light \"mapping\" must be \"equalarea\" (pbrt-v4's) or "
-                                                   "\"latlong\", got \"{}\"", m));
+                                                   "\"latlong\", got \"{}\"",
+                                                   m));
       l.latlong = m == "latlong";
     }
     if (const ParsedParam* p = pl.find("illuminance")) {
@@ -588,7 +599,8 @@ void SceneParser::light_source(const Token& d, TokenStream& ts) {
       // adjacent ones perpendicular within 1e-3).
       const std::vector<double> v = pl.get_numbers("portal", {"point3"}, 12);
       if (v.size() != 12)
-        throw SceneError(p->value_loc, fmt::format("infinite light \"portal\" needs 4 points (12 numbers), got {}", v.size()));
+        throw SceneError(p->value_loc,
+                         fmt::format("infinite light \"portal\" needs 4 points (12 numbers), got {}", v.size()));
       for (int i = 0; i < 4; ++i) l.portal.push_back(Vec3(float(v[3 * i]), float(v[3 * i + 1]), float(v[3 * i + 2])));
       const Vec3* q = l.portal.data();
       const Vec3 e01 = q[1] - q[0], e12 = q[2] - q[1], e32 = q[2] - q[3], e03 = q[3] - q[0];
@@ -599,15 +611,17 @@ void SceneParser::light_source(const Token& d, TokenStream& ts) {
           std::abs(dot(unit(e01), unit(e12))) <= 1e-3f && std::abs(dot(unit(e12), unit(e32))) <= 1e-3f &&
           std::abs(dot(unit(e32), unit(e03))) <= 1e-3f && std::abs(dot(unit(e03), unit(e01))) <= 1e-3f;
       if (!rectangle)
-        throw SceneError(p->value_loc, "infinite light \"portal\" is not a planar rectangle (pbrt-v4 needs p0 p1 p2 p3 "
-                                       "in order around a rectangle)");
+        throw SceneError(p->value_loc,
+                         "infinite light \"portal\" is not a planar rectangle (pbrt-v4 needs p0 p1 p2 p3 "
+                         "in order around a rectangle)");
     }
   } else {
     s_.diagnostics.warn(loc, fmt::format("LightSource \"{}\" is not supported and is ignored", type));
     pl.mark_all_used();
     return;
   }
-  l.scale = light_scale_param(pl, l.spectrum, l.type == LightDesc::Type::Point || l.type == LightDesc::Type::Spot ? "I" : "L");
+  l.scale = light_scale_param(pl, l.spectrum,
+                              l.type == LightDesc::Type::Point || l.type == LightDesc::Type::Spot ? "I" : "L");
   pl.warn_unused(s_.diagnostics, fmt::format("LightSource \"{}\"", type));
   s_.lights.push_back(std::move(l));
 }
@@ -645,14 +659,13 @@ void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
   SourceLoc name_loc;
   std::string name = string_arg(ts, d, &name_loc);
   ParamList pl = ParamList::parse(ts);
-  if (media_.count(name))
-    throw SceneError(name_loc, fmt::format("medium \"{}\" is defined twice", name));
+  if (media_.count(name)) throw SceneError(name_loc, fmt::format("medium \"{}\" is defined twice", name));
   if (!pl.has("type")) throw SceneError(loc, fmt::format("MakeNamedMedium \"{}\" needs \"string type\"", name));
   std::string type = pl.get_string("type", "");
   require_known_type(TypedDirective::Medium, type, pl.find("type")->value_loc);
   if (type != "homogeneous") {
-    s_.diagnostics.warn(loc, fmt::format("medium type \"{}\" is not supported; medium \"{}\" is treated as vacuum",
-                                         type, name));
+    s_.diagnostics.warn(
+        loc, fmt::format("medium type \"{}\" is not supported; medium \"{}\" is treated as vacuum", type, name));
     pl.mark_all_used();
     media_[name] = -1;
     return;
@@ -667,9 +680,8 @@ void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
     std::string pname = pl.get_string(preset->param.name, "");
     auto p = find_medium_preset(pname);
     if (!p)
-      throw SceneError(preset->value_loc,
-                       fmt::format("unknown medium preset \"{}\"{} (valid: {})", pname, medium_preset_suggestion(pname),
-                                   medium_preset_names()));
+      throw SceneError(preset->value_loc, fmt::format("unknown medium preset \"{}\"{} (valid: {})", pname,
+                                                      medium_preset_suggestion(pname), medium_preset_names()));
     m.preset = p->name;
     m.sigma_a = p->sigma_a;
     m.sigma_s = p->sigma_s_prime;  // as pbrt: sigma_s' with g = 0
@@ -683,7 +695,8 @@ void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
     m.sigma_a = rgb_param(pl, "sigma_a", m.sigma_a, s_.diagnostics);
     m.sigma_s = rgb_param(pl, "sigma_s", m.sigma_s, s_.diagnostics);
     m.g = pl.get_float("g", 0);
-    if (!(m.g > -1 && m.g < 1)) throw SceneError(pl.find("g")->value_loc, fmt::format("g must be in (-1, 1), got {}", m.g));
+    if (!(m.g > -1 && m.g < 1))
+      throw SceneError(pl.find("g")->value_loc, fmt::format("g must be in (-1, 1), got {}", m.g));
   }
   for (int c = 0; c < 3; ++c)
     if (m.sigma_a[c] < 0 || m.sigma_s[c] < 0)
@@ -691,7 +704,8 @@ void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
   m.scale = pl.get_float("scale", 1);
   if (m.scale < 0) throw SceneError(pl.find("scale")->value_loc, "scale must not be negative");
   m.Le = rgb_param(pl, "Le", RGB(0), s_.diagnostics, SpectrumType::Illuminant) * pl.get_float("Lescale", 1);
-  if (!m.Le.is_black()) s_.diagnostics.warn(loc, fmt::format("medium \"{}\": emission Le is recorded but not rendered", name));
+  if (!m.Le.is_black())
+    s_.diagnostics.warn(loc, fmt::format("medium \"{}\": emission Le is recorded but not rendered", name));
   pl.warn_unused(s_.diagnostics, "MakeNamedMedium \"homogeneous\"");
   media_[name] = int(s_.media.size());
   s_.media.push_back(std::move(m));

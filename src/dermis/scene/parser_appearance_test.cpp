@@ -16,8 +16,9 @@ void expect_rgb(RGB a, RGB b, float tol = 1e-6f) {
 }
 
 TEST(ParserMaterials, DiffuseAndDefaults) {
-  SceneDesc s = parse_world("Material \"diffuse\" \"rgb reflectance\" [0.1 0.2 0.3]\nShape \"sphere\"\n"
-                            "Material \"diffuse\"\nShape \"sphere\"\n");
+  SceneDesc s = parse_world(
+      "Material \"diffuse\" \"rgb reflectance\" [0.1 0.2 0.3]\nShape \"sphere\"\n"
+      "Material \"diffuse\"\nShape \"sphere\"\n");
   ASSERT_EQ(s.materials.size(), 2u);
   EXPECT_EQ(s.materials[0].type, MaterialDesc::Type::Diffuse);
   expect_rgb(s.materials[0].reflectance.value, RGB(0.1f, 0.2f, 0.3f));
@@ -27,9 +28,10 @@ TEST(ParserMaterials, DiffuseAndDefaults) {
 }
 
 TEST(ParserMaterials, DielectricEtaFloatNamedAndRoughness) {
-  SceneDesc s = parse_world("Material \"dielectric\" \"float eta\" 1.33\n"
-                            "Material \"dielectric\" \"spectrum eta\" \"glass-BK7\" \"float roughness\" 0.2\n"
-                            "Material \"dielectric\"\n");
+  SceneDesc s = parse_world(
+      "Material \"dielectric\" \"float eta\" 1.33\n"
+      "Material \"dielectric\" \"spectrum eta\" \"glass-BK7\" \"float roughness\" 0.2\n"
+      "Material \"dielectric\"\n");
   EXPECT_EQ(s.materials[0].type, MaterialDesc::Type::Dielectric);
   EXPECT_FLOAT_EQ(s.materials[0].eta, 1.33f);
   EXPECT_NEAR(s.materials[1].eta, 1.5196f, 1e-4);  // BK7: n_d = 1.5168; mean over 400-700 nm
@@ -104,7 +106,8 @@ TEST(ParserMaterials, InterfaceCoatedSubsurfaceAndUnknown) {
   SceneDesc s = parse_world(
       "Material \"interface\"\nMaterial \"\"\nMaterial \"none\"\n"
       "Material \"coateddiffuse\" \"rgb reflectance\" [0.4 0.4 0.4] \"float roughness\" 0 \"float eta\" 1.4\n"
-      "Material \"subsurface\" \"float eta\" 1.4 \"string name\" \"Skin1\" \"float scale\" 10 \"string method\" \"disk\"\n"
+      "Material \"subsurface\" \"float eta\" 1.4 \"string name\" \"Skin1\" \"float scale\" 10 \"string method\" "
+      "\"disk\"\n"
       "Material \"measured\" \"string filename\" \"x.bsdf\"\n");
   for (int i = 0; i < 3; ++i) EXPECT_EQ(s.materials[i].type, MaterialDesc::Type::Interface);
   EXPECT_EQ(s.materials[3].type, MaterialDesc::Type::CoatedDiffuse);
@@ -130,9 +133,10 @@ TEST(ParserMaterials, InterfaceCoatedSubsurfaceAndUnknown) {
 }
 
 TEST(ParserMaterials, NamedMaterials) {
-  SceneDesc s = parse_world("MakeNamedMaterial \"gold\" \"string type\" \"conductor\"\n"
-                            "MakeNamedMaterial \"white\" \"string type\" \"diffuse\" \"rgb reflectance\" [1 1 1]\n"
-                            "NamedMaterial \"white\"\nShape \"sphere\"\nNamedMaterial \"gold\"\nShape \"sphere\"\n");
+  SceneDesc s = parse_world(
+      "MakeNamedMaterial \"gold\" \"string type\" \"conductor\"\n"
+      "MakeNamedMaterial \"white\" \"string type\" \"diffuse\" \"rgb reflectance\" [1 1 1]\n"
+      "NamedMaterial \"white\"\nShape \"sphere\"\nNamedMaterial \"gold\"\nShape \"sphere\"\n");
   ASSERT_EQ(s.materials.size(), 2u);
   EXPECT_EQ(s.materials[0].name, "gold");
   EXPECT_EQ(s.shapes[0].material, 1);
@@ -175,7 +179,8 @@ TEST(ParserTextures, ImageMapConstantScaleAndReference) {
   EXPECT_TRUE(s.textures[3].is_float);
   expect_rgb(s.textures[3].value, RGB(0.7f));
   expect_rgb(s.textures[4].value, RGB(1));
-  EXPECT_TRUE(has_warning(s, "test.pbrt:8:1: warning: ptex textures are not supported; texture \"odd\" is the constant 1"));
+  EXPECT_TRUE(
+      has_warning(s, "test.pbrt:8:1: warning: ptex textures are not supported; texture \"odd\" is the constant 1"));
   // Its parameters are read by nobody: each warned where it is.
   EXPECT_TRUE(has_warning(s, "test.pbrt:8:33: warning: unused parameter \"float foo\""));
   const TextureDesc& c = s.textures[5];
@@ -283,7 +288,8 @@ TEST(ParserLights, PointSpotDistantInfinite) {
   SceneDesc s = parse_world(
       "Translate 0 1 0\n"
       "LightSource \"point\" \"rgb I\" [1 2 3] \"float scale\" 4 \"point3 from\" [1 2 3]\n"
-      "LightSource \"spot\" \"point3 from\" [0 0 0] \"point3 to\" [0 -1 0] \"float coneangle\" 20 \"float conedelta\" 2\n"
+      "LightSource \"spot\" \"point3 from\" [0 0 0] \"point3 to\" [0 -1 0] \"float coneangle\" 20 \"float conedelta\" "
+      "2\n"
       "LightSource \"distant\" \"blackbody L\" 6500 \"point3 to\" [0 0 -1]\n"
       "LightSource \"infinite\" \"string filename\" \"sky.exr\" \"float power\" 3\n"
       "LightSource \"goniometric\"\n",
@@ -308,8 +314,9 @@ TEST(ParserLights, PointSpotDistantInfinite) {
 }
 
 TEST(ParserLights, AreaLightOnShapes) {
-  SceneDesc s = parse_world("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 5 6] \"float scale\" 2 "
-                            "\"bool twosided\" true\nShape \"sphere\"\nAttributeEnd\nShape \"sphere\"\n");
+  SceneDesc s = parse_world(
+      "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 5 6] \"float scale\" 2 "
+      "\"bool twosided\" true\nShape \"sphere\"\nAttributeEnd\nShape \"sphere\"\n");
   ASSERT_TRUE(s.shapes[0].area_light.has_value());
   expect_rgb(s.shapes[0].area_light->L, RGB(4, 5, 6));
   EXPECT_FLOAT_EQ(s.shapes[0].area_light->scale, 2);
@@ -354,10 +361,11 @@ TEST(ParserMedia, PresetsExplicitCoefficientsAndInterfaces) {
 // set_material_parameters: a material re-read with some parameters changed equals the
 // material written that way in the scene.
 TEST(ParserMaterialEdit, EqualsTheSceneWrittenWithTheChange) {
-  const std::string before = "Texture \"t\" \"spectrum\" \"constant\" \"rgb value\" [0.2 0.4 0.6]\n"
-                             "MakeNamedMaterial \"skin\" \"string type\" \"subsurface\" \"rgb mfp\" [1 2 3] "
-                             "\"rgb reflectance\" [0.5 0.5 0.5] \"string method\" \"randomwalk\"\n"
-                             "NamedMaterial \"skin\"\nShape \"sphere\"\n";
+  const std::string before =
+      "Texture \"t\" \"spectrum\" \"constant\" \"rgb value\" [0.2 0.4 0.6]\n"
+      "MakeNamedMaterial \"skin\" \"string type\" \"subsurface\" \"rgb mfp\" [1 2 3] "
+      "\"rgb reflectance\" [0.5 0.5 0.5] \"string method\" \"randomwalk\"\n"
+      "NamedMaterial \"skin\"\nShape \"sphere\"\n";
   SceneDesc edited = parse_world(before);
   const auto warnings = set_material_parameters(edited, 0, "\"string method\" \"disk\" \"texture reflectance\" \"t\"");
   EXPECT_TRUE(warnings.empty());

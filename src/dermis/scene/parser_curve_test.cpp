@@ -81,7 +81,8 @@ TEST(ParserCurve, WarnedOnce) {
   EXPECT_NE(a.diagnostics.warnings[0].find("used only by \"ribbon\" curves"), std::string::npos);
   EXPECT_TRUE(a.shapes[0].curve.normals.empty());
   // An area light on a curve: not emissive, as pbrt-v4 cannot sample curves either.
-  const SceneDesc b = parse_lit("AreaLightSource \"diffuse\"\nShape \"curve\" \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0]\n");
+  const SceneDesc b =
+      parse_lit("AreaLightSource \"diffuse\"\nShape \"curve\" \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0]\n");
   ASSERT_EQ(b.diagnostics.warnings.size(), 1u);
   EXPECT_NE(b.diagnostics.warnings[0].find("test.pbrt:4:1: warning: an area light on a curve"), std::string::npos);
   EXPECT_FALSE(b.shapes[0].area_light.has_value());

@@ -1,9 +1,9 @@
 // Shape, ObjectBegin, ObjectEnd, ObjectInstance.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 #include "dermis/core/cache_dir.h"
 #include "dermis/scene/gzip_file.h"
@@ -28,8 +28,9 @@ std::vector<uint32_t> checked_indices(const ParamList& pl, size_t nverts, size_t
   std::vector<uint32_t> out(v.size());
   for (size_t i = 0; i < v.size(); ++i) {
     if (v[i] < 0 || v[i] >= double(nverts))
-      throw SceneError(p->value_at(i), fmt::format("index {} is out of range: the mesh has {} vertices (valid: 0 to {})",
-                                                   v[i], nverts, nverts == 0 ? 0 : nverts - 1));
+      throw SceneError(p->value_at(i),
+                       fmt::format("index {} is out of range: the mesh has {} vertices (valid: 0 to {})", v[i], nverts,
+                                   nverts == 0 ? 0 : nverts - 1));
     out[i] = uint32_t(v[i]);
   }
   return out;
@@ -40,8 +41,8 @@ std::vector<Vec2> read_uvs(const ParamList& pl, size_t nverts) {
   if (!name) return {};
   std::vector<double> v = pl.get_numbers(name, {"point2", "float"}, 2);
   if (v.size() / 2 != nverts)
-    throw SceneError(pl.find(name)->value_loc, fmt::format("\"{}\" has {} entries but \"P\" has {} vertices", name,
-                                                           v.size() / 2, nverts));
+    throw SceneError(pl.find(name)->value_loc,
+                     fmt::format("\"{}\" has {} entries but \"P\" has {} vertices", name, v.size() / 2, nverts));
   std::vector<Vec2> uv(nverts);
   for (size_t i = 0; i < nverts; ++i) uv[i] = Vec2(float(v[2 * i]), float(v[2 * i + 1]));
   return uv;
@@ -75,8 +76,8 @@ void read_curve(const ParamList& pl, const SourceLoc& loc, ShapeDesc& sh, Diagno
     for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
     throw SceneError(pl.find(name)->value_loc, fmt::format("curve \"{}\" \"{}\" is not one of {}", name, v, list));
   };
-  const CurveBasis basis = one_of("basis", "bezier", {"bezier", "bspline"}) == "bspline" ? CurveBasis::BSpline
-                                                                                        : CurveBasis::Bezier;
+  const CurveBasis basis =
+      one_of("basis", "bezier", {"bezier", "bspline"}) == "bspline" ? CurveBasis::BSpline : CurveBasis::Bezier;
   const std::string kind_name = one_of("type", "flat", {"flat", "cylinder", "ribbon"});
   const CurveKind kind = kind_name == "cylinder" ? CurveKind::Cylinder
                          : kind_name == "ribbon" ? CurveKind::Ribbon
@@ -87,9 +88,10 @@ void read_curve(const ParamList& pl, const SourceLoc& loc, ShapeDesc& sh, Diagno
   const float width = pl.get_float("width", 1);
   const float width0 = pl.get_float("width0", width), width1 = pl.get_float("width1", width);
   for (const char* name : {"width", "width0", "width1"})
-    if (const ParsedParam* w = pl.find(name); w && !(pl.get_float(name, 1) >= 0 && std::isfinite(pl.get_float(name, 1))))
-      throw SceneError(w->value_loc, fmt::format("curve \"{}\" must be finite and >= 0, got {}", name,
-                                                 pl.get_float(name, 1)));
+    if (const ParsedParam* w = pl.find(name);
+        w && !(pl.get_float(name, 1) >= 0 && std::isfinite(pl.get_float(name, 1))))
+      throw SceneError(w->value_loc,
+                       fmt::format("curve \"{}\" must be finite and >= 0, got {}", name, pl.get_float(name, 1)));
   if (!(std::max(width0, width1) > 0)) throw SceneError(loc, "a curve of width 0 has no surface");
   pl.get_int("splitdepth", 3);  // read: pbrt-v4's refinement depth, not needed with Embree
   std::vector<Vec3> N = pl.get_vec3s("N", {"normal3"});
@@ -129,7 +131,8 @@ void SceneParser::shape(const Token& d, TokenStream& ts) {
     sh.outside_medium = gs_.outside_medium;
     sh.has_medium_interface = sh.inside_medium != sh.outside_medium;
   } else if (gs_.area_light) {
-    s_.diagnostics.warn(loc, "area lights are not supported on instanced shapes (as in pbrt-v4); the shape is not emissive");
+    s_.diagnostics.warn(loc,
+                        "area lights are not supported on instanced shapes (as in pbrt-v4); the shape is not emissive");
   }
 
   // pbrt-v4 "alpha" on any shape: a float, or the name of a float texture.
@@ -138,15 +141,17 @@ void SceneParser::shape(const Token& d, TokenStream& ts) {
       const std::string tex = *pl.get_texture("alpha");
       auto it = float_textures_.find(tex);
       if (it == float_textures_.end())
-        throw SceneError(ap->value_loc, fmt::format("unknown float texture \"{}\" for \"alpha\"{}", tex,
-                                                    spectrum_textures_.count(tex) ? " (a spectrum texture has that name)" : ""));
+        throw SceneError(ap->value_loc,
+                         fmt::format("unknown float texture \"{}\" for \"alpha\"{}", tex,
+                                     spectrum_textures_.count(tex) ? " (a spectrum texture has that name)" : ""));
       sh.alpha_texture = it->second;
     } else {
       sh.alpha = pl.get_float("alpha", 1);
     }
     if (sh.area_light && (sh.alpha < 1 || sh.alpha_texture >= 0))
-      s_.diagnostics.warn(ap->param.loc, "alpha on an emissive shape: light sampling ignores the cut-outs (the "
-                                         "emission seen directly respects them)");
+      s_.diagnostics.warn(ap->param.loc,
+                          "alpha on an emissive shape: light sampling ignores the cut-outs (the "
+                          "emission seen directly respects them)");
   }
 
   auto mesh_error = [&](const std::string& file, const std::string& why) {
@@ -161,8 +166,8 @@ void SceneParser::shape(const Token& d, TokenStream& ts) {
     // pbrt-v4 clamps zmin/zmax to [-radius, radius] and phimax to [0, 360].
     if (std::min(zmin, zmax) > -radius || std::max(zmin, zmax) < radius || phimax < 360) {
       if (std::max(zmin, zmax) <= -radius || std::min(zmin, zmax) >= radius || !(phimax > 0))
-        throw SceneError(loc, fmt::format("partial sphere with zmin {}, zmax {}, phimax {} has no surface", zmin, zmax,
-                                          phimax));
+        throw SceneError(
+            loc, fmt::format("partial sphere with zmin {}, zmax {}, phimax {} has no surface", zmin, zmax, phimax));
       sh.mesh = tessellate_sphere_part(radius, zmin, zmax, phimax);
     } else {
       sh.type = ShapeDesc::Type::Sphere;
@@ -187,7 +192,9 @@ void SceneParser::shape(const Token& d, TokenStream& ts) {
     }
   } else if (type == "trianglemesh") {
     std::vector<Vec3> P = read_positions(pl, loc, type);
-    if (P.size() < 3) throw SceneError(pl.find("P")->value_loc, fmt::format("trianglemesh needs at least 3 vertices, got {}", P.size()));
+    if (P.size() < 3)
+      throw SceneError(pl.find("P")->value_loc,
+                       fmt::format("trianglemesh needs at least 3 vertices, got {}", P.size()));
     sh.mesh.positions = P;
     if (pl.has("indices")) {
       sh.mesh.indices = checked_indices(pl, P.size(), 3);
@@ -257,11 +264,13 @@ void SceneParser::shape(const Token& d, TokenStream& ts) {
 
   if (sh.type == ShapeDesc::Type::Curve && sh.material >= 0 &&
       s_.materials[std::size_t(sh.material)].type == MaterialDesc::Type::Subsurface)
-    s_.diagnostics.warn(loc, "a subsurface material on a curve: a curve encloses no volume a random walk could "
-                             "cross (not supported; rendered as written, not meaningful)");
+    s_.diagnostics.warn(loc,
+                        "a subsurface material on a curve: a curve encloses no volume a random walk could "
+                        "cross (not supported; rendered as written, not meaningful)");
   if (sh.type == ShapeDesc::Type::Curve && sh.area_light) {
-    s_.diagnostics.warn(loc, "an area light on a curve is not supported (pbrt-v4 cannot sample curves either); the "
-                             "curve is not emissive");
+    s_.diagnostics.warn(loc,
+                        "an area light on a curve is not supported (pbrt-v4 cannot sample curves either); the "
+                        "curve is not emissive");
     sh.area_light.reset();
   }
   if (sh.type == ShapeDesc::Type::TriangleMesh) {

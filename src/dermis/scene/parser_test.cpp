@@ -1,9 +1,9 @@
 // Directive-by-directive checks of the SceneDesc the parser produces.
 #include "dermis/scene/parser.h"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "dermis/scene/scene_test_util.h"
 
@@ -18,8 +18,7 @@ using test::rows;
 TEST(ParserTransforms, TranslateThenScaleComposeOnTheRight) {
   SceneDesc s = parse_world("Translate 1 2 3\nScale 2 4 8\nShape \"sphere\"");
   ASSERT_EQ(s.shapes.size(), 1u);
-  expect_matrix_near(s.shapes[0].object_to_world.matrix(),
-                     rows({2, 0, 0, 1, 0, 4, 0, 2, 0, 0, 8, 3, 0, 0, 0, 1}));
+  expect_matrix_near(s.shapes[0].object_to_world.matrix(), rows({2, 0, 0, 1, 0, 4, 0, 2, 0, 0, 8, 3, 0, 0, 0, 1}));
   expect_matrix_near(s.shapes[0].object_to_world.inverse_matrix(),
                      rows({0.5, 0, 0, -0.5, 0, 0.25, 0, -0.5, 0, 0, 0.125, -0.375, 0, 0, 0, 1}));
 }
@@ -60,14 +59,12 @@ TEST(ParserTransforms, LookAtCameraToWorld) {
   // Eye at the origin looking down +x with +z up: camera x (right) = world +y,
   // camera y (up) = world +z, camera z (forward) = world +x.
   SceneDesc s = test::parse_text("LookAt 0 0 0  1 0 0  0 0 1\nCamera \"perspective\"\nWorldBegin\n");
-  expect_matrix_near(s.camera.camera_to_world.matrix(), rows({0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1}),
-                     1e-12);
+  expect_matrix_near(s.camera.camera_to_world.matrix(), rows({0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1}), 1e-12);
 }
 
 TEST(ParserTransforms, LookAtWithOffsetEye) {
   SceneDesc s = test::parse_text("LookAt 1 2 3  1 2 8  0 1 0\nCamera \"perspective\"\nWorldBegin\n");
-  expect_matrix_near(s.camera.camera_to_world.matrix(), rows({1, 0, 0, 1, 0, 1, 0, 2, 0, 0, 1, 3, 0, 0, 0, 1}),
-                     1e-12);
+  expect_matrix_near(s.camera.camera_to_world.matrix(), rows({1, 0, 0, 1, 0, 1, 0, 2, 0, 0, 1, 3, 0, 0, 0, 1}), 1e-12);
 }
 
 TEST(ParserTransforms, CameraToWorldIsInverseOfCtm) {
@@ -123,7 +120,8 @@ TEST(ParserBlocks, AttributeBlocksRestoreEverything) {
 }
 
 TEST(ParserBlocks, TransformBlocksRestoreOnlyTheCtmAndWarn) {
-  SceneDesc s = parse_world("TransformBegin\nTranslate 1 0 0\nMaterial \"conductor\"\nTransformEnd\nShape \"sphere\"\n");
+  SceneDesc s =
+      parse_world("TransformBegin\nTranslate 1 0 0\nMaterial \"conductor\"\nTransformEnd\nShape \"sphere\"\n");
   EXPECT_TRUE(s.shapes[0].object_to_world.is_identity());
   EXPECT_EQ(s.shapes[0].material, 0);
   EXPECT_TRUE(has_warning(s, "test.pbrt:2:1: warning: TransformBegin is deprecated"));
@@ -148,7 +146,8 @@ TEST(ParserBlocks, UnclosedAttributeBeginIsAnError) {
     parse_world("AttributeBegin\nShape \"sphere\"\n");
     FAIL() << "expected a SceneError";
   } catch (const SceneError& e) {
-    EXPECT_STREQ(e.what(), "test.pbrt:2:1: error: AttributeBegin has no matching AttributeEnd (is the file cut short?)");
+    EXPECT_STREQ(e.what(),
+                 "test.pbrt:2:1: error: AttributeBegin has no matching AttributeEnd (is the file cut short?)");
   }
   EXPECT_NO_THROW(parse_world("AttributeBegin\nShape \"sphere\"\nAttributeEnd\n"));
 }
@@ -159,8 +158,9 @@ TEST(ParserBlocks, ASceneWithoutWorldBeginIsAnError) {
       test::parse_text(text);
       FAIL() << "expected a SceneError for '" << text << "'";
     } catch (const SceneError& e) {
-      EXPECT_STREQ(e.what(), "test.pbrt:1:1: error: the scene ends before WorldBegin: a scene describes its camera "
-                             "and film, then WorldBegin, then its lights and shapes (is the file empty or cut short?)");
+      EXPECT_STREQ(e.what(),
+                   "test.pbrt:1:1: error: the scene ends before WorldBegin: a scene describes its camera "
+                   "and film, then WorldBegin, then its lights and shapes (is the file empty or cut short?)");
     }
   }
   EXPECT_NO_THROW(test::parse_text("WorldBegin\n"));
@@ -224,12 +224,11 @@ TEST(ParserOptions, FilmFilterSamplerIntegrator) {
     expect_integrator_error("\"integer subsurfacesamples\"", bad,
                             "test.pbrt:1:50: error: subsurfacesamples must lie in [1, 64], got " + std::string(bad));
   EXPECT_FLOAT_EQ(s.settings.split_threshold, 2);  // the default
-  EXPECT_FLOAT_EQ(test::parse_text("Integrator \"volpath\" \"float splitthreshold\" 0\nWorldBegin\n")
-                      .settings.split_threshold,
-                  0);
-  EXPECT_FLOAT_EQ(test::parse_text("Integrator \"volpath\" \"float splitthreshold\" 1.5\nWorldBegin\n")
-                      .settings.split_threshold,
-                  1.5f);
+  EXPECT_FLOAT_EQ(
+      test::parse_text("Integrator \"volpath\" \"float splitthreshold\" 0\nWorldBegin\n").settings.split_threshold, 0);
+  EXPECT_FLOAT_EQ(
+      test::parse_text("Integrator \"volpath\" \"float splitthreshold\" 1.5\nWorldBegin\n").settings.split_threshold,
+      1.5f);
   for (const char* bad : {"0.5", "-1", "0.999"})
     expect_integrator_error("\"float splitthreshold\"", bad,
                             "test.pbrt:1:45: error: splitthreshold must be 0 (no splitting) or a finite number of "
@@ -257,8 +256,9 @@ TEST(ParserOptions, FilmSensor) {
   EXPECT_TRUE(test::parse_text("Film \"rgb\" \"string sensor\" \"cie1931\"\n" + lit).diagnostics.warnings.empty());
   SceneDesc canon = test::parse_text("Film \"rgb\" \"float iso\" 200 \"string sensor\" \"canon_eos_100d\"\n" + lit);
   ASSERT_EQ(canon.diagnostics.warnings.size(), 1u);
-  EXPECT_TRUE(has_warning(canon, "test.pbrt:1:28: warning: Film \"sensor\" \"canon_eos_100d\": camera sensor "
-                                 "responses are not modelled; rendered with the \"cie1931\" sensor"));
+  EXPECT_TRUE(has_warning(canon,
+                          "test.pbrt:1:28: warning: Film \"sensor\" \"canon_eos_100d\": camera sensor "
+                          "responses are not modelled; rendered with the \"cie1931\" sensor"));
   EXPECT_FLOAT_EQ(canon.film.exposure_scale, 2);
   try {
     test::parse_text("Film \"rgb\" \"string sensor\" \"canon_eos_99d\"\n" + lit);
@@ -321,9 +321,11 @@ TEST(ParserInclude, BesideTheIncludingFileIsAFallbackWithAWarning) {
   EXPECT_TRUE(has_warning(s, dir.path() + "/sub/outer.pbrt:2:9: warning: 'inner.pbrt' is not in the main scene file's "
                                           "directory"));
   // One cause, one warning: a chain of such Includes is warned about once.
-  for (int i = 0; i < 5; ++i) dir.write("c/inc/" + std::to_string(i) + ".pbrt", "Include \"" + std::to_string(i + 1) + ".pbrt\"\n");
+  for (int i = 0; i < 5; ++i)
+    dir.write("c/inc/" + std::to_string(i) + ".pbrt", "Include \"" + std::to_string(i + 1) + ".pbrt\"\n");
   dir.write("c/inc/5.pbrt", "Shape \"sphere\"\n");
-  SceneDesc c = parse_scene_file(dir.write("c/main.pbrt", "WorldBegin\nLightSource \"point\"\nInclude \"inc/0.pbrt\"\n"));
+  SceneDesc c =
+      parse_scene_file(dir.write("c/main.pbrt", "WorldBegin\nLightSource \"point\"\nInclude \"inc/0.pbrt\"\n"));
   EXPECT_EQ(c.shapes.size(), 1u);
   EXPECT_EQ(c.diagnostics.warnings.size(), 1u);
   ASSERT_EQ(s.shapes.size(), 2u);
@@ -337,7 +339,8 @@ TEST(ParserInclude, BesideTheIncludingFileIsAFallbackWithAWarning) {
 
 TEST(ParserInclude, GzipIncludeParsesLikeThePlainOne) {
   test::TempDir dir;
-  const std::string inner = "Translate 0 1 0\n# a comment\nShape \"sphere\" \"float radius\" 7\nAttribute \"shape\" \"float radius\" 2\n";
+  const std::string inner =
+      "Translate 0 1 0\n# a comment\nShape \"sphere\" \"float radius\" 7\nAttribute \"shape\" \"float radius\" 2\n";
   dir.write("plain.pbrt", inner);
   dir.write("sub/inner.pbrt.gz", test::gzip(inner));
   SceneDesc plain = parse_scene_file(dir.write("a.pbrt", "WorldBegin\nInclude \"plain.pbrt\"\n"));
@@ -419,7 +422,8 @@ namespace {
 // A chain of 100 Includes stops at the depth limit with a message, not a stack overflow.
 TEST(ParserInclude, ChainsDeeperThanTheLimitAreAnError) {
   test::TempDir dir;
-  for (int i = 0; i < 100; ++i) dir.write("f" + std::to_string(i) + ".pbrt", "Include \"f" + std::to_string(i + 1) + ".pbrt\"\n");
+  for (int i = 0; i < 100; ++i)
+    dir.write("f" + std::to_string(i) + ".pbrt", "Include \"f" + std::to_string(i + 1) + ".pbrt\"\n");
   dir.write("f100.pbrt", "WorldBegin\n");
   try {
     parse_scene_file(dir.path() + "/f0.pbrt");
@@ -444,8 +448,9 @@ TEST(ParserInclude, RelativePathsResolveAgainstTheMainFilesDirectory) {
   dir.write("sub/inner.pbrt", "Shape \"sphere\" \"float radius\" 2\n");
   dir.write("sky.exr", "x");
   dir.write("sub/sky.exr", "x");
-  dir.write("sub/outer.pbrt",
-            "Include \"inner.pbrt\"\nImport \"inner.pbrt\"\nLightSource \"infinite\" \"string filename\" \"sky.exr\"\n");
+  dir.write(
+      "sub/outer.pbrt",
+      "Include \"inner.pbrt\"\nImport \"inner.pbrt\"\nLightSource \"infinite\" \"string filename\" \"sky.exr\"\n");
   SceneDesc s = parse_scene_file(dir.write("main.pbrt", "WorldBegin\nInclude \"sub/outer.pbrt\"\n"));
   ASSERT_EQ(s.shapes.size(), 2u);
   EXPECT_FLOAT_EQ(s.shapes[0].radius, 1);
@@ -458,7 +463,8 @@ TEST(ParserInclude, RelativePathsResolveAgainstTheMainFilesDirectory) {
 // parameters and continues them after the Include: one token stream, as pbrt-v4 reads it.
 TEST(ParserInclude, AParameterListContinuesAfterTheIncludedFile) {
   test::TempDir dir;
-  dir.write("geometry/density.pbrt", "MakeNamedMedium \"smoke\" \"string type\" \"homogeneous\"\n  \"float scale\" 2\n");
+  dir.write("geometry/density.pbrt",
+            "MakeNamedMedium \"smoke\" \"string type\" \"homogeneous\"\n  \"float scale\" 2\n");
   SceneDesc s = parse_scene_file(dir.write("main.pbrt",
                                            "WorldBegin\nAttributeBegin\nInclude \"geometry/density.pbrt\"\n"
                                            "\t\"rgb sigma_a\" [1 2 3]\n\t\"rgb sigma_s\" [4 5 6]\n"
@@ -509,8 +515,9 @@ TEST(ParserMedia, MediumInterfaceMayNameAMediumDefinedLater) {
   EXPECT_EQ(s.lights[0].medium, 1);
   // A name never defined: an error where it is used.
   try {
-    parse_world("Shape \"sphere\"\nMediumInterface \"fog\" \"smog\"\nShape \"sphere\"\n"
-                "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n");
+    parse_world(
+        "Shape \"sphere\"\nMediumInterface \"fog\" \"smog\"\nShape \"sphere\"\n"
+        "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n");
     ADD_FAILURE() << "no error";
   } catch (const SceneError& e) {
     EXPECT_EQ(e.loc().line, 3) << e.what();

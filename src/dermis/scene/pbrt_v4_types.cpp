@@ -1,8 +1,8 @@
 #include "dermis/scene/pbrt_v4_types.h"
 
-#include <algorithm>
-
 #include <fmt/format.h>
+
+#include <algorithm>
 
 namespace dermis {
 
@@ -10,10 +10,20 @@ namespace {
 
 // pbrt-v4's factories (src/pbrt/materials.cpp, lights.cpp, cameras.cpp, shapes.cpp,
 // textures.cpp, media.cpp, film.cpp, filters.cpp): each ends in ErrorExit for any other name.
-constexpr const char* kMaterials[] = {"diffuse",   "coateddiffuse", "coatedconductor", "diffusetransmission",
-                                      "dielectric", "thindielectric", "hair",           "conductor",
-                                      "measured",   "subsurface",    "mix",             "interface",
-                                      "none",       ""};
+constexpr const char* kMaterials[] = {"diffuse",
+                                      "coateddiffuse",
+                                      "coatedconductor",
+                                      "diffusetransmission",
+                                      "dielectric",
+                                      "thindielectric",
+                                      "hair",
+                                      "conductor",
+                                      "measured",
+                                      "subsurface",
+                                      "mix",
+                                      "interface",
+                                      "none",
+                                      ""};
 constexpr const char* kLights[] = {"point", "spot", "goniometric", "projection", "distant", "infinite"};
 constexpr const char* kAreaLights[] = {"diffuse"};
 constexpr const char* kCameras[] = {"perspective", "orthographic", "realistic", "spherical"};
@@ -29,20 +39,29 @@ constexpr const char* kFilms[] = {"rgb", "gbuffer", "spectral"};
 constexpr const char* kFilters[] = {"box", "gaussian", "mitchell", "sinc", "triangle"};
 
 // pbrt-v3's material names, which pbrt-v4 dropped: a scene using them needs converting.
-constexpr const char* kPbrtV3Materials[] = {"matte", "plastic", "metal", "mirror", "glass", "uber", "substrate",
-                                            "translucent", "kdsubsurface", "fourier", "disney"};
+constexpr const char* kPbrtV3Materials[] = {"matte",     "plastic",     "metal",        "mirror",  "glass", "uber",
+                                            "substrate", "translucent", "kdsubsurface", "fourier", "disney"};
 
 const char* directive_name(TypedDirective kind) {
   switch (kind) {
-    case TypedDirective::Material: return "Material";
-    case TypedDirective::LightSource: return "LightSource";
-    case TypedDirective::AreaLightSource: return "AreaLightSource";
-    case TypedDirective::Camera: return "Camera";
-    case TypedDirective::Shape: return "Shape";
-    case TypedDirective::Texture: return "Texture";
-    case TypedDirective::Medium: return "MakeNamedMedium";
-    case TypedDirective::Film: return "Film";
-    case TypedDirective::PixelFilter: return "PixelFilter";
+    case TypedDirective::Material:
+      return "Material";
+    case TypedDirective::LightSource:
+      return "LightSource";
+    case TypedDirective::AreaLightSource:
+      return "AreaLightSource";
+    case TypedDirective::Camera:
+      return "Camera";
+    case TypedDirective::Shape:
+      return "Shape";
+    case TypedDirective::Texture:
+      return "Texture";
+    case TypedDirective::Medium:
+      return "MakeNamedMedium";
+    case TypedDirective::Film:
+      return "Film";
+    case TypedDirective::PixelFilter:
+      return "PixelFilter";
   }
   return "?";
 }
@@ -51,15 +70,24 @@ const char* directive_name(TypedDirective kind) {
 
 std::span<const char* const> known_types(TypedDirective kind) {
   switch (kind) {
-    case TypedDirective::Material: return kMaterials;
-    case TypedDirective::LightSource: return kLights;
-    case TypedDirective::AreaLightSource: return kAreaLights;
-    case TypedDirective::Camera: return kCameras;
-    case TypedDirective::Shape: return kShapes;
-    case TypedDirective::Texture: return kTextures;
-    case TypedDirective::Medium: return kMedia;
-    case TypedDirective::Film: return kFilms;
-    case TypedDirective::PixelFilter: return kFilters;
+    case TypedDirective::Material:
+      return kMaterials;
+    case TypedDirective::LightSource:
+      return kLights;
+    case TypedDirective::AreaLightSource:
+      return kAreaLights;
+    case TypedDirective::Camera:
+      return kCameras;
+    case TypedDirective::Shape:
+      return kShapes;
+    case TypedDirective::Texture:
+      return kTextures;
+    case TypedDirective::Medium:
+      return kMedia;
+    case TypedDirective::Film:
+      return kFilms;
+    case TypedDirective::PixelFilter:
+      return kFilters;
   }
   return {};
 }

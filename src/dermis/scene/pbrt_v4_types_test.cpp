@@ -1,12 +1,12 @@
 // Typed directives: a type name pbrt-v4 does not know is an error at the name (with a
 // suggestion for a near miss); every name pbrt-v4 knows is accepted by the parser, rendered
 // or warned about (docs/scene-format.md), never refused as unknown.
-#include <gtest/gtest.h>
+#include "dermis/scene/pbrt_v4_types.h"
 
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include "dermis/scene/parser.h"
-#include "dermis/scene/pbrt_v4_types.h"
 
 namespace dermis {
 namespace {
@@ -15,24 +15,32 @@ namespace {
 std::string scene_with(TypedDirective kind, const std::string& type) {
   const std::string q = "\"" + type + "\"";
   switch (kind) {
-    case TypedDirective::Camera: return "Camera " + q + "\nWorldBegin\n";
-    case TypedDirective::Film: return "Film " + q + "\nWorldBegin\n";
-    case TypedDirective::PixelFilter: return "PixelFilter " + q + "\nWorldBegin\n";
-    case TypedDirective::Material: return "WorldBegin\nMaterial " + q + "\n";
-    case TypedDirective::LightSource: return "WorldBegin\nLightSource " + q + "\n";
-    case TypedDirective::AreaLightSource: return "WorldBegin\nAreaLightSource " + q + "\n";
-    case TypedDirective::Shape: return "WorldBegin\nShape " + q + "\n";
-    case TypedDirective::Texture: return "WorldBegin\nTexture \"t\" \"float\" " + q + "\n";
-    case TypedDirective::Medium: return "MakeNamedMedium \"m\" \"string type\" " + q + "\nWorldBegin\n";
+    case TypedDirective::Camera:
+      return "Camera " + q + "\nWorldBegin\n";
+    case TypedDirective::Film:
+      return "Film " + q + "\nWorldBegin\n";
+    case TypedDirective::PixelFilter:
+      return "PixelFilter " + q + "\nWorldBegin\n";
+    case TypedDirective::Material:
+      return "WorldBegin\nMaterial " + q + "\n";
+    case TypedDirective::LightSource:
+      return "WorldBegin\nLightSource " + q + "\n";
+    case TypedDirective::AreaLightSource:
+      return "WorldBegin\nAreaLightSource " + q + "\n";
+    case TypedDirective::Shape:
+      return "WorldBegin\nShape " + q + "\n";
+    case TypedDirective::Texture:
+      return "WorldBegin\nTexture \"t\" \"float\" " + q + "\n";
+    case TypedDirective::Medium:
+      return "MakeNamedMedium \"m\" \"string type\" " + q + "\nWorldBegin\n";
   }
   return {};
 }
 
-constexpr TypedDirective kKinds[] = {TypedDirective::Material, TypedDirective::LightSource,
-                                     TypedDirective::AreaLightSource, TypedDirective::Camera,
-                                     TypedDirective::Shape, TypedDirective::Texture,
-                                     TypedDirective::Medium, TypedDirective::Film,
-                                     TypedDirective::PixelFilter};
+constexpr TypedDirective kKinds[] = {
+    TypedDirective::Material, TypedDirective::LightSource, TypedDirective::AreaLightSource,
+    TypedDirective::Camera,   TypedDirective::Shape,       TypedDirective::Texture,
+    TypedDirective::Medium,   TypedDirective::Film,        TypedDirective::PixelFilter};
 
 // Each name pbrt-v4 knows gets past the type check: the scene parses, or fails for another
 // reason (a missing filename, a spectrum-only texture declared float), never "unknown ... type".

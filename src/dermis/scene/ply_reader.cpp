@@ -1,5 +1,7 @@
 #include "dermis/scene/ply_reader.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <bit>
 #include <cctype>
@@ -9,8 +11,6 @@
 #include <limits>
 #include <sstream>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "dermis/scene/diagnostics.h"
 #include "dermis/scene/gzip_file.h"
@@ -24,24 +24,41 @@ enum class Format { Ascii, BinaryLE, BinaryBE };
 enum class ScalarType { I8, U8, I16, U16, I32, U32, F32, F64 };
 
 bool parse_scalar_type(const std::string& s, ScalarType& t) {
-  if (s == "char" || s == "int8") t = ScalarType::I8;
-  else if (s == "uchar" || s == "uint8") t = ScalarType::U8;
-  else if (s == "short" || s == "int16") t = ScalarType::I16;
-  else if (s == "ushort" || s == "uint16") t = ScalarType::U16;
-  else if (s == "int" || s == "int32") t = ScalarType::I32;
-  else if (s == "uint" || s == "uint32") t = ScalarType::U32;
-  else if (s == "float" || s == "float32") t = ScalarType::F32;
-  else if (s == "double" || s == "float64") t = ScalarType::F64;
-  else return false;
+  if (s == "char" || s == "int8")
+    t = ScalarType::I8;
+  else if (s == "uchar" || s == "uint8")
+    t = ScalarType::U8;
+  else if (s == "short" || s == "int16")
+    t = ScalarType::I16;
+  else if (s == "ushort" || s == "uint16")
+    t = ScalarType::U16;
+  else if (s == "int" || s == "int32")
+    t = ScalarType::I32;
+  else if (s == "uint" || s == "uint32")
+    t = ScalarType::U32;
+  else if (s == "float" || s == "float32")
+    t = ScalarType::F32;
+  else if (s == "double" || s == "float64")
+    t = ScalarType::F64;
+  else
+    return false;
   return true;
 }
 
 size_t type_size(ScalarType t) {
   switch (t) {
-    case ScalarType::I8: case ScalarType::U8: return 1;
-    case ScalarType::I16: case ScalarType::U16: return 2;
-    case ScalarType::I32: case ScalarType::U32: case ScalarType::F32: return 4;
-    case ScalarType::F64: return 8;
+    case ScalarType::I8:
+    case ScalarType::U8:
+      return 1;
+    case ScalarType::I16:
+    case ScalarType::U16:
+      return 2;
+    case ScalarType::I32:
+    case ScalarType::U32:
+    case ScalarType::F32:
+      return 4;
+    case ScalarType::F64:
+      return 8;
   }
   return 0;
 }
@@ -102,14 +119,46 @@ class BodyReader {
     if (swap)
       for (size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
     switch (t) {
-      case ScalarType::I8: { int8_t v; std::memcpy(&v, b, 1); return v; }
-      case ScalarType::U8: { uint8_t v; std::memcpy(&v, b, 1); return v; }
-      case ScalarType::I16: { int16_t v; std::memcpy(&v, b, 2); return v; }
-      case ScalarType::U16: { uint16_t v; std::memcpy(&v, b, 2); return v; }
-      case ScalarType::I32: { int32_t v; std::memcpy(&v, b, 4); return v; }
-      case ScalarType::U32: { uint32_t v; std::memcpy(&v, b, 4); return v; }
-      case ScalarType::F32: { float v; std::memcpy(&v, b, 4); return v; }
-      case ScalarType::F64: { double v; std::memcpy(&v, b, 8); return v; }
+      case ScalarType::I8: {
+        int8_t v;
+        std::memcpy(&v, b, 1);
+        return v;
+      }
+      case ScalarType::U8: {
+        uint8_t v;
+        std::memcpy(&v, b, 1);
+        return v;
+      }
+      case ScalarType::I16: {
+        int16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case ScalarType::U16: {
+        uint16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case ScalarType::I32: {
+        int32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case ScalarType::U32: {
+        uint32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case ScalarType::F32: {
+        float v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case ScalarType::F64: {
+        double v;
+        std::memcpy(&v, b, 8);
+        return v;
+      }
     }
     return 0;
   }
@@ -142,9 +191,10 @@ void check_element_fits(const Element& e, const BodyReader& reader) {
   size_t record = 0;
   for (const Property& p : e.props) record += reader.min_bytes(p.is_list ? p.count_type : p.type);
   if (!reader.fits(e.count, record))
-    throw std::runtime_error(fmt::format("the header declares {} '{}' elements of at least {} bytes each, but only {} "
-                                         "bytes follow the header: a corrupt or truncated file",
-                                         e.count, excerpt(e.name), record, reader.remaining()));
+    throw std::runtime_error(
+        fmt::format("the header declares {} '{}' elements of at least {} bytes each, but only {} "
+                    "bytes follow the header: a corrupt or truncated file",
+                    e.count, excerpt(e.name), record, reader.remaining()));
 }
 
 // The line of `data` that starts at `pos` (without its '\n'); `pos` moves past it. False at the end.
@@ -161,7 +211,8 @@ bool next_line(const std::string& data, size_t& pos, std::string& line) {
 size_t read_header(const std::string& data, Format& format, std::vector<Element>& elements) {
   std::string line;
   size_t pos = 0;
-  if (!next_line(data, pos, line) || line.substr(0, 3) != "ply") throw std::runtime_error("not a PLY file (no 'ply' magic)");
+  if (!next_line(data, pos, line) || line.substr(0, 3) != "ply")
+    throw std::runtime_error("not a PLY file (no 'ply' magic)");
   bool have_format = false;
   while (next_line(data, pos, line)) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -175,16 +226,21 @@ size_t read_header(const std::string& data, Format& format, std::vector<Element>
     if (kw == "format") {
       std::string f;
       ls >> f;
-      if (f == "ascii") format = Format::Ascii;
-      else if (f == "binary_little_endian") format = Format::BinaryLE;
-      else if (f == "binary_big_endian") format = Format::BinaryBE;
-      else throw std::runtime_error(fmt::format("unknown PLY format '{}'", excerpt(f)));
+      if (f == "ascii")
+        format = Format::Ascii;
+      else if (f == "binary_little_endian")
+        format = Format::BinaryLE;
+      else if (f == "binary_big_endian")
+        format = Format::BinaryBE;
+      else
+        throw std::runtime_error(fmt::format("unknown PLY format '{}'", excerpt(f)));
       have_format = true;
     } else if (kw == "element") {
       Element e;
       long long count = -1;
       ls >> e.name >> count;
-      if (!ls || e.name.empty() || count < 0) throw std::runtime_error(fmt::format("malformed header line '{}'", excerpt(line)));
+      if (!ls || e.name.empty() || count < 0)
+        throw std::runtime_error(fmt::format("malformed header line '{}'", excerpt(line)));
       e.count = size_t(count);
       elements.push_back(e);
     } else if (kw == "property") {
@@ -200,7 +256,8 @@ size_t read_header(const std::string& data, Format& format, std::vector<Element>
           throw std::runtime_error(fmt::format("unsupported property types in '{}'", excerpt(line)));
       } else {
         ls >> p.name;
-        if (!parse_scalar_type(t, p.type)) throw std::runtime_error(fmt::format("unsupported property type '{}'", excerpt(t)));
+        if (!parse_scalar_type(t, p.type))
+          throw std::runtime_error(fmt::format("unsupported property type '{}'", excerpt(t)));
       }
       elements.back().props.push_back(p);
     }
@@ -211,8 +268,8 @@ size_t read_header(const std::string& data, Format& format, std::vector<Element>
 
 uint32_t checked_index(double v, size_t nverts, const char* what, size_t which) {
   if (v < 0 || v >= double(nverts) || v != std::floor(v))
-    throw std::runtime_error(fmt::format("{} {} references vertex {} but the file has {} vertices", what, which, v,
-                                         nverts));
+    throw std::runtime_error(
+        fmt::format("{} {} references vertex {} but the file has {} vertices", what, which, v, nverts));
   return uint32_t(v);
 }
 
@@ -251,10 +308,22 @@ TriangleMeshDesc read_ply(const std::string& path, const LoadMonitor* monitor) {
       for (int i = 0; i < int(e.props.size()); ++i) {
         const std::string& n = e.props[i].name;
         if (e.props[i].is_list) continue;
-        if (n == "x") ix = i; else if (n == "y") iy = i; else if (n == "z") iz = i;
-        else if (n == "nx") inx = i; else if (n == "ny") iny = i; else if (n == "nz") inz = i;
-        else if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s") iu = i;
-        else if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t") iv = i;
+        if (n == "x")
+          ix = i;
+        else if (n == "y")
+          iy = i;
+        else if (n == "z")
+          iz = i;
+        else if (n == "nx")
+          inx = i;
+        else if (n == "ny")
+          iny = i;
+        else if (n == "nz")
+          inz = i;
+        else if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s")
+          iu = i;
+        else if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t")
+          iv = i;
       }
       if (ix < 0 || iy < 0 || iz < 0) throw std::runtime_error("vertex element lacks x, y or z");
       bool normals = inx >= 0 && iny >= 0 && inz >= 0, uvs = iu >= 0 && iv >= 0;

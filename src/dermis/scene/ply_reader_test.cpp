@@ -1,14 +1,15 @@
 // The PLY reader on hostile files: headers that claim more than the file holds, elements
 // with no properties, lying list counts, truncated binary data in both endiannesses.
-#include <algorithm>
-#include <chrono>
-#include <ctime>
-#include <cstring>
-#include <string>
+#include "dermis/scene/ply_reader.h"
 
 #include <gtest/gtest.h>
 
-#include "dermis/scene/ply_reader.h"
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <ctime>
+#include <string>
+
 #include "dermis/scene/scene_test_util.h"
 
 namespace dermis {
@@ -81,13 +82,15 @@ TEST(PlyReaderHostile, ListCountsAreCheckedAgainstTheFile) {
   std::string err = ply_error(dir, head + verts + bytes_of<int32_t>(1000000000, false) + bytes_of<int32_t>(0, false));
   EXPECT_NE(err.find("claims 1000000000 values"), std::string::npos) << err;
   // A negative count (int8 -1) is an error, not a conversion of -1.0 to size_t.
-  err = ply_error(dir, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                       "property float z\nelement face 1\nproperty list char int vertex_indices\nend_header\n"
-                       "0 0 0\n1 0 0\n0 1 0\n-1 0 1 2\n");
+  err = ply_error(dir,
+                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                  "property float z\nelement face 1\nproperty list char int vertex_indices\nend_header\n"
+                  "0 0 0\n1 0 0\n0 1 0\n-1 0 1 2\n");
   EXPECT_NE(err.find("claims -1 values"), std::string::npos) << err;
-  err = ply_error(dir, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                       "property float z\nelement face 1\nproperty list float int vertex_indices\nend_header\n"
-                       "0 0 0\n1 0 0\n0 1 0\nnan 0 1 2\n");
+  err = ply_error(dir,
+                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                  "property float z\nelement face 1\nproperty list float int vertex_indices\nend_header\n"
+                  "0 0 0\n1 0 0\n0 1 0\nnan 0 1 2\n");
   EXPECT_NE(err.find("claims nan values"), std::string::npos) << err;
 }
 
@@ -99,8 +102,8 @@ TEST(PlyReaderHostile, TruncatedBinaryDataInBothEndiannesses) {
                              "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
     std::string body;
     for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) body += bytes_of(v, big);
-    std::string face = std::string(1, '\3') + bytes_of<int32_t>(0, big) + bytes_of<int32_t>(1, big) +
-                       bytes_of<int32_t>(2, big);
+    std::string face =
+        std::string(1, '\3') + bytes_of<int32_t>(0, big) + bytes_of<int32_t>(1, big) + bytes_of<int32_t>(2, big);
     TriangleMeshDesc m = read_ply(dir.write("m.ply", head + body + face));
     ASSERT_EQ(m.positions.size(), 3u);
     EXPECT_EQ(m.positions[1], Vec3(1, 0, 0)) << (big ? "big" : "little") << " endian";
@@ -116,18 +119,19 @@ TEST(PlyReaderHostile, MalformedHeaders) {
   TempDir dir;
   EXPECT_NE(ply_error(dir, "ply\nformat ascii 1.0\nelement vertex many\nend_header\n").find("malformed header"),
             std::string::npos);
-  EXPECT_NE(ply_error(dir, "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-                           "property float z\nelement vertex 1\nproperty float x\nproperty float y\n"
-                           "property float z\nend_header\n0 0 0\n0 0 0\n")
+  EXPECT_NE(ply_error(dir,
+                      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                      "property float z\nelement vertex 1\nproperty float x\nproperty float y\n"
+                      "property float z\nend_header\n0 0 0\n0 0 0\n")
                 .find("two 'vertex' elements"),
             std::string::npos);
   EXPECT_NE(ply_error(dir, "ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n")
                 .find("unsupported property type 'quad'"),
             std::string::npos);
   // 2^63 vertices with no properties: refused at once, not allocated.
-  EXPECT_NE(ply_error(dir, "ply\nformat ascii 1.0\nelement vertex 9223372036854775807\nend_header\n").find(
-                "32-bit indices"),
-            std::string::npos);
+  EXPECT_NE(
+      ply_error(dir, "ply\nformat ascii 1.0\nelement vertex 9223372036854775807\nend_header\n").find("32-bit indices"),
+      std::string::npos);
 }
 
 }  // namespace

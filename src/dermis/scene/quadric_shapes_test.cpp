@@ -14,7 +14,8 @@ namespace {
 using test::parse_world;
 
 Vec3d face_area_vector(const TriangleMeshDesc& m, std::size_t t) {
-  const Vec3d a(m.positions[m.indices[3 * t]]), b(m.positions[m.indices[3 * t + 1]]), c(m.positions[m.indices[3 * t + 2]]);
+  const Vec3d a(m.positions[m.indices[3 * t]]), b(m.positions[m.indices[3 * t + 1]]),
+      c(m.positions[m.indices[3 * t + 2]]);
   return cross(b - a, c - a) * 0.5;
 }
 
@@ -31,18 +32,19 @@ TEST(ShapeCylinder, PbrtDefaultsOutwardNormalsAndUv) {
   ASSERT_EQ(m.indices.size(), 6u * kDiskSegments);
   for (std::size_t i = 0; i < m.positions.size(); ++i) {
     const Vec3 p = m.positions[i];
-    EXPECT_NEAR(std::hypot(p.x, p.y), 1.0, 1e-6);                   // radius 1
-    EXPECT_NEAR(m.uvs[i].y, (p.z + 1) / 2, 1e-6);                   // v = (z - zmin) / (zmax - zmin), z in [-1, 1]
+    EXPECT_NEAR(std::hypot(p.x, p.y), 1.0, 1e-6);  // radius 1
+    EXPECT_NEAR(m.uvs[i].y, (p.z + 1) / 2, 1e-6);  // v = (z - zmin) / (zmax - zmin), z in [-1, 1]
     if (m.uvs[i].x > 1e-4f && m.uvs[i].x < 1 - 1e-4f) {
       EXPECT_NEAR(m.uvs[i].x, phi_of(p) / (2 * kPiD), 1e-5);
     }
-    EXPECT_NEAR(m.normals[i].x, p.x, 1e-6);                          // away from the axis
+    EXPECT_NEAR(m.normals[i].x, p.x, 1e-6);  // away from the axis
     EXPECT_NEAR(m.normals[i].z, 0, 1e-7);
   }
   double area = 0;
   for (std::size_t t = 0; t < m.indices.size() / 3; ++t) {
     const Vec3d n = face_area_vector(m, t);
-    const Vec3 c = (m.positions[m.indices[3 * t]] + m.positions[m.indices[3 * t + 1]] + m.positions[m.indices[3 * t + 2]]) / 3.0f;
+    const Vec3 c =
+        (m.positions[m.indices[3 * t]] + m.positions[m.indices[3 * t + 1]] + m.positions[m.indices[3 * t + 2]]) / 3.0f;
     EXPECT_GT(dot(n, Vec3d(c.x, c.y, 0)), 0) << "triangle " << t << " faces the axis";
     area += length(n);
   }
@@ -51,8 +53,8 @@ TEST(ShapeCylinder, PbrtDefaultsOutwardNormalsAndUv) {
 }
 
 TEST(ShapeCylinder, PartialTurnAndErrors) {
-  SceneDesc s = parse_world(
-      "Shape \"cylinder\" \"float radius\" 2 \"float zmin\" 0 \"float zmax\" 3 \"float phimax\" 90\n");
+  SceneDesc s =
+      parse_world("Shape \"cylinder\" \"float radius\" 2 \"float zmin\" 0 \"float zmax\" 3 \"float phimax\" 90\n");
   const TriangleMeshDesc& m = s.shapes[0].mesh;
   EXPECT_EQ(m.indices.size(), 6u * kDiskSegments / 4);  // a quarter of the segments
   for (std::size_t i = 0; i < m.positions.size(); ++i) {

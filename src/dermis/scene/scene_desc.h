@@ -3,8 +3,8 @@
 // Nothing here depends on Embree or the integrator.
 #pragma once
 
-#include <cstdint>
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -41,7 +41,7 @@ struct CameraDesc {
   float lens_radius = 0;
   float focal_distance = 1e6f;
   std::optional<std::array<float, 4>> screen_window;  // xmin xmax ymin ymax, if given
-  int medium = -1;            // index into SceneDesc::media, -1: vacuum
+  int medium = -1;                                    // index into SceneDesc::media, -1: vacuum
   SourceLoc loc;
 };
 
@@ -54,9 +54,9 @@ struct FilterDesc {
 
 struct FilmDesc {
   int xres = 1280, yres = 720;
-  std::string filename = "pbrt.exr";  // as written; resolved relative to the working directory
+  std::string filename = "pbrt.exr";      // as written; resolved relative to the working directory
   std::array<float, 4> crop{0, 1, 0, 1};  // cropwindow x0 x1 y0 y1 (fractions of the image)
-  float exposure_scale = 1;              // iso / 100 (pbrt-v4's default sensor)
+  float exposure_scale = 1;               // iso / 100 (pbrt-v4's default sensor)
   FilterDesc filter;
 };
 
@@ -74,7 +74,7 @@ struct RenderSettingsDesc {
   // of the Integrator; render/path_splitting.h).
   float split_threshold = 2;
   std::string integrator = "volpath";
-  int seed = 0;  // pbrt-v4 Sampler "integer seed"
+  int seed = 0;                              // pbrt-v4 Sampler "integer seed"
   SamplerKind sampler = SamplerKind::Sobol;  // pbrt-v4 Sampler's name, mapped (docs/scene-format.md)
   // Adaptive sampling (render/adaptive_sampling.h): Dermis' Sampler "float noisethreshold"
   // (0: off) and "integer minpixelsamples" (0: the default).
@@ -84,14 +84,25 @@ struct RenderSettingsDesc {
 
 struct TextureDesc {
   enum class Type {
-    Constant, ImageMap, Scale, Checkerboard, Mix, DirectionMix, Bilerp, Dots, FBm, Wrinkled, Windy, Marble
+    Constant,
+    ImageMap,
+    Scale,
+    Checkerboard,
+    Mix,
+    DirectionMix,
+    Bilerp,
+    Dots,
+    FBm,
+    Wrinkled,
+    Windy,
+    Marble
   };
   std::string name;
   Type type = Type::Constant;
-  bool is_float = false;     // declared "float" (value holds the float in all channels), else "spectrum"
-  RGB value{1, 1, 1};        // constant: "value"; scale: "tex" as a value; checkerboard: "tex1"
-  std::string filename;      // imagemap: absolute path
-  float scale = 1;           // imagemap: "scale"; scale: constant factor
+  bool is_float = false;  // declared "float" (value holds the float in all channels), else "spectrum"
+  RGB value{1, 1, 1};     // constant: "value"; scale: "tex" as a value; checkerboard: "tex1"
+  std::string filename;   // imagemap: absolute path
+  float scale = 1;        // imagemap: "scale"; scale: constant factor
   bool invert = false;
   std::string encoding = "sRGB";  // "sRGB", "linear" or "gamma g" for 8-bit images
   std::string wrap = "repeat";    // repeat, black, clamp
@@ -124,17 +135,25 @@ struct RGBTexture {
 
 struct MaterialDesc {
   enum class Type {
-    Diffuse, Dielectric, Conductor, Interface, Subsurface, CoatedDiffuse, CoatedConductor, DiffuseTransmission, Mix
+    Diffuse,
+    Dielectric,
+    Conductor,
+    Interface,
+    Subsurface,
+    CoatedDiffuse,
+    CoatedConductor,
+    DiffuseTransmission,
+    Mix
   };
   Type type = Type::Diffuse;
-  std::string name;            // MakeNamedMaterial name, or empty
-  RGBTexture reflectance;      // diffuse, coateddiffuse, diffusetransmission; conductor and
-                               // coatedconductor when has_reflectance
-  float eta = 1.5f;            // dielectric, subsurface, coateddiffuse, coatedconductor's interface.eta
+  std::string name;                      // MakeNamedMaterial name, or empty
+  RGBTexture reflectance;                // diffuse, coateddiffuse, diffusetransmission; conductor and
+                                         // coatedconductor when has_reflectance
+  float eta = 1.5f;                      // dielectric, subsurface, coateddiffuse, coatedconductor's interface.eta
   RGB conductor_eta{0.2f, 0.92f, 1.1f};  // conductor, RGB approximation (default: metal-Cu-eta)
   RGB conductor_k{3.9f, 2.45f, 2.14f};   // conductor, RGB approximation (default: metal-Cu-k)
   bool has_reflectance = false;          // conductor given "reflectance" instead of eta/k
-  float roughness = 0;         // largest of roughness, uroughness, vroughness as written
+  float roughness = 0;                   // largest of roughness, uroughness, vroughness as written
   // dielectric, conductor, the coated materials' interface: pbrt-v4's Trowbridge-Reitz
   // roughness per tangent axis ("roughness" sets both, "uroughness" / "vroughness"
   // override one each) and "remaproughness" (alpha = sqrt(roughness) when true;
@@ -178,22 +197,22 @@ struct AreaLightDesc {
 };
 
 struct TriangleMeshDesc {
-  std::vector<Vec3> positions;   // object space
-  std::vector<Vec3> normals;     // optional, per vertex
-  std::vector<Vec2> uvs;         // optional, per vertex
-  std::vector<uint32_t> indices; // 3 per triangle
+  std::vector<Vec3> positions;    // object space
+  std::vector<Vec3> normals;      // optional, per vertex
+  std::vector<Vec2> uvs;          // optional, per vertex
+  std::vector<uint32_t> indices;  // 3 per triangle
 };
 
 struct ShapeDesc {
   enum class Type { TriangleMesh, Sphere, Curve };
   Type type = Type::TriangleMesh;
-  Transform object_to_world;   // to world for top-level shapes, to the object's space in instances
-  TriangleMeshDesc mesh;       // trianglemesh, plymesh, objmesh, bilinearmesh and disk (tessellated)
-  float radius = 1;            // sphere (full spheres only)
-  CurveSegments curve;         // curve: cubic Bézier segments in object space
-  int material = -1;           // index into SceneDesc::materials; -1: the default diffuse
+  Transform object_to_world;  // to world for top-level shapes, to the object's space in instances
+  TriangleMeshDesc mesh;      // trianglemesh, plymesh, objmesh, bilinearmesh and disk (tessellated)
+  float radius = 1;           // sphere (full spheres only)
+  CurveSegments curve;        // curve: cubic Bézier segments in object space
+  int material = -1;          // index into SceneDesc::materials; -1: the default diffuse
   std::optional<AreaLightDesc> area_light;
-  int inside_medium = -1;      // indices into SceneDesc::media, -1: vacuum
+  int inside_medium = -1;  // indices into SceneDesc::media, -1: vacuum
   int outside_medium = -1;
   bool has_medium_interface = false;  // false when inside == outside (no transition)
   // pbrt's ReverseOrientation XOR "object_to_world swaps handedness": when true the
@@ -215,7 +234,7 @@ struct ObjectDesc {
 };
 
 struct InstanceDesc {
-  int object = -1;             // index into SceneDesc::objects
+  int object = -1;  // index into SceneDesc::objects
   Transform object_to_world;
   SourceLoc loc;
 };
@@ -224,31 +243,31 @@ struct LightDesc {
   enum class Type { Point, Spot, Distant, Infinite };
   Type type = Type::Point;
   Transform light_to_world;
-  RGB spectrum{1, 1, 1};       // I for point and spot, L for distant and infinite
+  RGB spectrum{1, 1, 1};  // I for point and spot, L for distant and infinite
   float scale = 1;
-  Vec3 from{0, 0, 0};          // point, spot, distant (light space)
-  Vec3 to{0, 0, 1};            // spot, distant (light space)
-  float cone_angle = 30;       // spot, degrees
-  float cone_delta = 5;        // spot, degrees
-  std::string filename;        // infinite: absolute path of the image
-  bool latlong = false;        // infinite image: equirectangular ("string mapping" "latlong"), else equal-area
-  float illuminance = -1;      // infinite, distant: pbrt-v4's "illuminance" (normalises the light), -1: unset
+  Vec3 from{0, 0, 0};      // point, spot, distant (light space)
+  Vec3 to{0, 0, 1};        // spot, distant (light space)
+  float cone_angle = 30;   // spot, degrees
+  float cone_delta = 5;    // spot, degrees
+  std::string filename;    // infinite: absolute path of the image
+  bool latlong = false;    // infinite image: equirectangular ("string mapping" "latlong"), else equal-area
+  float illuminance = -1;  // infinite, distant: pbrt-v4's "illuminance" (normalises the light), -1: unset
   // infinite: pbrt-v4's "portal", a rectangle p0 p1 p2 p3 (light space): light arrives only from
   // directions w with w . normalize((p3 - p0) x (p1 - p0)) > 0. Empty: no portal.
   std::vector<Vec3> portal;
-  int medium = -1;             // medium the light sits in
+  int medium = -1;  // medium the light sits in
   SourceLoc loc;
 };
 
 struct MediumDesc {
   std::string name;
   std::string type = "homogeneous";
-  RGB sigma_a{1, 1, 1};        // per scene unit, before scale (pbrt-v4 defaults)
+  RGB sigma_a{1, 1, 1};  // per scene unit, before scale (pbrt-v4 defaults)
   RGB sigma_s{1, 1, 1};
   float scale = 1;
   float g = 0;
-  RGB Le{0, 0, 0};             // emission: parsed, warned if non-zero
-  std::string preset;          // "name" parameter if used (Jensen et al. 2001 table)
+  RGB Le{0, 0, 0};     // emission: parsed, warned if non-zero
+  std::string preset;  // "name" parameter if used (Jensen et al. 2001 table)
   SourceLoc loc;
 };
 
@@ -259,12 +278,12 @@ struct SceneDesc {
   std::vector<TextureDesc> textures;
   std::vector<MaterialDesc> materials;
   std::vector<MediumDesc> media;
-  std::vector<ShapeDesc> shapes;      // top-level shapes
-  std::vector<ObjectDesc> objects;    // ObjectBegin/End definitions
+  std::vector<ShapeDesc> shapes;    // top-level shapes
+  std::vector<ObjectDesc> objects;  // ObjectBegin/End definitions
   std::vector<InstanceDesc> instances;
-  std::vector<LightDesc> lights;      // non-area lights
-  Diagnostics diagnostics;            // warnings collected while parsing
-  std::string base_directory;         // directory of the main scene file
+  std::vector<LightDesc> lights;  // non-area lights
+  Diagnostics diagnostics;        // warnings collected while parsing
+  std::string base_directory;     // directory of the main scene file
 };
 
 }  // namespace dermis

@@ -123,9 +123,9 @@ class SceneParser {
   int open_object_ = -1;  // index into s_.objects while between ObjectBegin and ObjectEnd
   std::vector<PendingInstance> pending_instances_;
   std::vector<PendingMedium> pending_media_;
-  std::string main_dir_;                    // directory of the main scene file (pbrt-v4's search directory)
-  bool warned_beside_ = false;              // scene_path's fallback has been warned about
-  std::vector<std::string> outer_files_;    // while Importing: the files open in the importing streams
+  std::string main_dir_;                  // directory of the main scene file (pbrt-v4's search directory)
+  bool warned_beside_ = false;            // scene_path's fallback has been warned about
+  std::vector<std::string> outer_files_;  // while Importing: the files open in the importing streams
   FileAccessOptions access_options_;
   std::shared_ptr<const FileAccess> file_access_;  // made once the scene's directory is known
 };

@@ -1,14 +1,14 @@
 // Helpers shared by the scene parser tests (header only; not part of the library).
 #pragma once
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+#include <zlib.h>
+
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <string>
-
-#include <gtest/gtest.h>
-#include <unistd.h>
-#include <zlib.h>
 
 #include "dermis/core/transform.h"
 #include "dermis/scene/parser.h"

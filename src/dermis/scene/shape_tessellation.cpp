@@ -39,7 +39,9 @@ int arc_segments(float phimax_radians, int segments) {
 
 }  // namespace
 
-static float clamped_phimax_radians(float phimax_degrees) { return std::clamp(phimax_degrees, 0.0f, 360.0f) * kPi / 180; }
+static float clamped_phimax_radians(float phimax_degrees) {
+  return std::clamp(phimax_degrees, 0.0f, 360.0f) * kPi / 180;
+}
 
 TriangleMeshDesc tessellate_disk(float height, float radius, float inner_radius, int segments, float phimax_degrees) {
   const float phimax = clamped_phimax_radians(phimax_degrees);

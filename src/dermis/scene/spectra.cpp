@@ -1,12 +1,12 @@
 #include "dermis/scene/spectra.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "dermis/scene/named_spectra_data.h"
 #include "dermis/scene/scene_parser.h"
@@ -122,8 +122,7 @@ double planck(double lambda_nm, double kelvin) {
 
 // Mean of a piecewise-linear function over [a, b] nm (midpoint rule at 0.1 nm: exact to ~1e-6
 // relative for piecewise-linear data).
-double mean_over(std::span<const double> lambda, std::span<const double> value, SpectrumEnds ends, double a,
-                 double b) {
+double mean_over(std::span<const double> lambda, std::span<const double> value, SpectrumEnds ends, double a, double b) {
   PiecewiseLinear f(lambda, value, ends);
   const int n = int((b - a) * 10);
   double sum = 0;
@@ -249,8 +248,7 @@ RGB spectrum_param_rgb(const ParsedParam& p, Diagnostics& diag, SpectrumType typ
       throw SceneError(p.value_loc, fmt::format("parameter \"blackbody {}\" expects a temperature in kelvin, got "
                                                 "{} values",
                                                 p.param.name, v.size()));
-    if (v[0] <= 0)
-      throw SceneError(p.value_at(0), fmt::format("blackbody temperature must be positive, got {}", v[0]));
+    if (v[0] <= 0) throw SceneError(p.value_at(0), fmt::format("blackbody temperature must be positive, got {}", v[0]));
     RGB rgb = blackbody_rgb(v[0]);
     if (v.size() == 2) rgb *= float(v[1]);  // pbrt-v3's [T scale]
     return rgb;
@@ -263,8 +261,8 @@ RGB spectrum_param_rgb(const ParsedParam& p, Diagnostics& diag, SpectrumType typ
     if (!p.param.strings.empty()) {
       if (auto rgb = named_spectrum_rgb(p.param.strings[0], type)) return *rgb;
       const Pairs f = spectrum_file_pairs(p);
-      diag.warn(p.param.loc, fmt::format("spectrum file '{}' for '{}' reduced to RGB ({})", p.param.strings[0],
-                                         p.param.name, how));
+      diag.warn(p.param.loc,
+                fmt::format("spectrum file '{}' for '{}' reduced to RGB ({})", p.param.strings[0], p.param.name, how));
       return spectrum_rgb(f.lambda, f.value, type);
     }
     check_pairs(p);
@@ -302,8 +300,8 @@ float ior_param(const ParsedParam& p, Diagnostics& diag) {
     }
     return float(mean_over(s.lambda, s.value, SpectrumEnds::Zero, 400, 700));
   }
-  throw SceneError(p.param.loc, fmt::format("parameter '{}' has type '{}', expected float or spectrum",
-                                            p.param.name, p.param.type));
+  throw SceneError(p.param.loc,
+                   fmt::format("parameter '{}' has type '{}', expected float or spectrum", p.param.name, p.param.type));
 }
 
 }  // namespace dermis

@@ -1,15 +1,16 @@
 // Spectra to RGB: named spectra, sampled spectra, spectrum files and blackbodies, checked
 // against closed forms and published colorimetric values rather than against themselves.
+#include "dermis/scene/spectra.h"
+
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "dermis/scene/named_spectra_data.h"
 #include "dermis/scene/parser.h"
 #include "dermis/scene/scene_test_util.h"
-#include "dermis/scene/spectra.h"
 
 namespace dermis {
 namespace {
@@ -39,7 +40,8 @@ const NamedSpectrumTable& table(const std::string& name) {
 double interpolate(std::span<const double> pairs, double x) {
   if (x <= pairs[0]) return pairs[1];
   for (size_t i = 2; i + 1 < pairs.size(); i += 2)
-    if (x <= pairs[i]) return pairs[i - 1] + (x - pairs[i - 2]) / (pairs[i] - pairs[i - 2]) * (pairs[i + 1] - pairs[i - 1]);
+    if (x <= pairs[i])
+      return pairs[i - 1] + (x - pairs[i - 2]) / (pairs[i] - pairs[i - 2]) * (pairs[i + 1] - pairs[i - 1]);
   return pairs[pairs.size() - 1];
 }
 
@@ -53,11 +55,13 @@ TEST(Spectra, ConstantReflectanceIsGrey) {
 }
 
 TEST(Spectra, SampledSpectraAreLinearAndZeroOutsideTheirRange) {
-  const std::vector<double> l{400, 500, 600, 700}, a{0.1, 0.5, 0.2, 0.9}, b{0.3, 0.1, 0.4, 0.2}, sum{0.4, 0.6, 0.6, 1.1};
+  const std::vector<double> l{400, 500, 600, 700}, a{0.1, 0.5, 0.2, 0.9}, b{0.3, 0.1, 0.4, 0.2},
+      sum{0.4, 0.6, 0.6, 1.1};
   const RGB ra = spectrum_rgb(l, a, SpectrumType::Unbounded), rb = spectrum_rgb(l, b, SpectrumType::Unbounded);
   expect_rgb(spectrum_rgb(l, sum, SpectrumType::Unbounded), ra + rb, 1e-5f);
   // Beyond 830 nm the observer sees nothing; pbrt-v4's sampled spectra are zero outside their range.
-  expect_rgb(spectrum_rgb(std::vector<double>{900, 1000}, std::vector<double>{1, 1}, SpectrumType::Unbounded), RGB(0), 0);
+  expect_rgb(spectrum_rgb(std::vector<double>{900, 1000}, std::vector<double>{1, 1}, SpectrumType::Unbounded), RGB(0),
+             0);
   // A named table keeps its end values instead (pbrt-v4's named spectra are extended).
   EXPECT_GT(spectrum_rgb(std::vector<double>{900, 1000}, std::vector<double>{1, 1}, SpectrumType::Unbounded,
                          SpectrumEnds::Extend)
@@ -93,13 +97,15 @@ TEST(Spectra, LightSpectraAreNormalizedToLuminanceOne) {
   // pbrt-v4 divides a light's spectrum by its photometric power, so a sampled emission
   // spectrum sets only the colour. The equal-energy spectrum E has X = Y = Z; at Y = 1 its
   // sRGB is the row sums of the XYZ -> sRGB matrix (IEC 61966-2-1): (1.20478, 0.94830, 0.90884).
-  SceneDesc s = parse_world("LightSource \"point\" \"spectrum I\" [300 2 800 2]\n"
-                            "LightSource \"point\" \"spectrum I\" [300 7 800 7] \"float scale\" 3\n");
+  SceneDesc s = parse_world(
+      "LightSource \"point\" \"spectrum I\" [300 2 800 2]\n"
+      "LightSource \"point\" \"spectrum I\" [300 7 800 7] \"float scale\" 3\n");
   expect_rgb(s.lights[0].spectrum, RGB(1.20478f, 0.94830f, 0.90884f), 1e-3f);
   expect_rgb(s.lights[1].spectrum, s.lights[0].spectrum, 1e-6f);
   EXPECT_FLOAT_EQ(s.lights[1].scale, 3);
-  EXPECT_TRUE(has_warning(s, "test.pbrt:2:21: warning: sampled spectrum 'I' reduced to RGB (its chromaticity at "
-                             "luminance 1"));
+  EXPECT_TRUE(has_warning(s,
+                          "test.pbrt:2:21: warning: sampled spectrum 'I' reduced to RGB (its chromaticity at "
+                          "luminance 1"));
 }
 
 TEST(Spectra, BlackbodyColourOrderAndLuminance) {
@@ -169,14 +175,14 @@ TEST(Spectra, NamedGlassesMatchSchottIndices) {
 
 TEST(Spectra, EveryNameOfPbrtV4IsKnown) {
   // pbrt-v4's src/pbrt/util/spectrum.cpp, Spectra::Init: 37 spectra with data, 17 cameras x 3.
-  const char* names[] = {
-      "glass-BK7",      "glass-BAF10",   "glass-FK51A",  "glass-LASF9",   "glass-F5",     "glass-F10",
-      "glass-F11",      "metal-Ag-eta",  "metal-Ag-k",   "metal-Al-eta",  "metal-Al-k",   "metal-Au-eta",
-      "metal-Au-k",     "metal-Cu-eta",  "metal-Cu-k",   "metal-CuZn-eta", "metal-CuZn-k", "metal-MgO-eta",
-      "metal-MgO-k",    "metal-TiO2-eta", "metal-TiO2-k", "stdillum-A",    "stdillum-D50", "stdillum-D65",
-      "stdillum-F1",    "stdillum-F2",   "stdillum-F3",  "stdillum-F4",   "stdillum-F5",  "stdillum-F6",
-      "stdillum-F7",    "stdillum-F8",   "stdillum-F9",  "stdillum-F10",  "stdillum-F11", "stdillum-F12",
-      "illum-acesD60"};
+  const char* names[] = {"glass-BK7",      "glass-BAF10",  "glass-FK51A",   "glass-LASF9",  "glass-F5",
+                         "glass-F10",      "glass-F11",    "metal-Ag-eta",  "metal-Ag-k",   "metal-Al-eta",
+                         "metal-Al-k",     "metal-Au-eta", "metal-Au-k",    "metal-Cu-eta", "metal-Cu-k",
+                         "metal-CuZn-eta", "metal-CuZn-k", "metal-MgO-eta", "metal-MgO-k",  "metal-TiO2-eta",
+                         "metal-TiO2-k",   "stdillum-A",   "stdillum-D50",  "stdillum-D65", "stdillum-F1",
+                         "stdillum-F2",    "stdillum-F3",  "stdillum-F4",   "stdillum-F5",  "stdillum-F6",
+                         "stdillum-F7",    "stdillum-F8",  "stdillum-F9",   "stdillum-F10", "stdillum-F11",
+                         "stdillum-F12",   "illum-acesD60"};
   EXPECT_EQ(named_spectrum_tables().size(), std::size(names));
   for (const char* n : names)
     for (SpectrumType t : {SpectrumType::Unbounded, SpectrumType::Illuminant}) {
@@ -184,8 +190,8 @@ TEST(Spectra, EveryNameOfPbrtV4IsKnown) {
       ASSERT_TRUE(c.has_value()) << n;
       EXPECT_TRUE(c->is_finite() && c->r() >= 0 && c->g() >= 0 && c->b() >= 0) << n;
     }
-  for (const char* n : {"canon_eos_100d_r", "canon_eos_5d_mkiv_g", "hasselblad_l1d_20c_b", "nikon_d850_r",
-                        "sony_ilce_9_b"})
+  for (const char* n :
+       {"canon_eos_100d_r", "canon_eos_5d_mkiv_g", "hasselblad_l1d_20c_b", "nikon_d850_r", "sony_ilce_9_b"})
     EXPECT_TRUE(is_camera_sensor_spectrum(n)) << n;
   EXPECT_EQ(camera_sensor_names().size(), 17u);
   EXPECT_FALSE(named_spectrum_rgb("metal-Fe-eta").has_value());
@@ -210,9 +216,10 @@ TEST(SpectrumFile, PairsCommentsAndBlankLinesRelativeToTheScene) {
   // pbrt-v4's format: numbers separated by white space, '#' comments to the end of the line.
   dir.write("spd/grey.spd", "# a constant reflectance\n\n300 0.5   # first\n  900\t0.5\n# end");
   dir.write("spd/ramp.spd", "400 0.1 500 0.5\n600 0.2 700 0.9\n");
-  SceneDesc s = parse_world("Material \"diffuse\" \"spectrum reflectance\" \"spd/grey.spd\"\nShape \"sphere\"\n"
-                            "Material \"diffuse\" \"spectrum reflectance\" \"spd/ramp.spd\"\nShape \"sphere\"\n",
-                            dir.path());
+  SceneDesc s = parse_world(
+      "Material \"diffuse\" \"spectrum reflectance\" \"spd/grey.spd\"\nShape \"sphere\"\n"
+      "Material \"diffuse\" \"spectrum reflectance\" \"spd/ramp.spd\"\nShape \"sphere\"\n",
+      dir.path());
   expect_rgb(s.materials[0].reflectance.value, RGB(0.5f), 5e-4f * 0.5f);  // grey, as ConstantReflectanceIsGrey
   expect_rgb(s.materials[1].reflectance.value,
              spectrum_rgb(std::vector<double>{400, 500, 600, 700}, std::vector<double>{0.1, 0.5, 0.2, 0.9},
@@ -230,8 +237,10 @@ TEST(SpectrumFile, ErrorsNameTheFileLineAndColumn) {
   const std::string d = dir.path() + "/";
   const std::string mat = "Material \"diffuse\" \"spectrum reflectance\" ";
   expect_error_at(mat + "\"word.spd\"\n", dir.path(), d + "word.spd:2:5", "'half' is not a number");
-  expect_error_at(mat + "\"odd.spd\"\n", dir.path(), d + "odd.spd:2:9", "5 numbers, not pairs: wavelength 600 nm has no value");
-  expect_error_at(mat + "\"order.spd\"\n", dir.path(), d + "order.spd:2:3", "wavelengths must increase (450 nm after 500 nm)");
+  expect_error_at(mat + "\"odd.spd\"\n", dir.path(), d + "odd.spd:2:9",
+                  "5 numbers, not pairs: wavelength 600 nm has no value");
+  expect_error_at(mat + "\"order.spd\"\n", dir.path(), d + "order.spd:2:3",
+                  "wavelengths must increase (450 nm after 500 nm)");
   expect_error_at(mat + "\"empty.spd\"\n", dir.path(), d + "empty.spd:1:1", "holds no numbers");
   // A name that is neither a named spectrum nor a file: the scene's value, with a suggestion.
   expect_error_at(mat + "\"metal-Au-etta\"\n", dir.path(), "test.pbrt:2:43",
@@ -256,10 +265,11 @@ TEST(SubsurfaceSpectra, SigmaAAndSigmaSAsSampledSpectraAndFiles) {
   // spectra give grey coefficients (ConstantReflectanceIsGrey), times "scale".
   TempDir dir;
   dir.write("ss.spd", "300 1.5 900 1.5\n");
-  SceneDesc s = parse_world("Material \"subsurface\" \"spectrum sigma_a\" [300 0.01 900 0.01] "
-                            "\"spectrum sigma_s\" \"ss.spd\" \"float scale\" 2\nShape \"sphere\"\n"
-                            "Material \"subsurface\" \"spectrum sigma_a\" \"metal-Cu-k\" \"rgb sigma_s\" [1 1 1]\n",
-                            dir.path());
+  SceneDesc s = parse_world(
+      "Material \"subsurface\" \"spectrum sigma_a\" [300 0.01 900 0.01] "
+      "\"spectrum sigma_s\" \"ss.spd\" \"float scale\" 2\nShape \"sphere\"\n"
+      "Material \"subsurface\" \"spectrum sigma_a\" \"metal-Cu-k\" \"rgb sigma_s\" [1 1 1]\n",
+      dir.path());
   const SubsurfaceParams& a = s.materials[0].subsurface;
   ASSERT_TRUE(a.sigma_a && a.sigma_s);
   expect_rgb(*a.sigma_a, RGB(0.02f), 0.02f * 5e-4f);

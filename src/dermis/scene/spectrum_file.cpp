@@ -1,10 +1,10 @@
 #include "dermis/scene/spectrum_file.h"
 
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-
-#include <fmt/format.h>
 
 #include "dermis/scene/gzip_file.h"
 
@@ -59,11 +59,10 @@ SampledSpectrum read_spectrum_file(const std::string& path, const SourceLoc& nam
                                          "pairs)",
                                          excerpt(word)));
       if (count % 2 == 0) {
-        if (v <= 0)
-          throw SceneError(at, fmt::format("spectrum file: wavelength {} nm is not positive", v));
+        if (v <= 0) throw SceneError(at, fmt::format("spectrum file: wavelength {} nm is not positive", v));
         if (!s.lambda.empty() && v <= s.lambda.back())
-          throw SceneError(at, fmt::format("spectrum file: wavelengths must increase ({} nm after {} nm)", v,
-                                           s.lambda.back()));
+          throw SceneError(
+              at, fmt::format("spectrum file: wavelengths must increase ({} nm after {} nm)", v, s.lambda.back()));
         s.lambda.push_back(v);
       } else {
         s.value.push_back(v);
@@ -74,7 +73,8 @@ SampledSpectrum read_spectrum_file(const std::string& path, const SourceLoc& nam
       i = end;
     }
   }
-  if (count == 0) throw SceneError({path, 1, 1}, "spectrum file holds no numbers (expected wavelength (nm) and value pairs)");
+  if (count == 0)
+    throw SceneError({path, 1, 1}, "spectrum file holds no numbers (expected wavelength (nm) and value pairs)");
   if (count % 2 != 0)
     throw SceneError(last, fmt::format("spectrum file: {} numbers, not pairs: wavelength {} nm has no value", count,
                                        s.lambda.back()));

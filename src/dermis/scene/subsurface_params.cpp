@@ -28,9 +28,9 @@ constexpr Named<SubsurfaceParams::Method> kMethods[] = {
     {"pointcloud", SubsurfaceParams::Method::PointCloud},
 };
 constexpr Named<SubsurfaceParams::Profile> kProfiles[] = {
-    {"gaussian", SubsurfaceParams::Profile::Gaussian}, {"skin6", SubsurfaceParams::Profile::Skin6},
-    {"cubic", SubsurfaceParams::Profile::Cubic},       {"dipole", SubsurfaceParams::Profile::Dipole},
-    {"burley", SubsurfaceParams::Profile::Burley},     {"burley-dmfp", SubsurfaceParams::Profile::BurleyDiffuseMfp},
+    {"gaussian", SubsurfaceParams::Profile::Gaussian},   {"skin6", SubsurfaceParams::Profile::Skin6},
+    {"cubic", SubsurfaceParams::Profile::Cubic},         {"dipole", SubsurfaceParams::Profile::Dipole},
+    {"burley", SubsurfaceParams::Profile::Burley},       {"burley-dmfp", SubsurfaceParams::Profile::BurleyDiffuseMfp},
     {"tabulated", SubsurfaceParams::Profile::Tabulated}, {"photonbeam", SubsurfaceParams::Profile::PhotonBeam},
 };
 constexpr Named<SubsurfaceParams::Boundary> kBoundaries[] = {
@@ -62,7 +62,8 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"sigma_a", "rgb | texture", "0.0011 0.0024 0.014", "absorption coefficient per scene unit"},
     {"sigma_s", "rgb | texture", "2.55 3.21 3.77", "scattering coefficient per scene unit"},
     {"name", "string", "none", "a measured medium of Jensen et al. 2001, Table 2 (per mm)"},
-    {"scale", "float", "1", "multiplies the coefficients and mfp, as pbrt-v4 does (or a float texture: per entry point)"},
+    {"scale", "float", "1",
+     "multiplies the coefficients and mfp, as pbrt-v4 does (or a float texture: per entry point)"},
     {"eta", "float", "1.33", "index of refraction of the boundary, in [1, 3]"},
     {"g", "float", "0", "Henyey-Greenstein anisotropy, in (-1, 1)"},
     {"roughness", "float", "0", "Trowbridge-Reitz roughness of the boundary (both tangent axes; or a float texture)"},
@@ -72,18 +73,30 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"method", "string", "randomwalk", "how light is carried from entry to exit"},
     {"profile", "string", "burley (dipole for pointcloud)", "the diffusion profile of the profile methods"},
     {"boundary", "string", "diffuse", "random walk: how light leaves (diffuse, dielectric, matched)"},
-    {"entry", "string", "refracted", "random walk with the diffuse boundary: the direction light enters along, refracted or lambertian (a cosine lobe, as Cycles 3.x)"},
+    {"entry", "string", "refracted",
+     "random walk with the diffuse boundary: the direction light enters along, refracted or lambertian (a cosine lobe, "
+     "as Cycles 3.x)"},
     {"walksampling", "string", "mis", "random walk: classical, dwivedi or mis"},
     {"backwardguiding", "bool", "false", "random walk: also guide toward the object's far side"},
-    {"guidedshare", "float", "0.5", "random walk (mis): the share of guided flights, in [0, 1] (unset: the render's pilot chooses)"},
-    {"channelpreference", "float", "0.5", "random walk: the exponent k of the channel choice, throughput (1 - albedo)^-k, in [0, 8] (unset: the render's pilot chooses)"},
-    {"channelperwalk", "bool", "false", "random walk: the camera's first entry takes 3 walks, each carrying one colour channel (unset: the render's pilot chooses)"},
-    {"normalaxis", "float", "0.75", "disk: the probability of probing along the normal, in (0, 1); the tangent and the bitangent share the rest (unset: the render's pilot chooses 0.75, 0.95 or King et al.'s 0.5)"},
+    {"guidedshare", "float", "0.5",
+     "random walk (mis): the share of guided flights, in [0, 1] (unset: the render's pilot chooses)"},
+    {"channelpreference", "float", "0.5",
+     "random walk: the exponent k of the channel choice, throughput (1 - albedo)^-k, in [0, 8] (unset: the render's "
+     "pilot chooses)"},
+    {"channelperwalk", "bool", "false",
+     "random walk: the camera's first entry takes 3 walks, each carrying one colour channel (unset: the render's pilot "
+     "chooses)"},
+    {"normalaxis", "float", "0.75",
+     "disk: the probability of probing along the normal, in (0, 1); the tangent and the bitangent share the rest "
+     "(unset: the render's pilot chooses 0.75, 0.95 or King et al.'s 0.5)"},
     {"albedoinversion", "string", "exact", "(reflectance, mfp) to coefficients: exact or fit"},
     {"pointdensity", "float", "1", "point cloud: points per mean free path squared (with the local disk: the most)"},
-    {"illuminationerror", "float", "0.02", "point cloud with the local disk: the relative error to which the points must represent the irradiance (0: the density, up to maxpoints)"},
+    {"illuminationerror", "float", "0.02",
+     "point cloud with the local disk: the relative error to which the points must represent the irradiance (0: the "
+     "density, up to maxpoints)"},
     {"irradiancesamples", "integer", "64", "point cloud: irradiance samples per point"},
-    {"maxpoints", "integer", "250000", "point cloud: the most points per object (a budget: fewer when the density asks more, with a warning)"},
+    {"maxpoints", "integer", "250000",
+     "point cloud: the most points per object (a budget: fewer when the density asks more, with a warning)"},
     {"epsilon", "float", "0.05", "point cloud: the octree's solid-angle criterion"},
     {"localdisk", "bool", "true", "point cloud: the local disk integral"},
     {"sssgroup", "string", "none", "materials with the same group form one subsurface object"},
@@ -102,13 +115,13 @@ RGB checked(RGB v, const ParsedParam& p) {
 RGB read_rgb(const ParsedParam& p, Diagnostics& diag) {
   if (p.type == "float") {
     if (p.param.numbers.size() != 1)
-      throw SceneError(p.value_loc, fmt::format("\"{}\" needs 3 values (r g b) or 1, got {}", p.param.name,
-                                                p.param.numbers.size()));
+      throw SceneError(p.value_loc,
+                       fmt::format("\"{}\" needs 3 values (r g b) or 1, got {}", p.param.name, p.param.numbers.size()));
     return checked(RGB(float(p.param.numbers[0])), p);
   }
   if (p.type == "rgb" && p.param.numbers.size() != 3)
-    throw SceneError(p.value_loc, fmt::format("\"{}\" needs 3 values (r g b) or 1, got {}", p.param.name,
-                                              p.param.numbers.size()));
+    throw SceneError(p.value_loc,
+                     fmt::format("\"{}\" needs 3 values (r g b) or 1, got {}", p.param.name, p.param.numbers.size()));
   if (p.type != "rgb" && p.type != "spectrum" && p.type != "blackbody")
     throw SceneError(p.value_loc, fmt::format("\"{}\" must be an rgb, spectrum, float or texture value, not \"{}\"",
                                               p.param.name, p.param.type));
@@ -118,7 +131,8 @@ RGB read_rgb(const ParsedParam& p, Diagnostics& diag) {
 float read_float(const ParsedParam& p) {
   if (p.type != "float" || p.param.numbers.size() != 1)
     throw SceneError(p.value_loc, fmt::format("\"{}\" must be one float", p.param.name));
-  if (!std::isfinite(p.param.numbers[0])) throw SceneError(p.value_loc, fmt::format("\"{}\" must be finite", p.param.name));
+  if (!std::isfinite(p.param.numbers[0]))
+    throw SceneError(p.value_loc, fmt::format("\"{}\" must be finite", p.param.name));
   return float(p.param.numbers[0]);
 }
 
@@ -160,106 +174,112 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
     for (const SubsurfaceParameter& row : kParameters) known = known || n == row.name;
     if (!known) continue;  // reported by the parser as unused
     p.used = true;
-    if (n == "sigma_a") sigma_a = &p;
-    else if (n == "sigma_s") sigma_s = &p;
-    else if (n == "reflectance") reflectance = &p;
-    else if (n == "mfp") mfp = &p;
-    else if (n == "name") name = &p;
+    if (n == "sigma_a")
+      sigma_a = &p;
+    else if (n == "sigma_s")
+      sigma_s = &p;
+    else if (n == "reflectance")
+      reflectance = &p;
+    else if (n == "mfp")
+      mfp = &p;
+    else if (n == "name")
+      name = &p;
     else if (n == "scale") {
-      if (p.type == "texture") s.scale_texture = texture_index_of(p, true);
-      else scale = read_float(p);
-    }
-    else if (n == "eta") s.eta = read_float(p);
-    else if (n == "g") s.g = read_float(p);
+      if (p.type == "texture")
+        s.scale_texture = texture_index_of(p, true);
+      else
+        scale = read_float(p);
+    } else if (n == "eta")
+      s.eta = read_float(p);
+    else if (n == "g")
+      s.g = read_float(p);
     else if (n == "profile") {
       s.profile = lookup(kProfiles, p, "profile");
       profile_given = true;
-    }
-    else if (n == "method") s.method = lookup(kMethods, p, "subsurface method");
-    else if (n == "boundary") s.boundary = lookup(kBoundaries, p, "boundary");
+    } else if (n == "method")
+      s.method = lookup(kMethods, p, "subsurface method");
+    else if (n == "boundary")
+      s.boundary = lookup(kBoundaries, p, "boundary");
     else if (n == "entry") {
       if (p.type != "string" || p.param.strings.size() != 1 ||
           (p.param.strings[0] != "refracted" && p.param.strings[0] != "lambertian"))
         throw SceneError(p.value_loc, "\"entry\" must be \"refracted\" or \"lambertian\"");
       s.lambertian_entry = p.param.strings[0] == "lambertian";
       entry = &p;
-    }
-    else if (n == "walksampling") s.walk_sampling = lookup(kWalkSamplings, p, "walk sampling"), s.walk_sampling_given = true;
-    else if (n == "epsilon") s.epsilon = read_float(p);
+    } else if (n == "walksampling")
+      s.walk_sampling = lookup(kWalkSamplings, p, "walk sampling"), s.walk_sampling_given = true;
+    else if (n == "epsilon")
+      s.epsilon = read_float(p);
     else if (n == "albedoinversion") {
       if (p.param.strings.size() != 1 || (p.param.strings[0] != "exact" && p.param.strings[0] != "fit"))
         throw SceneError(p.value_loc, "\"albedoinversion\" must be \"exact\" or \"fit\"");
       s.albedo_inversion_fit = p.param.strings[0] == "fit";
-    }
-    else if (n == "pointdensity") s.point_density = read_float(p);
+    } else if (n == "pointdensity")
+      s.point_density = read_float(p);
     else if (n == "illuminationerror") {
       const float e = read_float(p);
       if (!(e >= 0 && e <= 1)) throw SceneError(p.value_loc, "\"illuminationerror\" must be in [0, 1] (0: off)");
       s.illumination_error = e;
-    }
-    else if (n == "backwardguiding") {
+    } else if (n == "backwardguiding") {
       s.backward_guiding = read_bool(p);
       s.backward_guiding_given = true;
-    }
-    else if (n == "guidedshare") {
+    } else if (n == "guidedshare") {
       const float v = read_float(p);
       if (!(v >= 0 && v <= 1)) throw SceneError(p.value_loc, "\"guidedshare\" must be in [0, 1]");
       s.guided_share = v;
       s.guided_share_given = true;
-    }
-    else if (n == "channelpreference") {
+    } else if (n == "channelpreference") {
       const float v = read_float(p);
       if (!(v >= 0 && v <= 8)) throw SceneError(p.value_loc, "\"channelpreference\" must be in [0, 8]");
       s.channel_preference = v;
       s.channel_preference_given = true;
-    }
-    else if (n == "normalaxis") {
+    } else if (n == "normalaxis") {
       const float v = read_float(p);
       if (!(v > 0 && v < 1))
-        throw SceneError(p.value_loc, "\"normalaxis\" must be in (0, 1) (the probes along the tangent and the "
-                                      "bitangent share the rest; none along one of them would miss its hits)");
+        throw SceneError(p.value_loc,
+                         "\"normalaxis\" must be in (0, 1) (the probes along the tangent and the "
+                         "bitangent share the rest; none along one of them would miss its hits)");
       s.normal_axis = v;
       s.normal_axis_given = true;
       normal_axis = &p;
-    }
-    else if (n == "channelperwalk") {
+    } else if (n == "channelperwalk") {
       s.channel_per_walk = read_bool(p);
       s.channel_per_walk_given = true;
-    }
-    else if (n == "localdisk") s.local_disk = read_bool(p);
+    } else if (n == "localdisk")
+      s.local_disk = read_bool(p);
     else if (n == "irradiancesamples") {
       const auto& v = p.param.numbers;
       if (v.size() != 1 || !(v[0] >= 1) || v[0] != std::floor(v[0]) || v[0] > (1 << 20))
         throw SceneError(p.value_loc, "\"irradiancesamples\" must be one integer in [1, 1048576]");
       s.irradiance_samples = int(v[0]);
-    }
-    else if (n == "maxpoints") {
+    } else if (n == "maxpoints") {
       const auto& v = p.param.numbers;
       if (p.type != "integer" || v.size() != 1 || !(v[0] >= 16) || v[0] > 1e8)
         throw SceneError(p.value_loc, "\"maxpoints\" must be one integer in [16, 100000000]");
       s.max_points = int(v[0]);
-    }
-    else if (n == "sssgroup") {
+    } else if (n == "sssgroup") {
       if (p.type != "string" || p.param.strings.size() != 1)
         throw SceneError(p.value_loc, "\"sssgroup\" needs exactly one string");
       s.group = p.param.strings[0];
-    }
-    else if (n == "roughness" || n == "uroughness" || n == "vroughness") {
+    } else if (n == "roughness" || n == "uroughness" || n == "vroughness") {
       if (p.type == "texture") {
         if (n == "roughness") {
           s.roughness_texture = texture_index_of(p, true);
           continue;
         }
         diag.warn(p.param.loc, fmt::format("subsurface: textured \"{}\" is not supported (a textured \"roughness\", "
-                                           "the same on both axes, is); 0 used", n));
+                                           "the same on both axes, is); 0 used",
+                                           n));
         continue;
       }
       const float r = read_float(p);
       if (r < 0) throw SceneError(p.value_loc, fmt::format("\"{}\" must be >= 0", n));
-      if (n == "roughness") roughness = r;
-      else (n == "uroughness" ? uroughness : vroughness) = r;
-    }
-    else if (n == "remaproughness") s.remap_roughness = read_bool(p);
+      if (n == "roughness")
+        roughness = r;
+      else
+        (n == "uroughness" ? uroughness : vroughness) = r;
+    } else if (n == "remaproughness")
+      s.remap_roughness = read_bool(p);
     else {  // normalmap, displacement
       diag.warn(p.param.loc, fmt::format("subsurface: \"{}\" ignored", n));
     }
@@ -274,8 +294,9 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
   s.uroughness = uroughness.value_or(roughness.value_or(0));
   s.vroughness = vroughness.value_or(roughness.value_or(0));
   if (s.roughness_texture >= 0 && (uroughness || vroughness)) {
-    diag.warn(loc, "subsurface: \"uroughness\" / \"vroughness\" ignored beside a textured \"roughness\" "
-                   "(a textured boundary is isotropic)");
+    diag.warn(loc,
+              "subsurface: \"uroughness\" / \"vroughness\" ignored beside a textured \"roughness\" "
+              "(a textured boundary is isotropic)");
     s.uroughness = s.vroughness = 0;
   }
   if (scale <= 0) throw SceneError(loc, "subsurface: \"scale\" must be positive");
@@ -287,22 +308,25 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
   if (!(s.point_density > 0)) throw SceneError(loc, "subsurface: \"pointdensity\" must be positive");
   if (s.method == SubsurfaceParams::Method::PointCloud && s.roughness_texture >= 0) {
     // Its points carry no surface coordinates at which to evaluate the texture.
-    diag.warn(loc, "subsurface: a textured \"roughness\" is not supported by the \"pointcloud\" method "
-                   "(its points carry no texture coordinates); 0 used");
+    diag.warn(loc,
+              "subsurface: a textured \"roughness\" is not supported by the \"pointcloud\" method "
+              "(its points carry no texture coordinates); 0 used");
     s.roughness_texture = -1;
   }
   if (s.lambertian_entry && s.method == SubsurfaceParams::Method::RandomWalk &&
       s.boundary != SubsurfaceParams::Boundary::Diffuse)
-    throw SceneError(entry->value_loc, "\"entry\" \"lambertian\" needs \"boundary\" \"diffuse\" (a diffuse "
-                                       "transmission in and out; the other boundaries refract)");
+    throw SceneError(entry->value_loc,
+                     "\"entry\" \"lambertian\" needs \"boundary\" \"diffuse\" (a diffuse "
+                     "transmission in and out; the other boundaries refract)");
   if (s.lambertian_entry && s.method != SubsurfaceParams::Method::RandomWalk) {
     diag.warn(entry->param.loc, fmt::format("subsurface: \"entry\" applies to the random walk only; ignored by \"{}\"",
                                             to_string(s.method)));
     s.lambertian_entry = false;
   }
   if (normal_axis && s.method != SubsurfaceParams::Method::Disk) {
-    diag.warn(normal_axis->param.loc,
-              fmt::format("subsurface: \"normalaxis\" applies to the disk only; ignored by \"{}\"", to_string(s.method)));
+    diag.warn(
+        normal_axis->param.loc,
+        fmt::format("subsurface: \"normalaxis\" applies to the disk only; ignored by \"{}\"", to_string(s.method)));
     s.normal_axis_given = false;
   }
   // The point cloud's profile is the dipole by default, as in Jensen & Buehler 2002.
@@ -310,16 +334,16 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
 
   int ways = (name != nullptr) + (sigma_a || sigma_s) + (reflectance || mfp);
   if (ways > 1)
-    throw SceneError(loc,
-                     "subsurface: give either \"name\", or \"sigma_a\" + \"sigma_s\", or \"reflectance\" + \"mfp\", not several");
+    throw SceneError(
+        loc,
+        "subsurface: give either \"name\", or \"sigma_a\" + \"sigma_s\", or \"reflectance\" + \"mfp\", not several");
   if (name) {
     if (name->param.strings.size() != 1) throw SceneError(name->value_loc, "\"name\" needs one string");
     auto preset = find_medium_preset(name->param.strings[0]);
     if (!preset)
-      throw SceneError(name->value_loc, fmt::format("unknown subsurface preset \"{}\"{} (valid: {})",
-                                                    name->param.strings[0],
-                                                    medium_preset_suggestion(name->param.strings[0]),
-                                                    medium_preset_names()));
+      throw SceneError(name->value_loc,
+                       fmt::format("unknown subsurface preset \"{}\"{} (valid: {})", name->param.strings[0],
+                                   medium_preset_suggestion(name->param.strings[0]), medium_preset_names()));
     // The measured values are per mm, used per scene unit as pbrt does; scale converts.
     s.sigma_a = preset->sigma_a * scale;
     s.sigma_s = preset->sigma_s_prime * scale;

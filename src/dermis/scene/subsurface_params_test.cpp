@@ -4,8 +4,8 @@
 
 #include <cstring>
 
-#include "dermis/render/scene_preparation.h"
 #include "dermis/render/renderer.h"
+#include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
 
 namespace dermis {
@@ -41,8 +41,9 @@ TEST(SubsurfaceParams, ReadsCoefficientsScaleAndDermisOptions) {
 }
 
 TEST(SubsurfaceParams, RoughnessAsPbrtV4) {
-  SubsurfaceParams p = params_of("Material \"subsurface\" \"float roughness\" 0.2 \"float vroughness\" 0.05 "
-                                 "\"bool remaproughness\" false");
+  SubsurfaceParams p = params_of(
+      "Material \"subsurface\" \"float roughness\" 0.2 \"float vroughness\" 0.05 "
+      "\"bool remaproughness\" false");
   EXPECT_FLOAT_EQ(p.uroughness, 0.2f);  // roughness sets both, vroughness overrides one
   EXPECT_FLOAT_EQ(p.vroughness, 0.05f);
   EXPECT_FALSE(p.remap_roughness);
@@ -96,7 +97,8 @@ TEST(SubsurfaceParams, PresetNameUsesJensenTableTimesScale) {
 
 // pbrt-v4 multiplies mfp by scale as it does the coefficients (materials.h, GetBSSRDF).
 TEST(SubsurfaceParams, ScaleMultipliesMfpAsInPbrtV4) {
-  SubsurfaceParams p = params_of("Material \"subsurface\" \"rgb reflectance\" [0.8 0.5 0.2] \"rgb mfp\" [1 2 4] \"float scale\" 2");
+  SubsurfaceParams p =
+      params_of("Material \"subsurface\" \"rgb reflectance\" [0.8 0.5 0.2] \"rgb mfp\" [1 2 4] \"float scale\" 2");
   ASSERT_TRUE(p.reflectance && p.mfp);
   EXPECT_EQ(*p.mfp, RGB(2, 4, 8));
 }
@@ -124,7 +126,8 @@ TEST(SubsurfaceParams, BadInputIsAnErrorAtItsLocation) {
   expect_error("Material \"subsurface\" \"bool backwardguiding\" [true false]", "\"backwardguiding\" must be one bool");
   expect_error("Material \"subsurface\" \"float illuminationerror\" -0.1", "\"illuminationerror\" must be in [0, 1]");
   expect_error("Material \"subsurface\" \"float illuminationerror\" 2", "\"illuminationerror\" must be in [0, 1]");
-  expect_error("Material \"subsurface\" \"string entry\" \"cosine\"", "\"entry\" must be \"refracted\" or \"lambertian\"");
+  expect_error("Material \"subsurface\" \"string entry\" \"cosine\"",
+               "\"entry\" must be \"refracted\" or \"lambertian\"");
   expect_error("Material \"subsurface\" \"string entry\" \"lambertian\" \"string boundary\" \"dielectric\"",
                "\"entry\" \"lambertian\" needs \"boundary\" \"diffuse\"");
 }
@@ -151,11 +154,12 @@ TEST(SubsurfaceParams, NormalAxis) {
   const SubsurfaceParams unset = params_of("Material \"subsurface\" \"string method\" \"disk\"");
   EXPECT_FALSE(unset.normal_axis_given);
   EXPECT_EQ(unset.normal_axis, 0.75f);
-  const SubsurfaceParams given = params_of("Material \"subsurface\" \"string method\" \"disk\" \"float normalaxis\" 0.9");
+  const SubsurfaceParams given =
+      params_of("Material \"subsurface\" \"string method\" \"disk\" \"float normalaxis\" 0.9");
   EXPECT_TRUE(given.normal_axis_given);
   EXPECT_EQ(given.normal_axis, 0.9f);
-  const SceneDesc walk = parse_scene_string(std::string(kHeader) +
-                                            "Material \"subsurface\" \"float normalaxis\" 0.5\nShape \"sphere\"\n");
+  const SceneDesc walk =
+      parse_scene_string(std::string(kHeader) + "Material \"subsurface\" \"float normalaxis\" 0.5\nShape \"sphere\"\n");
   EXPECT_FALSE(walk.materials.at(0).subsurface.normal_axis_given);
   ASSERT_EQ(walk.diagnostics.warnings.size(), 1u);
   EXPECT_NE(walk.diagnostics.warnings[0].find("\"normalaxis\" applies to the disk only; ignored by \"randomwalk\""),
@@ -246,7 +250,7 @@ TEST(SubsurfaceDocs, MaterialsMdDocumentsEveryParameter) {
     // Accepted without an "unused parameter" warning.
     // The documented default as the value (rgb: a valid albedo).
     const std::string t(p.type);
-    const std::string value = t.rfind("rgb", 0) == 0                                   ? "[0.5 0.5 0.5]"
+    const std::string value = t.rfind("rgb", 0) == 0                          ? "[0.5 0.5 0.5]"
                               : t == "float" || t == "integer" || t == "bool" ? std::string(p.default_value)
                                                                               : "";
     if (value.empty()) continue;  // strings need a valid name: read by the tests above
@@ -254,9 +258,9 @@ TEST(SubsurfaceDocs, MaterialsMdDocumentsEveryParameter) {
     // reflectance and mfp come together.
     const std::string partner = std::string(p.name) == "reflectance" ? " \"rgb mfp\" [1 1 1]"
                                 : std::string(p.name) == "mfp"       ? " \"rgb reflectance\" [0.5 0.5 0.5]"
-                                                                      : "";
-    SceneDesc d = parse_scene_string(std::string(kHeader) + "Material \"subsurface\" \"" + type + " " + p.name +
-                                     "\" " + value + partner + "\nShape \"sphere\"\n");
+                                                                     : "";
+    SceneDesc d = parse_scene_string(std::string(kHeader) + "Material \"subsurface\" \"" + type + " " + p.name + "\" " +
+                                     value + partner + "\nShape \"sphere\"\n");
     for (const std::string& w : d.diagnostics.warnings)
       EXPECT_EQ(w.find("unused parameter"), std::string::npos) << p.name << ": " << w;
   }

@@ -1,21 +1,26 @@
 #include "dermis/scene/tokenizer.h"
 
+#include <fmt/format.h>
+
 #include <cctype>
 #include <cmath>
-#include <limits>
 #include <cstdlib>
-
-#include <fmt/format.h>
+#include <limits>
 
 namespace dermis {
 
 const char* token_kind_name(Token::Kind kind) {
   switch (kind) {
-    case Token::Kind::Identifier: return "identifier";
-    case Token::Kind::String: return "string";
-    case Token::Kind::Number: return "number";
-    case Token::Kind::LBracket: return "'['";
-    case Token::Kind::RBracket: return "']'";
+    case Token::Kind::Identifier:
+      return "identifier";
+    case Token::Kind::String:
+      return "string";
+    case Token::Kind::Number:
+      return "number";
+    case Token::Kind::LBracket:
+      return "'['";
+    case Token::Kind::RBracket:
+      return "']'";
   }
   return "token";
 }
@@ -34,8 +39,14 @@ class Lexer {
     std::vector<Token> out;
     while (i_ < s_.size()) {
       char c = s_[i_];
-      if (c == '\n') { advance(); continue; }
-      if (std::isspace(static_cast<unsigned char>(c))) { advance(); continue; }
+      if (c == '\n') {
+        advance();
+        continue;
+      }
+      if (std::isspace(static_cast<unsigned char>(c))) {
+        advance();
+        continue;
+      }
       if (c == '#') {
         while (i_ < s_.size() && s_[i_] != '\n') advance();
         continue;
@@ -105,14 +116,30 @@ class Lexer {
           throw SceneError(at(t), "unterminated string (missing closing '\"' on this line)");
         char e = s_[i_];
         switch (e) {
-          case 'n': out += '\n'; break;
-          case 't': out += '\t'; break;
-          case 'r': out += '\r'; break;
-          case 'b': out += '\b'; break;
-          case 'f': out += '\f'; break;
-          case '\\': out += '\\'; break;
-          case '"': out += '"'; break;
-          case '\'': out += '\''; break;
+          case 'n':
+            out += '\n';
+            break;
+          case 't':
+            out += '\t';
+            break;
+          case 'r':
+            out += '\r';
+            break;
+          case 'b':
+            out += '\b';
+            break;
+          case 'f':
+            out += '\f';
+            break;
+          case '\\':
+            out += '\\';
+            break;
+          case '"':
+            out += '"';
+            break;
+          case '\'':
+            out += '\'';
+            break;
           default:
             throw SceneError(esc, fmt::format("unknown escape sequence '\\{}' in string", e));
         }
@@ -128,10 +155,8 @@ class Lexer {
     const char* begin = t.text.c_str();
     char* end = nullptr;
     double v = std::strtod(begin, &end);
-    if (end == begin || *end != '\0')
-      throw SceneError(at(t), fmt::format("invalid number '{}'", excerpt(t.text)));
-    if (!std::isfinite(v))
-      throw SceneError(at(t), fmt::format("number '{}' is not finite", excerpt(t.text)));
+    if (end == begin || *end != '\0') throw SceneError(at(t), fmt::format("invalid number '{}'", excerpt(t.text)));
+    if (!std::isfinite(v)) throw SceneError(at(t), fmt::format("number '{}' is not finite", excerpt(t.text)));
     // Geometry, transforms and colours are 32-bit floats: a larger number would become
     // infinity there, silently (an object translated by 1e39 vanishes).
     if (std::abs(v) > double(std::numeric_limits<float>::max()))
@@ -149,9 +174,7 @@ class Lexer {
 
 }  // namespace
 
-std::vector<Token> tokenize(const std::string& text, const std::string& file) {
-  return Lexer(text, file).run();
-}
+std::vector<Token> tokenize(const std::string& text, const std::string& file) { return Lexer(text, file).run(); }
 
 }  // namespace dermis
 

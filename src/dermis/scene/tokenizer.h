@@ -13,8 +13,8 @@ namespace dermis {
 struct Token {
   enum class Kind { Identifier, String, Number, LBracket, RBracket };
   Kind kind = Kind::Identifier;
-  std::string text;    // identifier / number as written; string contents with escapes resolved
-  double number = 0;   // Number tokens only
+  std::string text;          // identifier / number as written; string contents with escapes resolved
+  double number = 0;         // Number tokens only
   int line = 0, column = 0;  // 1-based; the column counts bytes
   int source = 0;            // TokenStream: which of its files the token came from
 };

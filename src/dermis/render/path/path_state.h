@@ -36,10 +36,10 @@ enum class VertexOutcome {
 struct PathState {
   PathState(const Ray& ray, int medium, const PathStart& start);
 
-  Ray ray;     // the ray the path traces next
-  int medium;  // the medium it starts in; -1: vacuum
-  RGB L{0};    // the radiance gathered so far
-  RGB beta{1};  // the throughput
+  Ray ray;              // the ray the path traces next
+  int medium;           // the medium it starts in; -1: vacuum
+  RGB L{0};             // the radiance gathered so far
+  RGB beta{1};          // the throughput
   float eta_scale = 1;  // the radiance scale of the refractions taken (pbrt-v4's etaScale), for the roulette
   // The last scattering event: specular (or the camera: emission met next counts in full,
   // no MIS), else the solid-angle pdf of its sampled direction, and the next-event point,
@@ -48,7 +48,7 @@ struct PathState {
   float prev_pdf;
   Vec3 prev_p, prev_n;
   SkyRule prev_sky;
-  int depth;  // scattering events taken
+  int depth;          // scattering events taken
   int crossings = 0;  // index-matched boundaries crossed
   // Every vertex so far a smooth specular one (glass, a mirror) or none: what the camera
   // sees directly, through glass or in a mirror. Its first subsurface entry is the camera's
@@ -57,7 +57,7 @@ struct PathState {
   // The emission at the next surface (or at infinity) was counted already (a smooth
   // reflection's bright emission: add_bright_emission_seen): the path goes on without it.
   bool emission_counted = false;
-  bool first_vertex = true;  // PathStart::first_vertex_roulette not yet applied
+  bool first_vertex = true;   // PathStart::first_vertex_roulette not yet applied
   uint64_t vertex_dimension;  // this vertex's block of sampler dimensions (integrator.h)
   // A textured `volumetric` object: the path takes the medium of the point where it
   // entered and keeps it while inside (volumetric_texture.h); elsewhere sc.media.

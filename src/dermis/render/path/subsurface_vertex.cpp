@@ -161,8 +161,8 @@ void SubsurfaceVertex::go_on_along(const SubsurfaceExit& e, float divisor, uint6
   way_on.prev_p = weighed ? offset_ray_origin(e.hit.p, e.hit.ng, e.hit.ng) : e.hit.p;
   way_on.prev_n = e.hit.ng;
   way_on.prev_sky = SkyRule::Sampled;  // light_through's samples
-  st_.L += beta_k * trace_path(ctx_.sc, Ray{offset_ray_origin(e.hit.p, e.hit.ng, e.direction), e.direction},
-                               st_.medium, ctx_.sampler, ctx_.counters, way_on);
+  st_.L += beta_k * trace_path(ctx_.sc, Ray{offset_ray_origin(e.hit.p, e.hit.ng, e.direction), e.direction}, st_.medium,
+                               ctx_.sampler, ctx_.counters, way_on);
 }
 
 VertexOutcome SubsurfaceVertex::exit() {
@@ -189,8 +189,17 @@ VertexOutcome SubsurfaceVertex::exit() {
   // subsurfacesamples through the exit lobe, or more (a walk with one colour channel per
   // exit, whatever its boundary).
   const int first_entry_exits = first_entry_ ? sm_.first_entry_exits(strategy_, sc.settings.subsurface_samples) : 0;
-  SubsurfaceEntry entry{hit_,        wo_,        tracer,    irradiance, interior_albedo, light_through,
-                        exit_light, refracted_, strategy_, first_entry_exits > 0 ? 0 : -1, exit_light_none_};
+  SubsurfaceEntry entry{hit_,
+                        wo_,
+                        tracer,
+                        irradiance,
+                        interior_albedo,
+                        light_through,
+                        exit_light,
+                        refracted_,
+                        strategy_,
+                        first_entry_exits > 0 ? 0 : -1,
+                        exit_light_none_};
   if (first_entry_ && ctx_.start.subsurface_record && ctx_.start.subsurface_record->material < 0)
     ctx_.start.subsurface_record->material = mat_.subsurface;
   // The probes' exits at the camera's first entry are one stratified sequence of the

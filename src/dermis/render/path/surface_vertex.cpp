@@ -12,8 +12,8 @@
 
 namespace dermis {
 
-VertexOutcome shade_surface(PathContext& ctx, PathState& st, const SurfaceHit& hit, const Shape& s,
-                            const Material& mat, Vec3 wo) {
+VertexOutcome shade_surface(PathContext& ctx, PathState& st, const SurfaceHit& hit, const Shape& s, const Material& mat,
+                            Vec3 wo) {
   const RenderScene& sc = ctx.sc;
   Sampler& sampler = ctx.sampler;
   BSDF bsdf = bsdf_at(mat, sc.textures, hit);

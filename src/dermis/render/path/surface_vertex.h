@@ -12,7 +12,7 @@ namespace dermis {
 
 // At `hit` on shape s with material mat, seen along wo = -st.ray.d (hit.ns already facing
 // it; depth already counted). kContinue: the path goes on along st.ray; kStop: it ended.
-VertexOutcome shade_surface(PathContext& ctx, PathState& st, const SurfaceHit& hit, const Shape& s,
-                            const Material& mat, Vec3 wo);
+VertexOutcome shade_surface(PathContext& ctx, PathState& st, const SurfaceHit& hit, const Shape& s, const Material& mat,
+                            Vec3 wo);
 
 }  // namespace dermis

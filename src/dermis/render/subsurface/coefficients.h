@@ -90,6 +90,8 @@ struct AlbedoAndMfp {
 // sec. 6), alpha' the similarity-reduced single-scattering albedo: the searchlight,
 // index-matched configuration the Christensen-Burley fit was made for.
 AlbedoAndMfp albedo_and_mfp(const MediumAt& medium, float g);
-inline AlbedoAndMfp albedo_and_mfp(const SubsurfaceParams& params) { return albedo_and_mfp(medium_at(params), params.g); }
+inline AlbedoAndMfp albedo_and_mfp(const SubsurfaceParams& params) {
+  return albedo_and_mfp(medium_at(params), params.g);
+}
 
 }  // namespace dermis

@@ -20,8 +20,11 @@ class ObjectTracer {
   // object_of_shape[s] == object_of_shape[entry.shape], hit through entry.instance.
   ObjectTracer(const EmbreeScene& scene, const std::vector<int>& object_of_shape, const SurfaceHit& entry,
                PathCounters& counters)
-      : scene_(scene), object_of_shape_(object_of_shape), object_(object_of_shape[entry.shape]),
-        instance_(entry.instance), counters_(counters) {}
+      : scene_(scene),
+        object_of_shape_(object_of_shape),
+        object_(object_of_shape[entry.shape]),
+        instance_(entry.instance),
+        counters_(counters) {}
 
   bool contains(const SurfaceHit& h) const { return h.instance == instance_ && object_of_shape_[h.shape] == object_; }
   int object() const { return object_; }

@@ -304,8 +304,8 @@ TEST(ProbeMethodOnItsOwn, ManyCrossingsKeepTheMeanWeight) {
       double expected = 0;
       for (int i = 0; i < 6; ++i) {
         const double a = 1.0 - 0.1 * i;
-        expected += 2 * kPiD * a *
-                    sss::integrate([&](double r) { return profile[c].eval(r) * r; }, 1 - a, 1 + a, 1e-10);
+        expected +=
+            2 * kPiD * a * sss::integrate([&](double r) { return profile[c].eval(r) * r; }, 1 - a, 1 + a, 1e-10);
       }
       const double mean = sum[c] / n, se = std::sqrt(std::max(0.0, sum2[c] / n - mean * mean) / n);
       std::printf("channel %d: mean weight %.5f vs %.5f (se %.5f)\n", c, mean, expected, se);

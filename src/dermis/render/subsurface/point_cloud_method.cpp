@@ -9,9 +9,10 @@
 
 namespace dermis {
 
-PointCloudMethod::PointCloudMethod(const SubsurfaceParams& params, float sw_norm,
-                                   const std::vector<Texture>* textures)
-    : params_(params), sw_norm_(sw_norm), textures_(textures),
+PointCloudMethod::PointCloudMethod(const SubsurfaceParams& params, float sw_norm, const std::vector<Texture>* textures)
+    : params_(params),
+      sw_norm_(sw_norm),
+      textures_(textures),
       table_(profile_table(params)),
       profile_(std::make_unique<sss::ProfileRGB>(make_profile(params, medium_at(params), table_))) {
   const RGB l = albedo_and_mfp(params).mfp;
@@ -30,9 +31,9 @@ bool PointCloudMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sample
   const RGB Ex = params_.local_disk ? entry.irradiance(entry.hit.p, entry.hit.ng, params_.eta, sampler) : RGB(0);
   out.kind = SubsurfaceExit::Kind::Emitted;
   const RGB M = textures_ && params_.textured()
-                    ? c->radiant_exitance(entry.hit.p, Ex,
-                                          make_profile(params_, medium_at(params_, textures_, texture_context(entry.hit)),
-                                                       table_))
+                    ? c->radiant_exitance(
+                          entry.hit.p, Ex,
+                          make_profile(params_, medium_at(params_, textures_, texture_context(entry.hit)), table_))
                     : c->radiant_exitance(entry.hit.p, Ex);
   out.radiance = M / (sw_norm_ * kPi);  // L = Sw M (METHODS.md sec. 0)
   return true;

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "dermis/materials/texture.h"
-#include "dermis/scene/subsurface_params.h"
 #include "dermis/render/subsurface/subsurface_exit.h"
+#include "dermis/scene/subsurface_params.h"
 #include "dermis/sss/pointcloud/point_cloud_diffusion.h"
 #include "dermis/sss/profiles/profile.h"
 #include "dermis/sss/profiles/tabulated.h"

@@ -128,7 +128,10 @@ RGB probe_channel_weights(const sss::ProfileRGB& profile) {
 }
 
 ProbeMethod::ProbeMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures)
-    : method_(params.method), params_(params), textures_(textures), table_(profile_table(params)),
+    : method_(params.method),
+      params_(params),
+      textures_(textures),
+      table_(profile_table(params)),
       profile_(std::make_unique<sss::ProfileRGB>(make_profile(params, medium_at(params), table_))) {
   if (method_ == Method::Disk || method_ == Method::DiskSingleAxis) {
     for (int v = 0; v < strategy_count(); ++v)
@@ -143,9 +146,10 @@ ProbeMethod::ProbeMethod(const SubsurfaceParams& params, const std::vector<Textu
 
 sss::ProbeAxisProbabilities ProbeMethod::axes(int strategy) const {
   if (method_ != Method::Disk) return sss::ProbeAxisProbabilities::single_axis();
-  const double normal = params_.normal_axis_given
-                            ? double(params_.normal_axis)
-                            : kDiskNormalAxisShares[std::size_t(strategy >= 0 && strategy < strategy_count() ? strategy : 0)];
+  const double normal =
+      params_.normal_axis_given
+          ? double(params_.normal_axis)
+          : kDiskNormalAxisShares[std::size_t(strategy >= 0 && strategy < strategy_count() ? strategy : 0)];
   return {normal, (1 - normal) / 2, (1 - normal) / 2};
 }
 
@@ -153,8 +157,9 @@ double ProbeMethod::max_radius() const { return !disks_.empty() ? disks_[0]->max
 
 double ProbeMethod::max_radius(const sss::ProfileRGB& entry_profile) const {
   if (!params_.textured()) return max_radius();
-  return !disks_.empty() ? sss::DiskProbeSampler(entry_profile, probe_channel_weights(entry_profile), axes(0)).max_radius()
-                         : lines_at(entry_profile).max_radius();
+  return !disks_.empty()
+             ? sss::DiskProbeSampler(entry_profile, probe_channel_weights(entry_profile), axes(0)).max_radius()
+             : lines_at(entry_profile).max_radius();
 }
 
 sss::SphereLineSampler ProbeMethod::lines_at(const sss::ProfileRGB& profile) const {
@@ -189,8 +194,9 @@ bool ProbeMethod::sample_disk(const sss::ProfileRGB& profile, const sss::DiskPro
     const Vec2d u = sampler.get2d_double();
     s = disk.sample(frame, u.x, u.y);
   }
-  return pick_probe_hit(profile, entry, s.segment, sampler,
-                        [&](const SurfaceHit& h) { return disk.pdf_area(frame, to_d(h.p), to_d(h.ng)); }, out);
+  return pick_probe_hit(
+      profile, entry, s.segment, sampler,
+      [&](const SurfaceHit& h) { return disk.pdf_area(frame, to_d(h.p), to_d(h.ng)); }, out);
 }
 
 bool ProbeMethod::sample_lines(const sss::ProfileRGB& profile, const sss::SphereLineSampler& lines,
@@ -200,8 +206,8 @@ bool ProbeMethod::sample_lines(const sss::ProfileRGB& profile, const sss::Sphere
     const double u = sampler.uniform_double();  // the channel and the radius (as the disk's)
     const Vec2 u_first = sampler.get2d(), u_second = sampler.get2d();
     sss::SphereLineSample s = lines.sample(p, u, {u_first.x, u_first.y}, {u_second.x, u_second.y});
-    return pick_probe_hit(profile, entry, s.segment, sampler,
-                          [&](const SurfaceHit& h) { return lines.pdf_area(p, to_d(h.p)); }, out);
+    return pick_probe_hit(
+        profile, entry, s.segment, sampler, [&](const SurfaceHit& h) { return lines.pdf_area(p, to_d(h.p)); }, out);
   }
   // The Cycles page's scheme: retry up to 8 lines until one hits, else stay at P.
   const std::vector<SurfaceHit>* hits = nullptr;
@@ -214,8 +220,8 @@ bool ProbeMethod::sample_lines(const sss::ProfileRGB& profile, const sss::Sphere
   if (r.hits == 0) {
     out.hit = entry.hit;
     for (int c = 0; c < 3; ++c)
-      out.weight[c] = float(params_.textured() ? energy_within(profile[c], lines.max_radius())
-                                               : lines.fallback_weight(c));
+      out.weight[c] =
+          float(params_.textured() ? energy_within(profile[c], lines.max_radius()) : lines.fallback_weight(c));
     return true;
   }
   const SurfaceHit& h = (*hits)[r.chosen];
@@ -233,7 +239,8 @@ bool ProbeMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Su
     return !disks_.empty() ? sample_disk(*profile_, *disks_[std::size_t(strategy)], entry, sampler, out)
                            : sample_lines(*profile_, *lines_, entry, sampler, out);
   // The entry point's own parameters: its profile and probe sampler on the stack.
-  const sss::ProfileRGB profile = make_profile(params_, medium_at(params_, textures_, texture_context(entry.hit)), table_);
+  const sss::ProfileRGB profile =
+      make_profile(params_, medium_at(params_, textures_, texture_context(entry.hit)), table_);
   if (!disks_.empty()) {
     const sss::DiskProbeSampler disk(profile, probe_channel_weights(profile), axes(strategy));
     return sample_disk(profile, disk, entry, sampler, out);

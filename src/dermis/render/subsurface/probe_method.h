@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "dermis/materials/texture.h"
-#include "dermis/scene/subsurface_params.h"
 #include "dermis/render/subsurface/subsurface_exit.h"
+#include "dermis/scene/subsurface_params.h"
 #include "dermis/sss/probe/disk_probe.h"
 #include "dermis/sss/probe/sphere_lines.h"
 #include "dermis/sss/profiles/profile.h"
@@ -83,7 +83,7 @@ class ProbeMethod {
   std::unique_ptr<sss::ProfileRGB> profile_;        // the constant parameters' profile
   // disk (one per strategy), disk-single-axis (one): empty for the sphere lines.
   std::vector<std::unique_ptr<sss::DiskProbeSampler>> disks_;
-  std::unique_ptr<sss::SphereLineTablesRGB> line_tables_;      // sphere-lines(-retry)
+  std::unique_ptr<sss::SphereLineTablesRGB> line_tables_;  // sphere-lines(-retry)
   std::unique_ptr<sss::SphereLineSampler> lines_;
 };
 

@@ -1,19 +1,18 @@
 #include "dermis/render/subsurface/profile_from_params.h"
 
-#include <cmath>
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <utility>
 
-#include <fmt/format.h>
-
 #include "dermis/core/cache_dir.h"
 #include "dermis/source_hashes.h"  // generated (cmake/source_hashes.cmake)
 #include "dermis/sss/profiles/photon_beam_diffusion.h"
 #include "dermis/sss/profiles/profile_table_io.h"
-
 
 namespace dermis {
 
@@ -65,8 +64,8 @@ sss::ProfileRGB photon_beam_profile(const MediumAt& at, const std::shared_ptr<co
 std::string photon_beam_table_key(float g, float eta) {
   const sss::ProfileTableOptions options = sss::photon_beam_table_options();
   return fmt::format("photonbeam-v{}-{}-g{:.9g}-eta{:.9g}-a{}-r{}-x{:.9g}-{:.9g}.table", sss::kPhotonBeamTableVersion,
-                     source_hash::kPhotonBeamTable, g, eta, options.albedos.size(), options.radial_nodes,
-                     options.x_min, options.x_max);
+                     source_hash::kPhotonBeamTable, g, eta, options.albedos.size(), options.radial_nodes, options.x_min,
+                     options.x_max);
 }
 
 std::shared_ptr<const sss::ProfileTable> profile_table(const SubsurfaceParams& p) {

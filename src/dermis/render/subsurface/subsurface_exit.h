@@ -22,15 +22,15 @@ struct SubsurfaceExit {
     Emitted,      // the method returns the radiance leaving the entry point itself (point cloud)
   };
   Kind kind = Kind::ThroughLobe;
-  SurfaceHit hit;    // ThroughLobe, Along: the exit point; hit.ng points out of the object
-  RGB weight{1};     // ThroughLobe, Along: multiplies the path throughput (estimate / pdf)
-  Vec3 direction;    // Along
+  SurfaceHit hit;  // ThroughLobe, Along: the exit point; hit.ng points out of the object
+  RGB weight{1};   // ThroughLobe, Along: multiplies the path throughput (estimate / pdf)
+  Vec3 direction;  // Along
   // Along: the solid-angle density with which `direction` was sampled through a rough
   // boundary whose lights the method sampled (SubsurfaceEntry::light_through): light
   // found along it is weighed against those samples. 0: a delta direction (smooth or
   // matched boundary), whose light counts in full.
   float direction_pdf = 0;
-  RGB radiance{0};   // Emitted: radiance toward the viewer, per unit transmitted throughput
+  RGB radiance{0};  // Emitted: radiance toward the viewer, per unit transmitted throughput
   // Direct light the method gathered on its way (light sampled through a rough boundary
   // wherever the path met it), per unit transmitted throughput: counts whether or not
   // the method then found an exit.

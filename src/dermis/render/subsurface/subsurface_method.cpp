@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "dermis/materials/bsdf.h"
 #include "dermis/core/microfacet.h"
+#include "dermis/materials/bsdf.h"
 
 namespace dermis {
 
@@ -46,8 +46,9 @@ SubsurfaceMaterial make_subsurface_material(const SubsurfaceParams& params, cons
   if (a.rough()) exit_table = make_rough_exit_table(params.eta, a.x, a.y);
   if (roughness.textured()) exit_tables = std::make_shared<const RoughExitTables>(params.eta);
   const float sw_norm = exit_table ? exit_table->norm : subsurface_exit_normalization(params.eta);
-  return SubsurfaceMaterial{params,    entry_eta,  params.eta, sw_norm, roughness,
-                            make_method(params, textures, sw_norm, object_chord), exit_table, exit_tables};
+  return SubsurfaceMaterial{params,     entry_eta,  params.eta,
+                            sw_norm,    roughness,  make_method(params, textures, sw_norm, object_chord),
+                            exit_table, exit_tables};
 }
 
 }  // namespace dermis

@@ -20,12 +20,11 @@
 #include "dermis/lights/light_selection.h"
 #include "dermis/materials/bsdf.h"
 #include "dermis/materials/rough_exit_lobe.h"
-
-#include "dermis/scene/subsurface_params.h"
 #include "dermis/render/subsurface/boundary_roughness.h"
 #include "dermis/render/subsurface/point_cloud_method.h"
 #include "dermis/render/subsurface/probe_method.h"
 #include "dermis/render/subsurface/walk_method.h"
+#include "dermis/scene/subsurface_params.h"
 
 namespace dermis {
 
@@ -33,9 +32,9 @@ using SubsurfaceMethod = std::variant<ProbeMethod, WalkMethod, PointCloudMethod>
 
 struct SubsurfaceMaterial {
   SubsurfaceParams params;
-  float entry_eta = 1.33f;  // index the entry's Fresnel reflection sees (1 for a matched walk)
-  float exit_eta = 1.33f;   // index of the exit lobe Sw
-  float sw_norm = 1;        // c of the exit lobe Sw (bsdf.h); a textured roughness: the smooth lobe's
+  float entry_eta = 1.33f;      // index the entry's Fresnel reflection sees (1 for a matched walk)
+  float exit_eta = 1.33f;       // index of the exit lobe Sw
+  float sw_norm = 1;            // c of the exit lobe Sw (bsdf.h); a textured roughness: the smooth lobe's
   BoundaryRoughness roughness;  // the boundary's alphas, per surface point
   SubsurfaceMethod method;
   // A rough boundary's exit lobe: its transmittance table, whose c is sw_norm

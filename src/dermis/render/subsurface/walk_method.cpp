@@ -5,11 +5,11 @@
 #include <optional>
 
 #include "dermis/core/frame.h"
+#include "dermis/core/microfacet.h"
 #include "dermis/core/warp.h"
 #include "dermis/geometry/shading_normal.h"
 #include "dermis/materials/bsdf.h"
 #include "dermis/materials/fresnel.h"
-#include "dermis/core/microfacet.h"
 
 namespace dermis {
 
@@ -17,9 +17,12 @@ namespace {
 
 sss::WalkSampling walk_sampling(SubsurfaceParams::WalkSampling s) {
   switch (s) {
-    case SubsurfaceParams::WalkSampling::Classical: return sss::WalkSampling::Classical;
-    case SubsurfaceParams::WalkSampling::Dwivedi: return sss::WalkSampling::Dwivedi;
-    case SubsurfaceParams::WalkSampling::Mis: return sss::WalkSampling::Mis;
+    case SubsurfaceParams::WalkSampling::Classical:
+      return sss::WalkSampling::Classical;
+    case SubsurfaceParams::WalkSampling::Dwivedi:
+      return sss::WalkSampling::Dwivedi;
+    case SubsurfaceParams::WalkSampling::Mis:
+      return sss::WalkSampling::Mis;
   }
   return sss::WalkSampling::Mis;
 }
@@ -81,12 +84,17 @@ std::array<double, 3> short_walk_guided_shares(const sss::MixtureWalkStep<3>& st
 }
 
 WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture>* textures, double object_chord)
-    : params_(params), textures_(textures), inversions_(params), boundary_(params.boundary), eta_(params.eta),
+    : params_(params),
+      textures_(textures),
+      inversions_(params),
+      boundary_(params.boundary),
+      eta_(params.eta),
       roughness_(params, params.boundary == SubsurfaceParams::Boundary::Matched, textures),
       lambertian_entry_(params.lambertian_entry && params.boundary == SubsurfaceParams::Boundary::Diffuse),
-      object_chord_(object_chord), id_(g_next_method_id++) {
-  medium_per_entry_ = textures_ && (params.textured() || (roughness_.textured() && !inversions_.single() &&
-                                                          !inversions_.empty()));
+      object_chord_(object_chord),
+      id_(g_next_method_id++) {
+  medium_per_entry_ =
+      textures_ && (params.textured() || (roughness_.textured() && !inversions_.single() && !inversions_.empty()));
   medium_ = walk_medium(coefficients_from(medium_at(params), inversions_, roughness_.constant().x), params.g);
   for (std::size_t i = 0; i < kWalkStrategies.size(); ++i) {
     sss::WalkSettings& s = settings_[i];
@@ -98,7 +106,8 @@ WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture
     short_walk_rule_[i] = !params.guided_share_pinned() && s.sampling == sss::WalkSampling::Mis &&
                           kWalkStrategies[i].p_guided == kWalkStrategies[0].p_guided;
     steps_.push_back(strategy_step(medium_, s, short_walk_rule_[i], object_chord_));
-    channel_per_walk_[i] = params.channel_per_walk_given ? params.channel_per_walk : kWalkStrategies[i].channel_per_walk;
+    channel_per_walk_[i] =
+        params.channel_per_walk_given ? params.channel_per_walk : kWalkStrategies[i].channel_per_walk;
   }
   // Every channel's importance length against the object's chord (short_walk_guided_shares'
   // test; infinite for an unguided step: its walks are not pulled back toward the entry).
@@ -112,8 +121,8 @@ WalkMethod::WalkMethod(const SubsurfaceParams& params, const std::vector<Texture
   bool guided = false;
   for (std::size_t i = 0; i < kWalkStrategies.size(); ++i)
     for (int c = 0; c < 3; ++c)
-      guided = guided || (kWalkStrategies[i].backward_guiding && settings_[i].sampling != sss::WalkSampling::Classical &&
-                          steps_[i].p_guided(c) > 0);
+      guided = guided || (kWalkStrategies[i].backward_guiding &&
+                          settings_[i].sampling != sss::WalkSampling::Classical && steps_[i].p_guided(c) > 0);
   backward_strategies_differ_ = !params.backward_guiding_given && guided && far_side_in_reach_;
 }
 
@@ -122,8 +131,7 @@ bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Sub
   // One colour channel per walk (WalkStrategy::channel_per_walk): walk k carries channel
   // k mod 3 alone, and as the integrator averages the entry's 3m exits, each channel's m
   // walks count kChannelWalks times: their mean is the channel's estimate.
-  const int channel =
-      channel_per_walk_[strategy] && entry.exit_index >= 0 ? entry.exit_index % kChannelWalks : -1;
+  const int channel = channel_per_walk_[strategy] && entry.exit_index >= 0 ? entry.exit_index % kChannelWalks : -1;
   RGB initial(1);
   if (channel >= 0) {
     initial = RGB(0);

@@ -15,10 +15,10 @@
 #include <memory>
 #include <vector>
 
-#include "dermis/scene/subsurface_params.h"
 #include "dermis/render/subsurface/boundary_roughness.h"
 #include "dermis/render/subsurface/coefficients.h"
 #include "dermis/render/subsurface/subsurface_exit.h"
+#include "dermis/scene/subsurface_params.h"
 #include "dermis/sss/walk/albedo_inversion.h"
 #include "dermis/sss/walk/random_walk.h"
 
@@ -84,16 +84,16 @@ struct WalkStrategy {
   bool backward_guiding = false;
 };
 inline constexpr std::array<WalkStrategy, 11> kWalkStrategies{{{0.5f, 0.5f},
-                                                                {0.0f, 0.5f},
-                                                                {0.5f, 0.0f},
-                                                                {0.0f, 0.0f},
-                                                                {0.5f, 0.0f, true},
-                                                                {0.0f, 0.0f, true},
-                                                                {0.5f, 0.0f, true, false},
-                                                                {0.0f, 0.0f, true, false},
-                                                                {0.8f, 0.5f},
-                                                                {0.5f, 0.0f, true, true, true},
-                                                                {0.5f, 0.0f, true, false, true}}};
+                                                               {0.0f, 0.5f},
+                                                               {0.5f, 0.0f},
+                                                               {0.0f, 0.0f},
+                                                               {0.5f, 0.0f, true},
+                                                               {0.0f, 0.0f, true},
+                                                               {0.5f, 0.0f, true, false},
+                                                               {0.0f, 0.0f, true, false},
+                                                               {0.8f, 0.5f},
+                                                               {0.5f, 0.0f, true, true, true},
+                                                               {0.5f, 0.0f, true, false, true}}};
 // Walks per channel-per-walk entry: one per colour channel.
 inline constexpr int kChannelWalks = 3;
 
@@ -135,8 +135,7 @@ class WalkMethod {
   // Whether the strategy's guided flights also follow the object's far side
   // (WalkStrategy::backward_guiding, or the material's `backwardguiding`).
   bool backward_guiding(int strategy) const {
-    return strategy >= 0 && strategy < int(kWalkStrategies.size()) &&
-           settings_[std::size_t(strategy)].backward_guiding;
+    return strategy >= 0 && strategy < int(kWalkStrategies.size()) && settings_[std::size_t(strategy)].backward_guiding;
   }
   // Whether a walk may reach the object's far side: not where every channel's importance
   // length is below kShortWalkChordFraction of the object's mean chord (the walks are
@@ -159,7 +158,8 @@ class WalkMethod {
   SubsurfaceParams::Boundary boundary_;
   float eta_;
   BoundaryRoughness roughness_;
-  bool lambertian_entry_;  // SubsurfaceParams::lambertian_entry  // the boundary's alphas per point (the `dielectric` boundary's exits)
+  bool lambertian_entry_;  // SubsurfaceParams::lambertian_entry  // the boundary's alphas per point (the `dielectric`
+                           // boundary's exits)
   // The medium differs from one entry point to another: textured parameters, or a
   // textured roughness that the albedo inversion depends on.
   bool medium_per_entry_ = false;

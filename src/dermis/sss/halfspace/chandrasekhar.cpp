@@ -26,7 +26,7 @@ double kernel_sum(double mu, const std::vector<double>& nodes, const std::vector
 // The equation's right-hand side solved for H(mu) (the Nystrom formula).
 double h_from_sum(double mu, double alpha, double sum, bool original_form) {
   if (original_form) return 1.0 / (1.0 - 0.5 * alpha * mu * sum);  // Chandrasekhar 1950, ch. V (H-equation)
-  return 1.0 / (std::sqrt(1.0 - alpha) + 0.5 * alpha * sum);        // Chandrasekhar 1950, ch. V (reciprocal form)
+  return 1.0 / (std::sqrt(1.0 - alpha) + 0.5 * alpha * sum);       // Chandrasekhar 1950, ch. V (reciprocal form)
 }
 
 // Solves the dense system a x = b in place (Gaussian elimination, partial pivoting).
@@ -59,8 +59,7 @@ void solve_linear(std::vector<double>& a, std::vector<double>& b, size_t n) {
 HFunction::HFunction(double alpha, int nodes, HSolver solver, double tolerance, int max_iterations)
     : alpha_(alpha), solver_(solver) {
   if (!(alpha >= 0.0 && alpha <= 1.0))
-    throw std::invalid_argument("HFunction: single-scattering albedo must be in [0, 1], got " +
-                                std::to_string(alpha));
+    throw std::invalid_argument("HFunction: single-scattering albedo must be in [0, 1], got " + std::to_string(alpha));
   if (nodes < 2) throw std::invalid_argument("HFunction: need at least 2 quadrature nodes");
   QuadratureRule rule = gauss_legendre(nodes, 0.0, 1.0);
   nodes_ = std::move(rule.nodes);

@@ -30,8 +30,8 @@ enum class HSolver {
 class HFunction {
  public:
   // Throws std::invalid_argument for alpha outside [0, 1] or nodes < 2.
-  explicit HFunction(double alpha, int nodes = 128, HSolver solver = HSolver::Newton,
-                     double tolerance = 1e-14, int max_iterations = 100000);
+  explicit HFunction(double alpha, int nodes = 128, HSolver solver = HSolver::Newton, double tolerance = 1e-14,
+                     int max_iterations = 100000);
 
   double operator()(double mu) const;  // mu in [0, 1]
   double alpha() const { return alpha_; }

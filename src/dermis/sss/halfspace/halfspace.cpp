@@ -82,7 +82,7 @@ bool is_rough(const HalfspaceConfig& c) {
 // One scattering by the rough boundary: the renderer's sampling of the rough dielectric
 // (core/microfacet.h), in the boundary's frame (normal +z, x along alpha_x).
 struct RoughScattering {
-  Vec3d direction;  // propagation direction after it
+  Vec3d direction;    // propagation direction after it
   double weight = 0;  // power weight G(wo, wi) / G1(wo) (the radiance scaling undone)
   bool transmitted = false;
   bool lost = true;  // reflected below the surface, or refracted back: the sample is lost
@@ -296,9 +296,15 @@ HalfspaceResult simulate_halfspace(const HalfspaceConfig& c) {
   } else {
     if (c.eta != 1.0) {
       switch (c.incidence) {
-        case Incidence::Normal: r.specular = fresnel_dielectric(1.0, c.eta); break;
-        case Incidence::Angle: r.specular = fresnel_dielectric(std::cos(c.incidence_angle), c.eta); break;
-        case Incidence::Diffuse: r.specular = fresnel_diffuse_reflectance(c.eta); break;
+        case Incidence::Normal:
+          r.specular = fresnel_dielectric(1.0, c.eta);
+          break;
+        case Incidence::Angle:
+          r.specular = fresnel_dielectric(std::cos(c.incidence_angle), c.eta);
+          break;
+        case Incidence::Diffuse:
+          r.specular = fresnel_diffuse_reflectance(c.eta);
+          break;
       }
     }
     r.entered = 1 - r.specular;
@@ -342,8 +348,8 @@ void parse_incidence(const std::string& text, Incidence& incidence, double& angl
       return;
     }
   }
-  throw std::invalid_argument("incidence must be 'normal', 'diffuse' or 'angle:DEG' with DEG in [0, 90), got '" +
-                              text + "'");
+  throw std::invalid_argument("incidence must be 'normal', 'diffuse' or 'angle:DEG' with DEG in [0, 90), got '" + text +
+                              "'");
 }
 
 }  // namespace dermis::sss

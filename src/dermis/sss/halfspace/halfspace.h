@@ -62,7 +62,7 @@ struct HalfspaceConfig {
 // sigma / sqrt(N) from the per-path weights. Energy balance (in expectation):
 // specular + albedo + absorbed + truncated_weight + lost = 1.
 struct HalfspaceResult {
-  double albedo = 0, albedo_stderr = 0;          // left through the boundary after entering
+  double albedo = 0, albedo_stderr = 0;  // left through the boundary after entering
   // Reflected at entry: smooth, the exact Fresnel reflectance (0 if eta = 1, stderr 0);
   // rough, estimated per path.
   double specular = 0, specular_stderr = 0;
@@ -71,10 +71,10 @@ struct HalfspaceResult {
   // Rough boundary only: lost by the single-scattering microfacet model (a sample
   // reflected below the surface), at entry or at an exit.
   double lost = 0, lost_stderr = 0;
-  double absorbed = 0, absorbed_stderr = 0;      // absorbed in the medium
+  double absorbed = 0, absorbed_stderr = 0;                  // absorbed in the medium
   double truncated_weight = 0, truncated_weight_stderr = 0;  // stopped at max_collisions
-  uint64_t truncated = 0;                        // number of truncated paths
-  double beyond_rmax = 0, beyond_rmax_stderr = 0;  // part of albedo that left at r >= r_max
+  uint64_t truncated = 0;                                    // number of truncated paths
+  double beyond_rmax = 0, beyond_rmax_stderr = 0;            // part of albedo that left at r >= r_max
   // R(r): exit weight per unit area, weight / (N * annulus area), per bin.
   std::vector<double> r_lo, r_hi, R, R_stderr;
   uint64_t paths = 0;

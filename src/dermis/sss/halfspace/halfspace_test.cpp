@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "dermis/sss/halfspace/chandrasekhar.h"
 #include "dermis/core/gauss_legendre.h"
+#include "dermis/sss/halfspace/chandrasekhar.h"
 
 namespace dermis::sss {
 namespace {
@@ -82,10 +82,11 @@ TEST(Halfspace, ConservativeMediumLosesNothing) {
   HalfspaceResult em = simulate_halfspace(c);
   EXPECT_NEAR(em.specular + em.albedo + em.truncated_weight, 1.0, 1e-12);
   EXPECT_LT(em.mean_collisions, simulate_halfspace([&] {
-              HalfspaceConfig d = c;
-              d.exit_matched = false;
-              return d;
-            }()).mean_collisions);
+                                  HalfspaceConfig d = c;
+                                  d.exit_matched = false;
+                                  return d;
+                                }())
+                                    .mean_collisions);
 }
 
 // Implicit capture plus Russian roulette conserves energy in expectation, with

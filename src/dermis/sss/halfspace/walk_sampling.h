@@ -97,7 +97,8 @@ class GuidedSampling {
 
   Flight finish(const FlightProposal& p, double depth) const {
     const double boundary = distance_to_boundary(p.direction, depth);
-    if (p.distance >= boundary) return {p.direction, boundary, step_.passage_weights(p, axis_, boundary, kOneChannel)[0], true};
+    if (p.distance >= boundary)
+      return {p.direction, boundary, step_.passage_weights(p, axis_, boundary, kOneChannel)[0], true};
     return {p.direction, p.distance, step_.collision_weights(p, axis_, kOneChannel)[0], false};
   }
 

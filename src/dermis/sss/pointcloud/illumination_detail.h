@@ -14,7 +14,7 @@
 namespace dermis::sss::pointcloud {
 
 struct IlluminationDetail {
-  double mean_irradiance = 0;  // mean E over the points (the scale of the error)
+  double mean_irradiance = 0;    // mean E over the points (the scale of the error)
   double mean_squared_miss = 0;  // mean (E_p - Ê_p)^2, noise included
   double noise = 0;              // mean Var(E_p - Ê_p) of the estimates (their own noise)
   // (mean_squared_miss - noise) / mean_irradiance^2: unbiased, may be negative by noise.

@@ -90,13 +90,13 @@ TEST(IlluminationDetail, RefusesMismatchedOrTooFewValues) {
 }
 
 TEST(IlluminationDetail, NextCountGrowsByTheSquaredRatioWithinItsBounds) {
-  EXPECT_EQ(next_point_count(1000, 0.019, 0.02, 250000), 1000u);   // resolved
-  EXPECT_EQ(next_point_count(1000, 0.02, 0.02, 250000), 1000u);    // exactly at the tolerance
-  EXPECT_EQ(next_point_count(1000, 0.06, 0.02, 250000), 9000u);    // (0.06 / 0.02)^2 = 9
-  EXPECT_EQ(next_point_count(1000, 0.021, 0.02, 250000), 2000u);   // at least 2x a round
-  EXPECT_EQ(next_point_count(1000, 1.0, 0.02, 250000), 16000u);    // at most 16x a round
-  EXPECT_EQ(next_point_count(100000, 1.0, 0.02, 250000), 250000u); // never beyond the cap
-  EXPECT_EQ(next_point_count(250000, 1.0, 0.02, 250000), 250000u); // at the cap: stays
+  EXPECT_EQ(next_point_count(1000, 0.019, 0.02, 250000), 1000u);    // resolved
+  EXPECT_EQ(next_point_count(1000, 0.02, 0.02, 250000), 1000u);     // exactly at the tolerance
+  EXPECT_EQ(next_point_count(1000, 0.06, 0.02, 250000), 9000u);     // (0.06 / 0.02)^2 = 9
+  EXPECT_EQ(next_point_count(1000, 0.021, 0.02, 250000), 2000u);    // at least 2x a round
+  EXPECT_EQ(next_point_count(1000, 1.0, 0.02, 250000), 16000u);     // at most 16x a round
+  EXPECT_EQ(next_point_count(100000, 1.0, 0.02, 250000), 250000u);  // never beyond the cap
+  EXPECT_EQ(next_point_count(250000, 1.0, 0.02, 250000), 250000u);  // at the cap: stays
   EXPECT_EQ(pilot_point_count(250000), 3906u);
   EXPECT_EQ(pilot_point_count(20000), 1024u);
   EXPECT_EQ(pilot_point_count(600), 600u);

@@ -77,9 +77,12 @@ void IrradianceOctree::build(Vec3 cube_lo, float cube_size) {
     }
     n.area = float(area);
     n.power = RGB(float(power[0]), float(power[1]), float(power[2]));
-    if (w_lum > 0) n.centroid = Vec3(c_lum / w_lum);
-    else if (w_area > 0) n.centroid = Vec3(c_area / w_area);
-    else n.centroid = (n.lo + n.hi) * 0.5f;
+    if (w_lum > 0)
+      n.centroid = Vec3(c_lum / w_lum);
+    else if (w_area > 0)
+      n.centroid = Vec3(c_area / w_area);
+    else
+      n.centroid = (n.lo + n.hi) * 0.5f;
     const uint32_t count = t.end - t.begin;
     const bool degenerate = n.lo == n.hi;
     if (count <= uint32_t(options_.max_leaf_points) || t.depth >= options_.max_depth || degenerate) {
@@ -93,7 +96,9 @@ void IrradianceOctree::build(Vec3 cube_lo, float cube_size) {
     // Partition into the octants of the cube (a counting sort, stable).
     const float half = t.cube_size * 0.5f;
     const Vec3 mid = t.cube_lo + Vec3(half, half, half);
-    auto octant = [&](const Vec3& p) { return (p.x >= mid.x ? 1 : 0) | (p.y >= mid.y ? 2 : 0) | (p.z >= mid.z ? 4 : 0); };
+    auto octant = [&](const Vec3& p) {
+      return (p.x >= mid.x ? 1 : 0) | (p.y >= mid.y ? 2 : 0) | (p.z >= mid.z ? 4 : 0);
+    };
     std::array<uint32_t, 9> start{};
     for (uint32_t i = t.begin; i < t.end; ++i) ++start[octant(points_[i].position) + 1];
     for (int o = 0; o < 8; ++o) start[o + 1] += start[o];

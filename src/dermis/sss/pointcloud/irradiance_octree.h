@@ -53,12 +53,12 @@ class IrradianceOctree {
     RGB power;  // E_p A_p
   };
   struct Node {
-    Vec3 lo, hi;        // tight bounds of the node's points
-    Vec3 centroid;      // weighted by luminance(E_p) A_p (by A_p where that is zero)
-    float area;         // sum of A_p
-    RGB power;          // sum of E_p A_p = mean irradiance x area
-    uint32_t first;     // leaf: first point; inner: first child
-    uint16_t count;     // leaf: point count; inner: child count
+    Vec3 lo, hi;     // tight bounds of the node's points
+    Vec3 centroid;   // weighted by luminance(E_p) A_p (by A_p where that is zero)
+    float area;      // sum of A_p
+    RGB power;       // sum of E_p A_p = mean irradiance x area
+    uint32_t first;  // leaf: first point; inner: first child
+    uint16_t count;  // leaf: point count; inner: child count
     uint16_t is_leaf;
   };
   void build(Vec3 cube_lo, float cube_size);

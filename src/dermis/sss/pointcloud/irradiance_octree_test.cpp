@@ -52,7 +52,8 @@ TEST(IrradianceOctree, ConvergesToBruteForceAsEpsilonShrinks) {
     double previous = 1e30;
     for (double e : eps) {
       double worst = 0;
-      for (const Vec3& x : xs) worst = std::max(worst, max_relative_error(tree.query(x, profile, e), tree.brute_force(x, profile)));
+      for (const Vec3& x : xs)
+        worst = std::max(worst, max_relative_error(tree.query(x, profile, e), tree.brute_force(x, profile)));
       std::printf("%s eps %-6g max relative error %.2e\n", flat ? "plane" : "box  ", e, worst);
       EXPECT_LE(worst, previous * 1.05 + 1e-6) << "eps " << e;
       previous = worst;

@@ -31,8 +31,8 @@ class LocalDiskTable {
  private:
   RadialProfile profile_;
   double alpha_lo_ = 0, alpha_hi_ = 0, log_lo_ = 0, inv_step_ = 0;
-  bool zero_ = false;               // a black channel: every value is 0
-  std::vector<double> log_value_;   // ln(local albedo) at alpha_lo * exp(i / inv_step)
+  bool zero_ = false;              // a black channel: every value is 0
+  std::vector<double> log_value_;  // ln(local albedo) at alpha_lo * exp(i / inv_step)
 };
 
 // The local albedo 2 pi int_0^alpha w(r) R(r) r dr of one profile at one alpha, without

@@ -43,8 +43,8 @@ TEST(LocalDisk, TableMatchesTheClosedFormForAGaussian) {
 // The table interpolates the direct quadrature (dipole and Burley, singular-ish at 0) and
 // tends to the albedo for a disk much larger than the profile.
 TEST(LocalDisk, TableMatchesQuadratureAndTendsToTheAlbedo) {
-  for (const RadialProfile& p : {RadialProfile(DipoleProfile::from_albedo(0.8, 0.1, 1.3)),
-                                 RadialProfile(BurleyProfile(0.6, 0.1))}) {
+  for (const RadialProfile& p :
+       {RadialProfile(DipoleProfile::from_albedo(0.8, 0.1, 1.3)), RadialProfile(BurleyProfile(0.6, 0.1))}) {
     const LocalDiskTable table(p);
     Rng rng(6, 6);
     for (int i = 0; i < 100; ++i) {

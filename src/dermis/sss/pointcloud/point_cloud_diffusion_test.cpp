@@ -83,8 +83,10 @@ TEST(PointCloudDiffusion, UniformIrradianceOnAPlaneGivesTheAlbedo) {
       }
       const double n = double(xs.size()), mean = sum / n;
       const double se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1));
-      std::printf("uniform E, 40000 points, %s, channel %d: mean M/(EA) - 1 = %+.4f (standard error %.4f), "
-                  "RMS %.4f, max %.4f\n", local_disk ? "local disk" : "plain     ", c, mean, se, std::sqrt(sum2 / n), worst);
+      std::printf(
+          "uniform E, 40000 points, %s, channel %d: mean M/(EA) - 1 = %+.4f (standard error %.4f), "
+          "RMS %.4f, max %.4f\n",
+          local_disk ? "local disk" : "plain     ", c, mean, se, std::sqrt(sum2 / n), worst);
       EXPECT_LT(std::abs(mean - deficit), 4 * se);
       EXPECT_LT(std::abs(mean), 0.02);
       EXPECT_LT(worst, 0.07);
@@ -130,9 +132,10 @@ TEST(PointCloudDiffusion, LocalDiskReducesTheErrorOfASparseCloud) {
     }
   }
   auto rms = [&](double s) { return std::sqrt(s / n); };
-  std::printf("varying E, RMS error / albedo vs exact: sparse plain %.4f, sparse local disk %.4f, dense %.4f;"
-              " vs dense: plain %.4f, local disk %.4f\n",
-              rms(e_plain), rms(e_disk), rms(e_dense), rms(d_plain), rms(d_disk));
+  std::printf(
+      "varying E, RMS error / albedo vs exact: sparse plain %.4f, sparse local disk %.4f, dense %.4f;"
+      " vs dense: plain %.4f, local disk %.4f\n",
+      rms(e_plain), rms(e_disk), rms(e_dense), rms(d_plain), rms(d_disk));
   EXPECT_LT(rms(e_disk), 0.5 * rms(e_plain));
   EXPECT_LT(rms(d_disk), 0.5 * rms(d_plain));
   EXPECT_LT(rms(e_dense), rms(e_plain));

@@ -135,14 +135,16 @@ double mesh_area(const std::vector<Vec3>& positions, const std::vector<uint32_t>
   validate_mesh(positions, indices);
   double sum = 0;
   for (std::size_t t = 0; t < indices.size(); t += 3)
-    sum += triangle_area(Vec3d(positions[indices[t]]), Vec3d(positions[indices[t + 1]]), Vec3d(positions[indices[t + 2]]));
+    sum +=
+        triangle_area(Vec3d(positions[indices[t]]), Vec3d(positions[indices[t + 1]]), Vec3d(positions[indices[t + 2]]));
   return sum;
 }
 
 double point_count_for_density(double area, double mean_free_path, double points_per_mfp2) {
   if (!(area > 0) || !(mean_free_path > 0) || !(points_per_mfp2 > 0))
-    throw std::invalid_argument("point cloud: the object's area, its mean free path and \"pointdensity\" must be "
-                                "positive");
+    throw std::invalid_argument(
+        "point cloud: the object's area, its mean free path and \"pointdensity\" must be "
+        "positive");
   return std::max(1.0, std::ceil(area * points_per_mfp2 / (mean_free_path * mean_free_path)));
 }
 

@@ -46,7 +46,6 @@ std::vector<SurfacePoint> distribute_points(const std::vector<Vec3>& positions, 
 
 // Area-uniform points with no thinning (white noise): the baseline of the blue-noise test.
 std::vector<SurfacePoint> uniform_random_points(const std::vector<Vec3>& positions,
-                                                const std::vector<uint32_t>& indices, std::size_t count,
-                                                uint64_t seed);
+                                                const std::vector<uint32_t>& indices, std::size_t count, uint64_t seed);
 
 }  // namespace dermis::sss::pointcloud

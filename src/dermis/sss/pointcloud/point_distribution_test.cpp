@@ -57,8 +57,8 @@ TEST(PointDistribution, CountsAreasAndPointsOnTheirTriangles) {
 }
 
 // Blue noise versus white noise on the unit square, N = 2000, r_max = sqrt(1/(2 sqrt3 N))
-// (Yuksel 2015, eq. 5) = 0.0120: half the spacing of a hexagonal packing of N points. White noise: P(nn < d) = 1 - exp(-pi N d^2), so 20 % of
-// points have a neighbour closer than r_max / 2 and the smallest distance is tiny.
+// (Yuksel 2015, eq. 5) = 0.0120: half the spacing of a hexagonal packing of N points. White noise: P(nn < d) = 1 -
+// exp(-pi N d^2), so 20 % of points have a neighbour closer than r_max / 2 and the smallest distance is tiny.
 TEST(PointDistribution, BlueNoiseHasLargerNearestNeighbourDistances) {
   std::vector<Vec3> p;
   std::vector<uint32_t> idx;
@@ -85,9 +85,9 @@ TEST(PointDistribution, BlueNoiseHasLargerNearestNeighbourDistances) {
   // with the square's edges; fraction below r_max/2 = 1 - exp(-pi/(8 sqrt 3)) = 0.203,
   // binomial sigma 0.009.
   EXPECT_NEAR(wbelow, 1 - std::exp(-kPiD / (8 * std::sqrt(3.0))), 4 * 0.009 + 0.01);
-  EXPECT_GT(bmin, r_max);                // no close pairs at all (hexagonal packing: 2 r_max)
+  EXPECT_GT(bmin, r_max);  // no close pairs at all (hexagonal packing: 2 r_max)
   EXPECT_GT(bmin, 10 * wmin);
-  EXPECT_GT(bmean, 1.3 * wmean);         // spread out
+  EXPECT_GT(bmean, 1.3 * wmean);  // spread out
   EXPECT_EQ(bbelow, 0.0);
 }
 

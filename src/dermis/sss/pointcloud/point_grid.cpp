@@ -44,8 +44,8 @@ PointGrid::PointGrid(std::span<const Vec3> positions, double cell_size) : cell_(
 
 double PointGrid::kth_nearest_distance(Vec3 x, int k) const {
   if (k < 1 || k > kMaxK)
-    throw std::invalid_argument("PointGrid::kth_nearest_distance: k must be in [1, " + std::to_string(kMaxK) + "], got " +
-                                std::to_string(k));
+    throw std::invalid_argument("PointGrid::kth_nearest_distance: k must be in [1, " + std::to_string(kMaxK) +
+                                "], got " + std::to_string(k));
   if (positions_.size() < std::size_t(k)) return std::numeric_limits<double>::infinity();
   // Grow a cube of cells (shell by shell) around x; once k points are known, the k-th
   // distance is final when it is no larger than the distance to the cube's boundary.

@@ -32,7 +32,9 @@ class PointGrid {
   std::size_t memory_bytes() const;
 
  private:
-  struct Range { uint32_t begin, end; };
+  struct Range {
+    uint32_t begin, end;
+  };
   static uint64_t key(int64_t ix, int64_t iy, int64_t iz);
   int64_t coord(float v) const { return int64_t(std::floor(double(v) / cell_)); }
   const Range* cell(int64_t ix, int64_t iy, int64_t iz) const {
@@ -41,8 +43,8 @@ class PointGrid {
   }
 
   double cell_ = 1;
-  std::vector<Vec3> positions_;        // in cell order
-  std::vector<uint32_t> original_;     // cell order -> caller's index
+  std::vector<Vec3> positions_;     // in cell order
+  std::vector<uint32_t> original_;  // cell order -> caller's index
   std::unordered_map<uint64_t, Range> cells_;
 };
 

@@ -12,8 +12,8 @@ DiskProbeSampler::DiskProbeSampler(const ProfileRGB& profile, RGB channel_weight
   double axis_sum = 0;
   for (double p : a) {
     if (!(p >= 0) || !std::isfinite(p))
-      throw std::invalid_argument("disk probe: axis probabilities must be finite and >= 0 (got " +
-                                  std::to_string(p) + ")");
+      throw std::invalid_argument("disk probe: axis probabilities must be finite and >= 0 (got " + std::to_string(p) +
+                                  ")");
     axis_sum += p;
   }
   if (!(axis_sum > 0)) throw std::invalid_argument("disk probe: the axis probabilities are all zero");
@@ -82,8 +82,8 @@ int DiskProbeSampler::strategy_of(double u) const {
   return std::min(i, count_ - 1);
 }
 
-DiskProbeSample DiskProbeSampler::sample(const ProbeFrame& frame, double u_axis, double u_strategy,
-                                         double u_radius, double u_angle) const {
+DiskProbeSample DiskProbeSampler::sample(const ProbeFrame& frame, double u_axis, double u_strategy, double u_radius,
+                                         double u_angle) const {
   return sample_chosen(frame, axis_of(u_axis), strategy_of(u_strategy), u_radius, u_angle);
 }
 
@@ -91,7 +91,9 @@ DiskProbeSample DiskProbeSampler::sample(const ProbeFrame& frame, double u, doub
   // What is left of u in [lo, lo + p), rescaled to [0, 1) (kept below 1 against rounding).
   auto rest = [](double u, double lo, double p) { return std::clamp((u - lo) / p, 0.0, 0x1.fffffffffffffp-1); };
   const int axis = axis_of(u);
-  const double axis_lo = axis == 0 ? 0.0 : axis == 1 ? axis_probability_[0] : axis_probability_[0] + axis_probability_[1];
+  const double axis_lo = axis == 0   ? 0.0
+                         : axis == 1 ? axis_probability_[0]
+                                     : axis_probability_[0] + axis_probability_[1];
   u = rest(u, axis_lo, axis_probability_[axis]);
   const int i = strategy_of(u);
   const double strategy_lo = i == 0 ? 0.0 : cumulative_[i - 1];

@@ -36,9 +36,9 @@ struct ProbeAxisProbabilities {
 // What one sample chose (for the renderer's statistics and the tests).
 struct DiskProbeSample {
   ProbeSegment segment;
-  int axis = 0;           // 0 = N, 1 = T, 2 = B
-  int strategy = 0;       // index into the strategy list
-  double disk_radius = 0; // r
+  int axis = 0;            // 0 = N, 1 = T, 2 = B
+  int strategy = 0;        // index into the strategy list
+  double disk_radius = 0;  // r
 };
 
 class DiskProbeSampler {
@@ -51,8 +51,7 @@ class DiskProbeSampler {
   // sum of Gaussians share their channel's weight by lobe weight. Channels with weight 0
   // are never sampled (and then their hits only count through the other channels).
   // Throws std::invalid_argument on negative, non-finite or all-zero weights/probabilities.
-  DiskProbeSampler(const ProfileRGB& profile, RGB channel_weights = RGB(1.0f),
-                   ProbeAxisProbabilities axes = {});
+  DiskProbeSampler(const ProfileRGB& profile, RGB channel_weights = RGB(1.0f), ProbeAxisProbabilities axes = {});
 
   // Four uniforms in [0, 1): axis, strategy, radius, angle.
   DiskProbeSample sample(const ProbeFrame& frame, double u_axis, double u_strategy, double u_radius,
@@ -104,8 +103,7 @@ class DiskProbeSampler {
   int axis_of(double u) const;
   int strategy_of(double u) const;
   // The probe of a chosen axis and strategy from the radius and angle numbers.
-  DiskProbeSample sample_chosen(const ProbeFrame& frame, int axis, int strategy, double u_radius,
-                                double u_angle) const;
+  DiskProbeSample sample_chosen(const ProbeFrame& frame, int axis, int strategy, double u_radius, double u_angle) const;
 
   std::array<Strategy, kMaxStrategies> strategies_{};
   std::array<double, kMaxStrategies> cumulative_{};

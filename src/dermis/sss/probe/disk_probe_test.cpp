@@ -89,7 +89,8 @@ std::vector<ReferenceStrategy> reference_strategies(const ProfileRGB& profile, R
     } else if (const auto* b = p.get_if<BurleyProfile>()) {
       out.push_back({qc, b->r_max(), [b](double r) { return b->cdf(r) / b->kept_fraction(); }});
     } else if (const auto* d = p.get_if<DipoleProfile>()) {
-      out.push_back({qc, d->r_max(), [d](double r) { return d->energy_within(r) / (d->albedo() * d->kept_fraction()); }});
+      out.push_back(
+          {qc, d->r_max(), [d](double r) { return d->energy_within(r) / (d->albedo() * d->kept_fraction()); }});
     }
   }
   return out;
@@ -192,7 +193,8 @@ void expect_plane_hits_match_pdf(const DiskProbeSampler& sampler, const ProbeFra
   const double s_max = std::sqrt(std::max(0.0, sampler.max_radius() * sampler.max_radius() - h * h));
   constexpr int kRadial = 10, kAngular = 8, kProbes = 100000;
   std::vector<double> s_edges(kRadial + 1);
-  for (int i = 0; i <= kRadial; ++i) s_edges[i] = s_max * std::sqrt(double(i) / kRadial) * std::sqrt(double(i) / kRadial);
+  for (int i = 0; i <= kRadial; ++i)
+    s_edges[i] = s_max * std::sqrt(double(i) / kRadial) * std::sqrt(double(i) / kRadial);
   std::vector<double> breaks;
   for (double r : radii(sampler))
     if (r > h) breaks.push_back(std::sqrt(r * r - h * h));
@@ -210,8 +212,8 @@ void expect_plane_hits_match_pdf(const DiskProbeSampler& sampler, const ProbeFra
   Rng rng(seed, 1);
   for (int n = 0; n < kProbes; ++n) {
     const double u0 = rng.uniform_double(), u1 = rng.uniform_double();
-    const auto smp = folded ? sampler.sample(f, u0, u1)
-                            : sampler.sample(f, u0, u1, rng.uniform_double(), rng.uniform_double());
+    const auto smp =
+        folded ? sampler.sample(f, u0, u1) : sampler.sample(f, u0, u1, rng.uniform_double(), rng.uniform_double());
     Vec3d x;
     if (!testing::intersect(smp.segment, plane, &x)) {
       observed.back() += 1;
@@ -271,8 +273,10 @@ TEST(DiskProbe, OneNumberCutIntoTheChoicesStratifiesEachStrategysRadii) {
     }
     for (const auto& [choice, r] : radii) {
       const double share = sampler.axis_probability(choice.first) * sampler.strategy_probability(choice.second);
-      EXPECT_NEAR(double(r.size()), share * kNumbers, 1.0) << name << " axis " << choice.first << " strategy " << choice.second;
-      EXPECT_TRUE(std::is_sorted(r.begin(), r.end())) << name << " axis " << choice.first << " strategy " << choice.second;
+      EXPECT_NEAR(double(r.size()), share * kNumbers, 1.0)
+          << name << " axis " << choice.first << " strategy " << choice.second;
+      EXPECT_TRUE(std::is_sorted(r.begin(), r.end()))
+          << name << " axis " << choice.first << " strategy " << choice.second;
     }
   }
 }
@@ -323,8 +327,8 @@ TEST(DiskProbe, EveryHitOnASphereCountsAndMatchesTheAreaPdf) {
     MeanAndError hits_per_probe;
     int double_hits = 0;
     for (int n = 0; n < kProbes; ++n) {
-      const auto smp = sampler.sample(f, rng.uniform_double(), rng.uniform_double(), rng.uniform_double(),
-                                      rng.uniform_double());
+      const auto smp =
+          sampler.sample(f, rng.uniform_double(), rng.uniform_double(), rng.uniform_double(), rng.uniform_double());
       Vec3d x[2];
       const int hits = testing::intersect_sphere(smp.segment, centre, radius, x);
       hits_per_probe.add(hits);
@@ -361,11 +365,12 @@ TEST(DiskProbe, FlatPlaneEstimatorRecoversTheKeptEnergy) {
         MeanAndError estimate[3];
         Rng rng(++seed, 3);
         for (int k = 0; k < 20000; ++k) {
-          const auto smp = sampler.sample(f, rng.uniform_double(), rng.uniform_double(), rng.uniform_double(),
-                                          rng.uniform_double());
+          const auto smp =
+              sampler.sample(f, rng.uniform_double(), rng.uniform_double(), rng.uniform_double(), rng.uniform_double());
           Vec3d x;
           const bool hit = testing::intersect(smp.segment, plane, &x);
-          for (int c = 0; c < 3; ++c) estimate[c].add(hit ? profile[c].eval(length(x - f.p)) / sampler.pdf_area(f, x, n) : 0.0);
+          for (int c = 0; c < 3; ++c)
+            estimate[c].add(hit ? profile[c].eval(length(x - f.p)) / sampler.pdf_area(f, x, n) : 0.0);
         }
         for (int c = 0; c < 3; ++c) {
           const double kept = integrate_pieces([&](double r) { return 2 * kPiD * r * profile[c].eval(r); }, 0,

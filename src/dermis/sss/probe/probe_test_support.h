@@ -92,7 +92,11 @@ double integrate_plane_polar(const TestPlane& plane, const F& f, double s0, doub
 struct MeanAndError {
   double sum = 0, sum2 = 0;
   long n = 0;
-  void add(double x) { sum += x; sum2 += x * x; ++n; }
+  void add(double x) {
+    sum += x;
+    sum2 += x * x;
+    ++n;
+  }
   double mean() const { return sum / n; }
   double error() const {
     const double m = mean();

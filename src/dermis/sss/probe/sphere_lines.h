@@ -55,7 +55,10 @@ class SphereLineTable {
   double hit_density(double d) const;
 
  private:
-  double edge(int k) const { const double s = double(k) / bins_; return rho_max_ * s * s; }
+  double edge(int k) const {
+    const double s = double(k) / bins_;
+    return rho_max_ * s * s;
+  }
   int bin_of(double rho) const;
 
   double rho_max_ = 0;

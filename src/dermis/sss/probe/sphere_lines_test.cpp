@@ -127,8 +127,8 @@ TEST(SphereLines, ExpectedCrossingsPerLineOnPlanes) {
         for (int k = 0; k <= t.bins(); ++k) edges.push_back(t.rho_max() * k * k / (double(t.bins()) * t.bins()));
         if (h < t.rho_max())
           formula += sampler.channel_probability(c) *
-                     integrate_pieces([&](double rho) { return t.pdf_radius(rho) * (1 - h * h / (rho * rho)) / 2; },
-                                      h, t.rho_max(), edges, 1e-13);
+                     integrate_pieces([&](double rho) { return t.pdf_radius(rho) * (1 - h * h / (rho * rho)) / 2; }, h,
+                                      t.rho_max(), edges, 1e-13);
       }
       if (h == 0) {
         EXPECT_NEAR(formula, 0.5, 1e-10) << name;
@@ -180,9 +180,8 @@ TEST(SphereLines, HitsOnPlanesMatchTheHitDensity) {
       for (int i = 0; i < kRadial; ++i) {
         std::vector<double> breaks;
         for (double x = s_edges[i + 1]; x > std::max(s_edges[i], 1e-9 * s_max); x *= 0.5) breaks.push_back(x);
-        const double radial = integrate_pieces(
-            [&](double s) { return sampler.pdf_area(kP, plane.point(s, 0.0)) * s; }, s_edges[i], s_edges[i + 1],
-            breaks, 1e-12);
+        const double radial = integrate_pieces([&](double s) { return sampler.pdf_area(kP, plane.point(s, 0.0)) * s; },
+                                               s_edges[i], s_edges[i + 1], breaks, 1e-12);
         for (int j = 0; j < kAngular; ++j) {
           expected[i * kAngular + j] = radial * 2 * kPiD / kAngular * kLines;
           hit_total += radial * 2 * kPiD / kAngular;
@@ -201,7 +200,8 @@ TEST(SphereLines, HitsOnPlanesMatchTheHitDensity) {
         }
         double s, psi;
         plane.polar(x, &s, &psi);
-        const int i = std::min(int(std::upper_bound(s_edges.begin(), s_edges.end(), s) - s_edges.begin()) - 1, kRadial - 1);
+        const int i =
+            std::min(int(std::upper_bound(s_edges.begin(), s_edges.end(), s) - s_edges.begin()) - 1, kRadial - 1);
         const int j = std::min(int(psi / (2 * kPiD) * kAngular), kAngular - 1);
         observed[i * kAngular + j] += 1;
       }
@@ -226,11 +226,11 @@ TEST(SphereLines, FlatPlaneEstimatorRecoversTheKeptEnergy) {
       Rng rng(++seed, 7);
       for (int k = 0; k < 40000; ++k) {
         const double u0 = rng.uniform_double();
-        const auto smp = folded ? sampler.sample(kP, u0, Vec2d(rng.uniform_double(), rng.uniform_double()),
-                                                 Vec2d(rng.uniform_double(), rng.uniform_double()))
-                                : sampler.sample(kP, u0, rng.uniform_double(),
-                                                 Vec2d(rng.uniform_double(), rng.uniform_double()),
-                                                 Vec2d(rng.uniform_double(), rng.uniform_double()));
+        const auto smp =
+            folded ? sampler.sample(kP, u0, Vec2d(rng.uniform_double(), rng.uniform_double()),
+                                    Vec2d(rng.uniform_double(), rng.uniform_double()))
+                   : sampler.sample(kP, u0, rng.uniform_double(), Vec2d(rng.uniform_double(), rng.uniform_double()),
+                                    Vec2d(rng.uniform_double(), rng.uniform_double()));
         Vec3d x;
         const bool hit = testing::intersect(smp.segment, plane, &x);
         for (int c = 0; c < 3; ++c)
@@ -277,7 +277,8 @@ TEST(SphereLines, RadiusScalesStretchTheTablesExactly) {
     for (double f : {1e-3, 0.01, 0.1, 0.3, 0.7, 0.99}) {
       const double d = f * own.rho_max();
       const double expected = own.hit_density(d);
-      EXPECT_NEAR(base.hit_density(d / s[c]) / (s[c] * s[c]), expected, 1e-9 * expected) << "channel " << c << " d " << d;
+      EXPECT_NEAR(base.hit_density(d / s[c]) / (s[c] * s[c]), expected, 1e-9 * expected)
+          << "channel " << c << " d " << d;
     }
   }
   // (b) Another profile, estimated with the scaled sampler.
@@ -287,9 +288,9 @@ TEST(SphereLines, RadiusScalesStretchTheTablesExactly) {
   MeanAndError estimate[3];
   Rng rng(77, 7);
   for (int k = 0; k < 40000; ++k) {
-    const auto smp = scaled.sample(kP, rng.uniform_double(), rng.uniform_double(),
-                                   Vec2d(rng.uniform_double(), rng.uniform_double()),
-                                   Vec2d(rng.uniform_double(), rng.uniform_double()));
+    const auto smp =
+        scaled.sample(kP, rng.uniform_double(), rng.uniform_double(), Vec2d(rng.uniform_double(), rng.uniform_double()),
+                      Vec2d(rng.uniform_double(), rng.uniform_double()));
     Vec3d x;
     const bool hit = testing::intersect(smp.segment, plane, &x);
     for (int c = 0; c < 3; ++c) estimate[c].add(hit ? other[c].eval(length(x - kP)) / scaled.pdf_area(kP, x) : 0.0);
@@ -373,9 +374,8 @@ TEST(SphereLines, UnbiasedOnCurvedSurfacesRetryBiasedAsPredicted) {
   Rng plane_rng(52, 10);
   for (int k = 0; k < 40000; ++k) {
     Vec3d x;
-    const auto r = sampler.sample_retry(kP, plane_rng, [&](const ProbeSegment& seg) {
-      return testing::intersect(seg, plane, &x) ? 1 : 0;
-    });
+    const auto r = sampler.sample_retry(
+        kP, plane_rng, [&](const ProbeSegment& seg) { return testing::intersect(seg, plane, &x) ? 1 : 0; });
     on_plane.add(r.hits == 0 ? sampler.fallback_weight(0)
                              : SphereLineSampler::retry_weight(p.eval(length(x - kP)), 1, sampler.pdf_area(kP, x)));
   }

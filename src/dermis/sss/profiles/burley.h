@@ -39,7 +39,8 @@ inline double burley_scale(double albedo, BurleyParameterisation p) {
       const double t = 0.8 - a;
       return 1.85 - a + 7 * t * t * t;
     }
-    case BurleyParameterisation::DiffuseMeanFreePath: return 1.9 - a + 3.5 * (a - 0.8) * (a - 0.8);
+    case BurleyParameterisation::DiffuseMeanFreePath:
+      return 1.9 - a + 3.5 * (a - 0.8) * (a - 0.8);
     case BurleyParameterisation::Searchlight: {
       const double t = (a - 0.33) * (a - 0.33);
       return 3.5 + 100 * t * t;
@@ -73,8 +74,8 @@ class BurleyProfile {
   }
 
   double albedo() const { return albedo_; }
-  double scale() const { return scale_; }        // s
-  double shape_length() const { return d_; }     // d = l / s
+  double scale() const { return scale_; }     // s
+  double shape_length() const { return d_; }  // d = l / s
   double kept_fraction() const { return kept_; }
   // Christensen & Burley 2015, eq. 1. Below 1e-6 d the (integrable) 1/r singularity
   // is clamped so that the value stays finite.

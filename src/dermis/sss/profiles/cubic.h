@@ -69,7 +69,10 @@ class CubicProfile {
     for (int it = 0; it < 100; ++it) {
       const double f = cdf(x) - xi;
       if (f == 0) return x;
-      if (f < 0) lo = x; else hi = x;
+      if (f < 0)
+        lo = x;
+      else
+        hi = x;
       const double y = 1 - x;
       const double df = 20 * x * y * y * y;
       double next = df > 0 ? x - f / df : 0.5 * (lo + hi);

@@ -12,8 +12,9 @@ namespace {
 
 void check_eta(double eta) {
   if (!(eta >= 1 && eta <= 4))
-    throw std::invalid_argument("dipole: the index of refraction must lie in [1, 4], where the fit of F_dr holds (got " +
-                                std::to_string(eta) + ")");
+    throw std::invalid_argument(
+        "dipole: the index of refraction must lie in [1, 4], where the fit of F_dr holds (got " + std::to_string(eta) +
+        ")");
 }
 
 constexpr int kInverseCdfSize = 513;
@@ -74,8 +75,7 @@ DipoleProfile DipoleProfile::from_coefficients(double sigma_a, double sigma_s, d
     throw std::invalid_argument("dipole: the mean cosine g must lie in (-1, 1) (got " + std::to_string(g) + ")");
   const double sigma_s_reduced = sigma_s * (1 - g);
   const double sigma_t_reduced = sigma_a + sigma_s_reduced;  // Jensen et al. 2001, sec. 2.4
-  if (!(sigma_t_reduced > 0))
-    throw std::invalid_argument("dipole: sigma_a + sigma_s (1 - g) must be positive");
+  if (!(sigma_t_reduced > 0)) throw std::invalid_argument("dipole: sigma_a + sigma_s (1 - g) must be positive");
   return DipoleProfile(sigma_s_reduced / sigma_t_reduced, sigma_t_reduced, eta, kept_fraction);
 }
 
@@ -111,16 +111,17 @@ DipoleProfile::DipoleProfile(double alpha, double sigma_t_reduced, double eta, d
 
 double DipoleProfile::eval(double r) const { return alpha_ * dipole_shape(r, sigma_tr_, z_r_, z_v_); }
 
-double DipoleProfile::energy_within(double r) const {
-  return alpha_ * dipole_shape_energy(r, sigma_tr_, z_r_, z_v_);
-}
+double DipoleProfile::energy_within(double r) const { return alpha_ * dipole_shape_energy(r, sigma_tr_, z_r_, z_v_); }
 
 double DipoleProfile::solve_energy(double target_shape_energy, double lo, double hi, double start) const {
   double r = start > lo && start < hi ? start : 0.5 * (lo + hi);
   for (int it = 0; it < 200; ++it) {
     const double f = dipole_shape_energy(r, sigma_tr_, z_r_, z_v_) - target_shape_energy;
     if (f == 0) return r;
-    if (f < 0) lo = r; else hi = r;
+    if (f < 0)
+      lo = r;
+    else
+      hi = r;
     const double df = 2 * kPiD * r * dipole_shape(r, sigma_tr_, z_r_, z_v_);
     double next = df > 0 ? r - f / df : 0.5 * (lo + hi);
     if (!(next >= lo && next <= hi)) next = 0.5 * (lo + hi);

@@ -36,12 +36,10 @@ class DipoleProfile {
   static DipoleProfile from_albedo(double albedo, double mean_free_path, double eta,
                                    double kept_fraction = kDefaultKeptFraction);
 
-  double reduced_albedo() const { return alpha_; }     // alpha' = sigma'_s / sigma'_t
+  double reduced_albedo() const { return alpha_; }  // alpha' = sigma'_s / sigma'_t
   double mean_free_path() const { return 1 / sigma_t_reduced_; }
   double eta() const { return eta_; }
-  DipoleCoefficients coefficients() const {
-    return {sigma_t_reduced_ * (1 - alpha_), sigma_t_reduced_ * alpha_};
-  }
+  DipoleCoefficients coefficients() const { return {sigma_t_reduced_ * (1 - alpha_), sigma_t_reduced_ * alpha_}; }
   double kept_fraction() const { return kept_; }
 
   // Jensen et al. 2001, eq. 4.

@@ -29,8 +29,8 @@ class GaussianProfile {
       throw std::invalid_argument("Gaussian profile: the variance must be positive and finite (got " +
                                   std::to_string(variance) + ")");
     if (!(weight >= 0) || !std::isfinite(weight))
-      throw std::invalid_argument("Gaussian profile: the weight (albedo) must be >= 0 (got " +
-                                  std::to_string(weight) + ")");
+      throw std::invalid_argument("Gaussian profile: the weight (albedo) must be >= 0 (got " + std::to_string(weight) +
+                                  ")");
     r_max_ = std::sqrt(12.46 * variance_);  // King et al. 2013 (corrected; METHODS 1.1)
   }
 
@@ -47,9 +47,7 @@ class GaussianProfile {
     return std::sqrt(-2 * variance_ * std::log1p(-energy_fraction));
   }
   // King et al. 2013 warp, corrected (METHODS 1.1): r = sqrt(-2v ln(1 - xi (1 - e^{-R_m^2/(2v)}))).
-  double sample_radius(double xi) const {
-    return std::sqrt(-2 * variance_ * std::log1p(-xi * kept_fraction()));
-  }
+  double sample_radius(double xi) const { return std::sqrt(-2 * variance_ * std::log1p(-xi * kept_fraction())); }
   // Radial pdf on [0, R_m]: 2 pi r G / kept = (r / v) e^{-r^2/(2v)} / kept.
   double pdf_radius(double r) const {
     if (r < 0 || r > r_max_) return 0;

@@ -48,7 +48,7 @@ PhotonBeamDiffusion::PhotonBeamDiffusion(double rho, double g, double eta) : rho
   // The Fresnel moments of light inside reaching the boundary (relative index 1 / eta).
   const double fm1 = fresnel_moment(1, 1 / eta), fm2 = fresnel_moment(2, 1 / eta);
   z_e_ = -2 * d_g_ * (1 + 3 * fm2) / (1 - 2 * fm1);  // extrapolated boundary (d'Eon & Irving 2011; PBR eq. 15.26)
-  c_phi_ = 0.25 * (1 - 2 * fm1);                      // exitance factors (PBR eqs. 15.28, 15.29)
+  c_phi_ = 0.25 * (1 - 2 * fm1);                     // exitance factors (PBR eqs. 15.28, 15.29)
   c_e_ = 0.5 * (1 - 3 * fm2);
   t_crit_per_r_ = std::sqrt(std::max(0.0, eta * eta - 1));
 }
@@ -59,9 +59,9 @@ double PhotonBeamDiffusion::dipole_exitance(double z_r, double r) const {
   const double e_r = std::exp(-sigma_tr_ * d_r), e_v = std::exp(-sigma_tr_ * d_v);
   // Fluence of the dipole (PBR eq. 15.27) and its flux through the surface (eq. 15.29's E_n).
   const double phi = (e_r / d_r - e_v / d_v) / (4 * kPiD * d_g_);
-  const double e_n = (z_r * (1 + sigma_tr_ * d_r) * e_r / (d_r * d_r * d_r) -
-                      z_v * (1 + sigma_tr_ * d_v) * e_v / (d_v * d_v * d_v)) /
-                     (4 * kPiD);
+  const double e_n =
+      (z_r * (1 + sigma_tr_ * d_r) * e_r / (d_r * d_r * d_r) - z_v * (1 + sigma_tr_ * d_v) * e_v / (d_v * d_v * d_v)) /
+      (4 * kPiD);
   return c_phi_ * phi + c_e_ * e_n;
 }
 

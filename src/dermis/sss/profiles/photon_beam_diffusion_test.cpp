@@ -76,8 +76,8 @@ TEST(PhotonBeamDiffusion, LimitsOfTheAlbedo) {
 }
 
 // The effective albedo rho_eff(rho) of the tabulated family rises with rho (and exceeds 1
-// by up to 2% as rho -> 1 at eta = 1.33: the model's, not conserved energy); the table reproduces the profile between its nodes, and a reflectance inverts
-// to the albedo it came from.
+// by up to 2% as rho -> 1 at eta = 1.33: the model's, not conserved energy); the table reproduces the profile between
+// its nodes, and a reflectance inverts to the albedo it came from.
 TEST(PhotonBeamDiffusion, TabulatedFamily) {
   const auto table = std::make_shared<const ProfileTable>(photon_beam_family(0.0, 1.33), photon_beam_table_options());
   double previous = 0;

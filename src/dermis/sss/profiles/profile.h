@@ -40,8 +40,7 @@ class RadialProfile {
 
   RadialProfile() = default;  // a zero Gaussian: eval 0, albedo 0
   template <class P>
-    requires std::is_constructible_v<Variant, P>
-  RadialProfile(P profile) : v_(std::move(profile)) {}
+  requires std::is_constructible_v<Variant, P> RadialProfile(P profile) : v_(std::move(profile)) {}
 
   double eval(double r) const {
     return std::visit([r](const auto& p) { return p.eval(r); }, v_);
@@ -63,7 +62,9 @@ class RadialProfile {
   }
 
   template <class P>
-  const P* get_if() const { return std::get_if<P>(&v_); }
+  const P* get_if() const {
+    return std::get_if<P>(&v_);
+  }
   const Variant& variant() const { return v_; }
 
  private:

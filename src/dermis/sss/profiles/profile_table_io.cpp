@@ -50,8 +50,8 @@ bool write_profile_table(std::ostream& out, const std::string& key, const Profil
   out.write(key.data(), std::streamsize(key.size()));
   put(out, int32_t(t.n_));
   for (double v : {t.x_min_, t.x_max_, t.log_x_min_, t.log_step_}) put(out, v);
-  for (const std::vector<double>* v : {&t.albedos_, &t.x_, &t.log_scale_, &t.energy_, &t.source_energy_,
-                                       &t.log_shape_, &t.cdf_})
+  for (const std::vector<double>* v :
+       {&t.albedos_, &t.x_, &t.log_scale_, &t.energy_, &t.source_energy_, &t.log_shape_, &t.cdf_})
     put_vector(out, *v);
   return bool(out);
 }
@@ -71,8 +71,8 @@ std::shared_ptr<const ProfileTable> read_profile_table(std::istream& in, const s
   t->n_ = n;
   for (double* v : {&t->x_min_, &t->x_max_, &t->log_x_min_, &t->log_step_})
     if (!get(in, *v) || !std::isfinite(*v)) return nullptr;
-  for (std::vector<double>* v : {&t->albedos_, &t->x_, &t->log_scale_, &t->energy_, &t->source_energy_,
-                                 &t->log_shape_, &t->cdf_})
+  for (std::vector<double>* v :
+       {&t->albedos_, &t->x_, &t->log_scale_, &t->energy_, &t->source_energy_, &t->log_shape_, &t->cdf_})
     if (!get_vector(in, *v)) return nullptr;
   if (in.peek() != std::char_traits<char>::eof()) return nullptr;  // trailing bytes: not this format
   // The sizes the table's own constructor gives them (tabulated.cpp).

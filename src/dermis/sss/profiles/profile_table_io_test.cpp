@@ -63,9 +63,9 @@ TEST(ProfileTableIo, RoundTripIsTheSameTable) {
 TEST(ProfileTableIo, AnotherKeyOrADamagedFileIsRefused) {
   const std::string bytes = written(small_table(0.25), "gaussian-test");
   ASSERT_TRUE(read(bytes, "gaussian-test"));
-  EXPECT_FALSE(read(bytes, "gaussian-tesT"));                       // another table
+  EXPECT_FALSE(read(bytes, "gaussian-tesT"));                              // another table
   EXPECT_FALSE(read(bytes.substr(0, bytes.size() - 1), "gaussian-test"));  // truncated
-  EXPECT_FALSE(read(bytes + "x", "gaussian-test"));                 // trailing bytes
+  EXPECT_FALSE(read(bytes + "x", "gaussian-test"));                        // trailing bytes
   EXPECT_FALSE(read("", "gaussian-test"));
   std::string magic = bytes;
   magic[0] = 'X';

@@ -53,8 +53,8 @@ inline void expect_integrates_to_albedo(const RadialProfile& p, const std::strin
 // n samples (fixed seed) binned in `bins` bins at energy quantiles are compared with
 // the expected counts from integrating pdf_radius over each bin (chi-square,
 // significance kChiSquareAlpha).
-inline void expect_sampler_matches_pdf(const RadialProfile& p, const std::string& what, uint64_t seed,
-                                       int n = 200000, int bins = 64) {
+inline void expect_sampler_matches_pdf(const RadialProfile& p, const std::string& what, uint64_t seed, int n = 200000,
+                                       int bins = 64) {
   const double r_max = p.r_max();
   std::vector<double> edges(bins + 1);
   edges[0] = 0;

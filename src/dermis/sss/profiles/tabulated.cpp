@@ -1,11 +1,11 @@
 #include "dermis/sss/profiles/tabulated.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-
-#include <tbb/parallel_for.h>
 
 #include "dermis/sss/profiles/gaussian.h"
 #include "dermis/sss/profiles/quadrature.h"
@@ -58,16 +58,17 @@ SourceSummary summarise(const RadialFunction& f) {
 }  // namespace
 
 ProfileTable::ProfileTable(const std::function<double(double, double)>& f, ProfileTableOptions options)
-    : ProfileTable(ProfileFamily([f](double albedo) { return RadialFunction([f, albedo](double r) { return f(albedo, r); }); }),
-                   std::move(options)) {}
+    : ProfileTable(
+          ProfileFamily([f](double albedo) { return RadialFunction([f, albedo](double r) { return f(albedo, r); }); }),
+          std::move(options)) {}
 
 ProfileTable::ProfileTable(const ProfileFamily& family, ProfileTableOptions options) {
   albedos_ = options.albedos.empty() ? default_albedos() : options.albedos;
   if (albedos_.size() < 2) throw std::invalid_argument("profile table: at least two albedo nodes are needed");
   for (std::size_t i = 0; i < albedos_.size(); ++i) {
     if (!(albedos_[i] > 0 && albedos_[i] <= 1))
-      throw std::invalid_argument("profile table: albedo nodes must lie in (0, 1] (got " +
-                                  std::to_string(albedos_[i]) + ")");
+      throw std::invalid_argument("profile table: albedo nodes must lie in (0, 1] (got " + std::to_string(albedos_[i]) +
+                                  ")");
     if (i > 0 && !(albedos_[i] > albedos_[i - 1]))
       throw std::invalid_argument("profile table: albedo nodes must be strictly increasing");
   }
@@ -177,8 +178,10 @@ int ProfileTable::cell_of(double x) const {
   if (x < x_[1]) return 0;
   int k = 1 + int((std::log(x) - log_x_min_) / log_step_);
   k = std::clamp(k, 1, n_ - 1);
-  if (x < x_[k]) --k;  // guard the rounding of the logarithm
-  else if (k + 1 < n_ && x >= x_[k + 1]) ++k;
+  if (x < x_[k])
+    --k;  // guard the rounding of the logarithm
+  else if (k + 1 < n_ && x >= x_[k + 1])
+    ++k;
   return k;
 }
 

@@ -68,10 +68,10 @@ TEST(ProfileTabulated, MatchesTheBurleyProfileItWasBuiltFrom) {
 TEST(ProfileTabulated, IntegratesToAlbedoAndSamplesItsPdf) {
   uint64_t seed = 500;
   for (double a : {0.1, 0.5, 0.9}) {
-    testing::expect_consistent_profile(TabulatedProfile(dipole_table(1.3), a, 0.4), "tabulated dipole A=" +
-                                       std::to_string(a), seed++);
-    testing::expect_consistent_profile(TabulatedProfile(burley_table(), a, 3.0), "tabulated burley A=" +
-                                       std::to_string(a), seed++);
+    testing::expect_consistent_profile(TabulatedProfile(dipole_table(1.3), a, 0.4),
+                                       "tabulated dipole A=" + std::to_string(a), seed++);
+    testing::expect_consistent_profile(TabulatedProfile(burley_table(), a, 3.0),
+                                       "tabulated burley A=" + std::to_string(a), seed++);
   }
 }
 

@@ -27,7 +27,6 @@ struct SimulatedInversion {
   double surface_albedo = 0, surface_albedo_stderr = 0;  // the simulated A at the answer
   int simulations = 0;                                   // simulate_halfspace calls made
 };
-SimulatedInversion single_scattering_albedo_simulated(double surface_albedo, double eta, uint64_t paths,
-                                                      uint64_t seed);
+SimulatedInversion single_scattering_albedo_simulated(double surface_albedo, double eta, uint64_t paths, uint64_t seed);
 
 }  // namespace dermis::sss

@@ -33,8 +33,10 @@ void check_same_bins(const BinnedProfile& a, const BinnedProfile& b) {
 // The weight of bin [lo, hi) in the measure, restricted to [r_a, r_b].
 double bin_weight(ErrorMeasure m, double lo, double hi, double r_a, double r_b) {
   switch (m) {
-    case ErrorMeasure::Energy: return kPiD * (hi * hi - lo * lo);
-    case ErrorMeasure::LinearRadius: return std::max(0.0, std::min(hi, r_b) - std::max(lo, r_a));
+    case ErrorMeasure::Energy:
+      return kPiD * (hi * hi - lo * lo);
+    case ErrorMeasure::LinearRadius:
+      return std::max(0.0, std::min(hi, r_b) - std::max(lo, r_a));
     case ErrorMeasure::LogRadius: {
       const double a = std::max(lo, r_a), b = std::min(hi, r_b);
       return b > a ? std::log(b / a) : 0.0;
@@ -46,8 +48,8 @@ double bin_weight(ErrorMeasure m, double lo, double hi, double r_a, double r_b) 
 void check_range(ErrorMeasure m, double r_a, double r_b) {
   if (m == ErrorMeasure::Energy) return;
   if (!(r_a > 0 && r_b > r_a) || !std::isfinite(r_b))
-    throw std::invalid_argument("fit error: the radial range needs 0 < r_a < r_b (got [" + std::to_string(r_a) +
-                                ", " + std::to_string(r_b) + "])");
+    throw std::invalid_argument("fit error: the radial range needs 0 < r_a < r_b (got [" + std::to_string(r_a) + ", " +
+                                std::to_string(r_b) + "])");
 }
 
 // Weighted mean of term(i) / R_ref,i (range measures) or sum term(i) area_i / sum R_ref,i area_i (energy).
@@ -91,8 +93,7 @@ double noise_floor(const BinnedProfile& ref, ErrorMeasure m, double r_a, double 
 
 double energy_radius(const BinnedProfile& ref, double total_energy, double fraction) {
   check_bins(ref, "the reference");
-  if (!(fraction > 0 && fraction < 1))
-    throw std::invalid_argument("fit error: an energy fraction must lie in (0, 1)");
+  if (!(fraction > 0 && fraction < 1)) throw std::invalid_argument("fit error: an energy fraction must lie in (0, 1)");
   if (!(total_energy > 0)) throw std::invalid_argument("fit error: the reference carries no energy");
   const double target = fraction * total_energy;
   double cumulative = 0;
@@ -110,9 +111,12 @@ double energy_radius(const BinnedProfile& ref, double total_energy, double fract
 
 const char* error_measure_name(ErrorMeasure m) {
   switch (m) {
-    case ErrorMeasure::LogRadius: return "log-r mean";
-    case ErrorMeasure::LinearRadius: return "linear-r mean";
-    case ErrorMeasure::Energy: return "energy";
+    case ErrorMeasure::LogRadius:
+      return "log-r mean";
+    case ErrorMeasure::LinearRadius:
+      return "linear-r mean";
+    case ErrorMeasure::Energy:
+      return "energy";
   }
   return "?";
 }

@@ -20,9 +20,9 @@
 namespace dermis::sss {
 
 struct BinnedProfile {
-  std::vector<double> r_lo, r_hi;  // bin edges, increasing, r_hi[i] == r_lo[i + 1]
-  std::vector<double> value;       // the annulus mean of R in each bin
-  std::vector<double> standard_error;     // its standard error (0 for a model)
+  std::vector<double> r_lo, r_hi;      // bin edges, increasing, r_hi[i] == r_lo[i + 1]
+  std::vector<double> value;           // the annulus mean of R in each bin
+  std::vector<double> standard_error;  // its standard error (0 for a model)
 };
 
 enum class ErrorMeasure { LogRadius, LinearRadius, Energy };
@@ -31,8 +31,8 @@ enum class ErrorMeasure { LogRadius, LinearRadius, Energy };
 // [r_a, r_b] for LogRadius / LinearRadius (Energy uses every bin). Bins whose reference
 // value is 0 inside the range make the relative error undefined: they throw
 // std::invalid_argument, as do mismatched bins and an empty range.
-double relative_error(const BinnedProfile& reference, const BinnedProfile& model, ErrorMeasure measure,
-                      double r_a, double r_b);
+double relative_error(const BinnedProfile& reference, const BinnedProfile& model, ErrorMeasure measure, double r_a,
+                      double r_b);
 
 // What the same measure reports for a perfect model, from the reference's noise alone:
 // |N(0, sigma_i)| has mean sigma_i sqrt(2 / pi), so the floor is the measure's weighted

@@ -50,11 +50,12 @@ TEST(FitError, OneBinOffIsWeightedByTheMeasure) {
   model.value[k] *= 1.5;
   const double lo = ref.r_lo[k], hi = ref.r_hi[k];
   const double r_a = ref.r_lo[2], r_b = ref.r_hi[30];
-  EXPECT_NEAR(relative_error(ref, model, ErrorMeasure::LogRadius, r_a, r_b), 0.5 * std::log(hi / lo) / std::log(r_b / r_a),
-              1e-14);
+  EXPECT_NEAR(relative_error(ref, model, ErrorMeasure::LogRadius, r_a, r_b),
+              0.5 * std::log(hi / lo) / std::log(r_b / r_a), 1e-14);
   EXPECT_NEAR(relative_error(ref, model, ErrorMeasure::LinearRadius, r_a, r_b), 0.5 * (hi - lo) / (r_b - r_a), 1e-14);
   double energy = 0;
-  for (size_t i = 0; i < ref.value.size(); ++i) energy += ref.value[i] * kPiD * (ref.r_hi[i] * ref.r_hi[i] - ref.r_lo[i] * ref.r_lo[i]);
+  for (size_t i = 0; i < ref.value.size(); ++i)
+    energy += ref.value[i] * kPiD * (ref.r_hi[i] * ref.r_hi[i] - ref.r_lo[i] * ref.r_lo[i]);
   EXPECT_NEAR(relative_error(ref, model, ErrorMeasure::Energy, r_a, r_b),
               0.5 * ref.value[k] * kPiD * (hi * hi - lo * lo) / energy, 1e-14);
   // Outside the range, the range measures do not see it.

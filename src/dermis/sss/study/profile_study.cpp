@@ -32,8 +32,7 @@ void validate(const ProfileStudyOptions& o) {
   if (!(o.r_min > 0 && o.r_min < 16))
     throw std::invalid_argument(fmt::format("the first bin edge must lie in (0, 16) (got {})", o.r_min));
   if (!(o.error_r_lo >= o.r_min && o.error_r_lo < 16))
-    throw std::invalid_argument(
-        fmt::format("the error range must start in [{}, 16) (got {})", o.r_min, o.error_r_lo));
+    throw std::invalid_argument(fmt::format("the error range must start in [{}, 16) (got {})", o.r_min, o.error_r_lo));
   if (!(o.energy_fraction > 0 && o.energy_fraction < 1))
     throw std::invalid_argument(fmt::format("the energy fraction must lie in (0, 1) (got {})", o.energy_fraction));
 }

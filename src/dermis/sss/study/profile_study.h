@@ -20,14 +20,14 @@ std::vector<double> default_study_albedos();  // 0.01, 0.05, 0.1, 0.2, ..., 0.9,
 
 struct ProfileStudyOptions {
   std::vector<double> albedos = default_study_albedos();  // surface albedos, each in (0, 1)
-  double eta = 1.0;            // boundary n_medium / n_outside (1: index-matched)
-  uint64_t paths = 400000;     // reference paths per albedo
+  double eta = 1.0;                                       // boundary n_medium / n_outside (1: index-matched)
+  uint64_t paths = 400000;                                // reference paths per albedo
   uint64_t seed = 1;
-  int bins = 100;              // log-spaced radial bins: [0, r_min), then to r_max(A)
-  double r_min = 0.005;        // first bin edge, in mean free paths
-  double error_r_lo = 0.01;    // r_a of the range measures, in mean free paths
-  double energy_fraction = 0.99;      // r_b: the radius holding this fraction of the reference energy
-  uint64_t inversion_paths = 50000;   // per simulation of the alpha search when eta != 1
+  int bins = 100;                    // log-spaced radial bins: [0, r_min), then to r_max(A)
+  double r_min = 0.005;              // first bin edge, in mean free paths
+  double error_r_lo = 0.01;          // r_a of the range measures, in mean free paths
+  double energy_fraction = 0.99;     // r_b: the radius holding this fraction of the reference energy
+  uint64_t inversion_paths = 50000;  // per simulation of the alpha search when eta != 1
 };
 
 // Throws std::invalid_argument with a message naming the option for bad values.
@@ -39,21 +39,21 @@ void validate(const ProfileStudyOptions& o);
 double study_r_max(double single_scattering_albedo);
 
 constexpr int kErrorMeasures = 3;  // LogRadius, LinearRadius, Energy
-constexpr std::array<ErrorMeasure, kErrorMeasures> kStudyMeasures = {
-    ErrorMeasure::LogRadius, ErrorMeasure::LinearRadius, ErrorMeasure::Energy};
+constexpr std::array<ErrorMeasure, kErrorMeasures> kStudyMeasures = {ErrorMeasure::LogRadius,
+                                                                     ErrorMeasure::LinearRadius, ErrorMeasure::Energy};
 
 struct AlbedoStudy {
-  double surface_albedo = 0;            // the target A
-  double single_scattering_albedo = 0;  // alpha found for it
+  double surface_albedo = 0;                                 // the target A
+  double single_scattering_albedo = 0;                       // alpha found for it
   double simulated_albedo = 0, simulated_albedo_stderr = 0;  // per entering power, all radii
-  double beyond_rmax = 0;               // part of it beyond the last bin
-  double r_a = 0, r_b = 0;              // range of the range measures
-  BinnedProfile reference;              // per entering power
+  double beyond_rmax = 0;                                    // part of it beyond the last bin
+  double r_a = 0, r_b = 0;                                   // range of the range measures
+  BinnedProfile reference;                                   // per entering power
   std::vector<std::string> model_keys, model_labels;
   std::vector<BinnedProfile> models;
   // [model][measure]; NaN for a range measure when the reference has an empty bin in the range.
   std::vector<std::array<double, kErrorMeasures>> errors;
-  std::array<double, kErrorMeasures> noise{};               // the reference's noise floor per measure
+  std::array<double, kErrorMeasures> noise{};  // the reference's noise floor per measure
   uint64_t paths = 0;
   double seconds = 0;  // simulation wall-clock time
 };

@@ -63,8 +63,9 @@ TEST_F(ProfileStudySmall, RangeAndCsv) {
   std::ostringstream csv;
   write_profile_csv(s, csv);
   const std::string text = csv.str();
-  EXPECT_EQ(text.substr(0, text.find('\n')), "r_lo,r_hi,r_mid,R_ref,R_ref_stderr,burley_s1,cb_volume_mfp,"
-                                             "cb_seed_text,dipole,tabulated");
+  EXPECT_EQ(text.substr(0, text.find('\n')),
+            "r_lo,r_hi,r_mid,R_ref,R_ref_stderr,burley_s1,cb_volume_mfp,"
+            "cb_seed_text,dipole,tabulated");
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), long(s.reference.value.size()) + 1);
   std::ostringstream errors;
   write_error_csv(*studies_, errors);

@@ -12,8 +12,8 @@
 namespace dermis::sss {
 
 struct StudyModel {
-  std::string key;    // CSV column name, e.g. "cb_volume_mfp"
-  std::string label;  // for tables and plots
+  std::string key;                       // CSV column name, e.g. "cb_volume_mfp"
+  std::string label;                     // for tables and plots
   std::function<double(double r)> eval;  // R(r) at l = 1
 };
 

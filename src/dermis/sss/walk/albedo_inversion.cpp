@@ -28,7 +28,10 @@ constexpr int kCacheVersion = 2;
 // weighted least-squares sense (Barlow et al. 1972, Statistical Inference under Order
 // Restrictions). Removes the Monte Carlo noise that could make A(t) non-monotone.
 std::vector<double> non_increasing_fit(const std::vector<double>& y, const std::vector<double>& w) {
-  struct Block { double sum_wy, sum_w; size_t count; };
+  struct Block {
+    double sum_wy, sum_w;
+    size_t count;
+  };
   std::vector<Block> blocks;
   for (size_t i = 0; i < y.size(); ++i) {
     blocks.push_back({w[i] * y[i], w[i], 1});
@@ -71,7 +74,8 @@ AlbedoInversion::AlbedoInversion(const AlbedoTableConfig& config, const std::vec
     : config_(config) {
   init_nodes();
   if (int(nodes.size()) != config.size)
-    throw std::invalid_argument(fmt::format("albedo inversion: {} nodes given for a table of {}", nodes.size(), config.size));
+    throw std::invalid_argument(
+        fmt::format("albedo inversion: {} nodes given for a table of {}", nodes.size(), config.size));
   if (fitted) {
     albedo_.clear(), stderr_.clear();
     for (const AlbedoNode& node : nodes) albedo_.push_back(node.albedo), stderr_.push_back(node.error);
@@ -124,13 +128,12 @@ void AlbedoInversion::init_nodes() {
     const std::string dir = config.cache_dir.empty() ? default_cache_dir() : config.cache_dir;
     // The file names every parameter of the table and the code that made it (its sources' hash).
     if (!dir.empty())
-      cache_path_ = fmt::format("{}/albedo-v{}-{}-eta{:.9g}{}{}{}-g{:.9g}-n{}-p{}-s{}-{}.txt", dir, kCacheVersion, source_hash::kAlbedoTable,
-                                config.eta, config.exit_matched ? "-exitmatched" : "",
-                                config.entry_lambertian ? "-lambertianentry" : "",
-                                config.alpha_x > 0 || config.alpha_y > 0
-                                    ? fmt::format("-ax{:.9g}-ay{:.9g}", config.alpha_x, config.alpha_y)
-                                    : "",
-                                config.g, n, config.paths_per_node, config.seed, walk_sampling_name(config.sampling));
+      cache_path_ = fmt::format(
+          "{}/albedo-v{}-{}-eta{:.9g}{}{}{}-g{:.9g}-n{}-p{}-s{}-{}.txt", dir, kCacheVersion, source_hash::kAlbedoTable,
+          config.eta, config.exit_matched ? "-exitmatched" : "", config.entry_lambertian ? "-lambertianentry" : "",
+          config.alpha_x > 0 || config.alpha_y > 0 ? fmt::format("-ax{:.9g}-ay{:.9g}", config.alpha_x, config.alpha_y)
+                                                   : "",
+          config.g, n, config.paths_per_node, config.seed, walk_sampling_name(config.sampling));
   }
 }
 
@@ -221,12 +224,14 @@ void AlbedoInversion::save() const {
   std::error_code ec;
   std::filesystem::create_directories(std::filesystem::path(cache_path_).parent_path(), ec);
   // Write a temporary file and rename it: a reader never sees half a table.
-  const std::string tmp = cache_path_ + fmt::format(".tmp{}", uint64_t(std::chrono::steady_clock::now().time_since_epoch().count()));
+  const std::string tmp =
+      cache_path_ + fmt::format(".tmp{}", uint64_t(std::chrono::steady_clock::now().time_since_epoch().count()));
   {
     std::ofstream out(tmp);
     if (!out) return;  // the cache is optional
     out << fmt::format("dermis albedo table v{} {}\n", kCacheVersion, config_.size);
-    for (size_t i = 0; i < t_.size(); ++i) out << fmt::format("{:.17g} {:.17g} {:.17g}\n", t_[i], albedo_[i], stderr_[i]);
+    for (size_t i = 0; i < t_.size(); ++i)
+      out << fmt::format("{:.17g} {:.17g} {:.17g}\n", t_[i], albedo_[i], stderr_[i]);
     if (!out) return;
   }
   std::filesystem::rename(tmp, cache_path_, ec);
@@ -255,7 +260,8 @@ double AlbedoInversion::single_scattering_albedo(double a) const {
   if (!(a >= 0 && a <= 1))
     throw std::invalid_argument("albedo inversion: surface albedo must be in [0, 1], got " + std::to_string(a));
   // A(t) is non-increasing in t (a textured material inverts per walk, in each channel).
-  const double t = crossing_of_non_increasing(int(t_.size()), [this](int k) { return node(k); }, a);
+  const double t = crossing_of_non_increasing(
+      int(t_.size()), [this](int k) { return node(k); }, a);
   return 1 - t * t;
 }
 

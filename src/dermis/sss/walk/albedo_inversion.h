@@ -24,10 +24,10 @@
 namespace dermis::sss {
 
 struct AlbedoTableConfig {
-  double eta = 1.0;  // n_medium / n_outside
-  bool exit_matched = false;  // entry refracts by eta, exit at the first crossing (HalfspaceConfig)
+  double eta = 1.0;               // n_medium / n_outside
+  bool exit_matched = false;      // entry refracts by eta, exit at the first crossing (HalfspaceConfig)
   bool entry_lambertian = false;  // entry along a cosine lobe (HalfspaceConfig)
-  double g = 0.0;    // HG anisotropy
+  double g = 0.0;                 // HG anisotropy
   // The boundary's Trowbridge-Reitz alphas (HalfspaceConfig::alpha_x, alpha_y): rough at
   // the entry, and at every exit unless exit_matched. Below kSmoothAlpha: smooth.
   double alpha_x = 0.0, alpha_y = 0.0;
@@ -93,7 +93,7 @@ class AlbedoInversion {
  private:
   struct CacheOnly {};
   AlbedoInversion(const AlbedoTableConfig& config, CacheOnly);
-  void init_nodes();  // checks the config; t_, alpha_, cache_path_
+  void init_nodes();                               // checks the config; t_, alpha_, cache_path_
   void fit(const std::vector<AlbedoNode>& nodes);  // albedo_, stderr_ from raw nodes
   void init_slopes();
   double albedo_at_t(double t) const;

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "dermis/source_hashes.h"
 #include "dermis/sss/halfspace/chandrasekhar.h"
 #include "dermis/sss/halfspace/halfspace.h"
-#include "dermis/source_hashes.h"
 
 namespace dermis::sss {
 namespace {
@@ -123,8 +123,8 @@ TEST(AlbedoInversion, TheCacheFileNamesTheTablesParametersAndCode) {
   const AlbedoInversion inv(c);
   const std::string name = std::filesystem::path(inv.cache_path()).filename().string();
   for (const std::string& part : {std::string(source_hash::kAlbedoTable), std::string("eta1.3"), std::string("g0.25"),
-                                 std::string("ax0.2"), std::string("ay0.3"), std::string("n24"), std::string("p20000"),
-                                 std::string("s7"), std::string(walk_sampling_name(c.sampling))})
+                                  std::string("ax0.2"), std::string("ay0.3"), std::string("n24"), std::string("p20000"),
+                                  std::string("s7"), std::string(walk_sampling_name(c.sampling))})
     EXPECT_NE(name.find(part), std::string::npos) << part << " in " << name;
   // Each parameter gives another file.
   AlbedoTableConfig other = c;

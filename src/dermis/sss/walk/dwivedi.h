@@ -19,10 +19,10 @@ namespace dermis::sss {
 // nu0 -> infinity ~ 1/sqrt(3 (1 - alpha)) as alpha -> 1, and nu0 -> 1 with
 // nu0 - 1 ~ 2 exp(-2/alpha) (below 1e-308 for alpha < 0.0028) as alpha -> 0.
 struct DwivediEigenvalue {
-  double nu0 = 0;                  // +infinity at alpha = 1
-  double inv_nu0 = 0;              // 1/nu0: 0 at alpha = 1
-  double log_nu0_minus_one = 0;    // ln(nu0 - 1): finite for every alpha in (0, 1)
-  double one_minus_inv_nu0 = 0;    // 1 - 1/nu0 = (nu0 - 1)/nu0, without cancellation
+  double nu0 = 0;                    // +infinity at alpha = 1
+  double inv_nu0 = 0;                // 1/nu0: 0 at alpha = 1
+  double log_nu0_minus_one = 0;      // ln(nu0 - 1): finite for every alpha in (0, 1)
+  double one_minus_inv_nu0 = 0;      // 1 - 1/nu0 = (nu0 - 1)/nu0, without cancellation
   double log_one_minus_inv_nu0 = 0;  // ln(1 - 1/nu0)
 };
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
-#include "dermis/core/rng.h"
 #include "dermis/core/gauss_legendre.h"
+#include "dermis/core/rng.h"
 #include "support/chi_square.h"
 
 namespace dermis::sss {

@@ -57,8 +57,9 @@ TEST(MonotoneHermite, InterpolatesTheNodesAndDifferentiates) {
     for (double s : {0.1, 0.37, 0.8}) {
       const double t = nodes[k].t + s * (nodes[k + 1].t - nodes[k].t), dt = 1e-6;
       hermite_between(nodes[k], nodes[k + 1], t, &slope);
-      const double fd = (hermite_between(nodes[k], nodes[k + 1], t + dt) - hermite_between(nodes[k], nodes[k + 1], t - dt)) /
-                        (2 * dt);
+      const double fd =
+          (hermite_between(nodes[k], nodes[k + 1], t + dt) - hermite_between(nodes[k], nodes[k + 1], t - dt)) /
+          (2 * dt);
       EXPECT_NEAR(slope, fd, 1e-6) << k << " " << s;
     }
   }

@@ -167,8 +167,8 @@ bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, c
 
 // A walk from the entry point: makes its guide (make_walk_guide) first.
 template <class Random, class Tracer>
-bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, Vec3 entry_p, Vec3 entry_n,
-                 Vec3 dir_in, Random& rng, Tracer&& tracer, WalkResult& out, RGB initial = RGB(1.0f)) {
+bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, Vec3 entry_p, Vec3 entry_n, Vec3 dir_in,
+                 Random& rng, Tracer&& tracer, WalkResult& out, RGB initial = RGB(1.0f)) {
   const WalkGuide guide = make_walk_guide(settings, entry_p, entry_n, tracer);
   return random_walk(step, settings, guide, entry_p, dir_in, rng, std::forward<Tracer>(tracer), out, initial);
 }

@@ -125,7 +125,8 @@ TEST(RandomWalk, AbsorbingSphereTransmitsBeerLambert) {
   const WalkMedium medium{RGB(0.0f), sigma_t, 0.0f};
   const SphereTracer sphere{1.0};
   for (WalkSampling sampling : {WalkSampling::Classical, WalkSampling::Dwivedi, WalkSampling::Mis}) {
-    const ChannelStats s = run_walks(medium, settings_for(sampling), {0, 0, 1}, {0, 0, 1}, {0, 0, -1}, 20000, 9, sphere);
+    const ChannelStats s =
+        run_walks(medium, settings_for(sampling), {0, 0, 1}, {0, 0, 1}, {0, 0, -1}, 20000, 9, sphere);
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(s.mean(c), std::exp(-2.0 * sigma_t[c]), 4 * s.stderr_(c)) << walk_sampling_name(sampling) << c;
   }
@@ -237,9 +238,9 @@ TEST(RandomWalk, StepCapTruncates) {
 }
 
 TEST(RandomWalk, RejectsBadMedia) {
-  EXPECT_THROW(make_walk_step({RGB(1.0f), RGB(0.5f), 0.0f}, {}), std::invalid_argument);   // sigma_s > sigma_t
-  EXPECT_THROW(make_walk_step({RGB(0.0f), RGB(0.0f), 0.0f}, {}), std::invalid_argument);   // sigma_t = 0
-  EXPECT_THROW(make_walk_step({RGB(0.5f), RGB(1.0f), 1.0f}, {}), std::invalid_argument);   // g = 1
+  EXPECT_THROW(make_walk_step({RGB(1.0f), RGB(0.5f), 0.0f}, {}), std::invalid_argument);  // sigma_s > sigma_t
+  EXPECT_THROW(make_walk_step({RGB(0.0f), RGB(0.0f), 0.0f}, {}), std::invalid_argument);  // sigma_t = 0
+  EXPECT_THROW(make_walk_step({RGB(0.5f), RGB(1.0f), 1.0f}, {}), std::invalid_argument);  // g = 1
   WalkSettings bad;
   bad.p_guided = 2;
   EXPECT_THROW(make_walk_step({RGB(0.5f), RGB(1.0f), 0.0f}, bad), std::invalid_argument);

@@ -156,9 +156,7 @@ class MixtureWalkStep {
   // peak and compounds over the steps of a path into a heavy tail (measured in
   // docs/random-walk.md: g = 0.7 with beta = 1 is far worse than classical). beta = 1 at
   // g = 0 (the seed's scheme), falling linearly to 0 at |g| = kDwivediDirectionMaxG.
-  static double dwivedi_direction_fraction(double g) {
-    return std::max(0.0, 1 - std::abs(g) / kDwivediDirectionMaxG);
-  }
+  static double dwivedi_direction_fraction(double g) { return std::max(0.0, 1 - std::abs(g) / kDwivediDirectionMaxG); }
 
   // The probabilities q of drawing each channel's flight (one-sample spectral MIS: any
   // q > 0 wherever a channel carries throughput keeps every channel unbiased, as proposal
@@ -230,7 +228,7 @@ class MixtureWalkStep {
     for (int c = 0; c < N; ++c) {
       if (!(q[c] > 0)) continue;
       const double x = guide_[c].kappa() * sigma_t_[c] * (depth_back - depth_front);
-      if (x > kNegligibleBackExponent) continue;  // b = 0
+      if (x > kNegligibleBackExponent) continue;      // b = 0
       const float e = std::exp(-float(std::abs(x)));  // the logistic without overflow
       b[c] = x >= 0 ? double(e / (1 + e)) : double(1 / (1 + e));
     }
@@ -239,7 +237,8 @@ class MixtureWalkStep {
 
   // A flight along a given direction (after entry or a reflection): only its length is sampled.
   template <class Random>
-  FlightProposal propose_flight(const Vec3d& direction, const GuideAxes<N>& axes, const Channels& q, Random& rng) const {
+  FlightProposal propose_flight(const Vec3d& direction, const GuideAxes<N>& axes, const Channels& q,
+                                Random& rng) const {
     const int c = choose_channel(q, rng);
     FlightProposal f;
     f.direction = direction;
@@ -422,8 +421,7 @@ class MixtureWalkStep {
     for (int i = 0; i < guided_terms; ++i) mixture += a_guided[i] * exp_ratio(b_guided[i] - b_max);
     if (!(mixture > 0)) return w;
     for (int c = 0; c < N; ++c)
-      if (q[c] > 0)
-        w[c] = (f.scattered ? albedo_[c] * phase : 1.0) * (collision ? sigma_t_[c] : 1.0) * e[c] / mixture;
+      if (q[c] > 0) w[c] = (f.scattered ? albedo_[c] * phase : 1.0) * (collision ? sigma_t_[c] : 1.0) * e[c] / mixture;
     return w;
   }
 

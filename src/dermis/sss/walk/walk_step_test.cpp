@@ -20,8 +20,8 @@ struct MeanEstimate {
   double stderr_() const { return std::sqrt(std::max(0.0, sum_sq / n - mean() * mean()) / (n - 1)); }
 };
 
-#define EXPECT_WITHIN_4_SIGMA(estimate, reference, what)                                                  \
-  EXPECT_NEAR((estimate).mean(), (reference), 4 * (estimate).stderr_() + 1e-15)                           \
+#define EXPECT_WITHIN_4_SIGMA(estimate, reference, what)                        \
+  EXPECT_NEAR((estimate).mean(), (reference), 4 * (estimate).stderr_() + 1e-15) \
       << what << " mean=" << (estimate).mean() << " ref=" << (reference) << " stderr=" << (estimate).stderr_()
 
 const Vec3d kAxis = normalize(Vec3d{0.3, -0.5, 0.8});
@@ -46,40 +46,42 @@ std::vector<GuideAxes<3>> guide_configurations() {
 TEST(WalkStep, GuidedDirectionAndDistanceChiSquare) {
   const double sigma_t = 2.0;
   for (bool back : {false, true})
-  for (double alpha : {0.5, 0.95}) {
-    const MixtureWalkStep<1> step({sigma_t}, {alpha}, 0.0, 1.0);
-    const DwivediGuide& guide = step.guide(0);
-    const std::vector<double> u_edges = {-1, -0.5, 0, 0.4, 0.7, 0.9, 0.97, 1};
-    const std::vector<double> s_edges = {0, 0.1, 0.25, 0.5, 1, 2, 4, 1e300};
-    const int nu = int(u_edges.size()) - 1, ns = int(s_edges.size()) - 1, n = 200000;
-    std::vector<double> observed(nu * ns, 0.0), expected(nu * ns, 0.0);
-    Rng rng(11, uint64_t(alpha * 100), back);
-    GuideAxes<1> axes{Framed(back ? kBackAxis : kAxis)};
-    if (back) axes = GuideAxes<1>{Framed(kAxis)}, axes.back = Framed(kBackAxis), axes.has_back = true,
-              axes.back_share = {1.0};
-    const Vec3d sampled_axis = back ? kBackAxis : kAxis;
-    for (int i = 0; i < n; ++i) {
-      const FlightProposal f = step.propose_scatter({0, 0, -1}, axes, {1.0}, rng);
-      const double u = dot(f.direction, sampled_axis);
-      ASSERT_NEAR(u, back ? f.cos_back : f.cos_axis, 1e-9);
-      ASSERT_NEAR(dot(f.direction, kAxis), f.cos_axis, 1e-9);
-      ASSERT_NEAR(length(f.direction), 1.0, 1e-12);
-      const int a = int(std::upper_bound(u_edges.begin(), u_edges.end(), u) - u_edges.begin()) - 1;
-      const int b = int(std::upper_bound(s_edges.begin(), s_edges.end(), f.distance) - s_edges.begin()) - 1;
-      observed[std::min(a, nu - 1) * ns + std::min(b, ns - 1)] += 1;
-    }
-    const QuadratureRule rule = gauss_legendre(32, 0.0, 1.0);
-    for (int a = 0; a < nu; ++a)
-      for (size_t j = 0; j < rule.nodes.size(); ++j) {
-        const double h = u_edges[a + 1] - u_edges[a], u = u_edges[a] + h * rule.nodes[j];
-        const double sigma = sigma_t * (1 - guide.kappa() * u);
-        for (int b = 0; b < ns; ++b)
-          expected[a * ns + b] += n * h * rule.weights[j] * guide.pdf_cos(u) *
-                                  (std::exp(-sigma * s_edges[b]) - std::exp(-sigma * s_edges[b + 1]));
+    for (double alpha : {0.5, 0.95}) {
+      const MixtureWalkStep<1> step({sigma_t}, {alpha}, 0.0, 1.0);
+      const DwivediGuide& guide = step.guide(0);
+      const std::vector<double> u_edges = {-1, -0.5, 0, 0.4, 0.7, 0.9, 0.97, 1};
+      const std::vector<double> s_edges = {0, 0.1, 0.25, 0.5, 1, 2, 4, 1e300};
+      const int nu = int(u_edges.size()) - 1, ns = int(s_edges.size()) - 1, n = 200000;
+      std::vector<double> observed(nu * ns, 0.0), expected(nu * ns, 0.0);
+      Rng rng(11, uint64_t(alpha * 100), back);
+      GuideAxes<1> axes{Framed(back ? kBackAxis : kAxis)};
+      if (back)
+        axes = GuideAxes<1>{Framed(kAxis)}, axes.back = Framed(kBackAxis), axes.has_back = true,
+        axes.back_share = {1.0};
+      const Vec3d sampled_axis = back ? kBackAxis : kAxis;
+      for (int i = 0; i < n; ++i) {
+        const FlightProposal f = step.propose_scatter({0, 0, -1}, axes, {1.0}, rng);
+        const double u = dot(f.direction, sampled_axis);
+        ASSERT_NEAR(u, back ? f.cos_back : f.cos_axis, 1e-9);
+        ASSERT_NEAR(dot(f.direction, kAxis), f.cos_axis, 1e-9);
+        ASSERT_NEAR(length(f.direction), 1.0, 1e-12);
+        const int a = int(std::upper_bound(u_edges.begin(), u_edges.end(), u) - u_edges.begin()) - 1;
+        const int b = int(std::upper_bound(s_edges.begin(), s_edges.end(), f.distance) - s_edges.begin()) - 1;
+        observed[std::min(a, nu - 1) * ns + std::min(b, ns - 1)] += 1;
       }
-    const auto r = testing::chi_square(observed, expected);
-    EXPECT_GT(r.p_value, testing::kChiSquareAlpha) << "alpha=" << alpha << " back=" << back << " chi2=" << r.statistic;
-  }
+      const QuadratureRule rule = gauss_legendre(32, 0.0, 1.0);
+      for (int a = 0; a < nu; ++a)
+        for (size_t j = 0; j < rule.nodes.size(); ++j) {
+          const double h = u_edges[a + 1] - u_edges[a], u = u_edges[a] + h * rule.nodes[j];
+          const double sigma = sigma_t * (1 - guide.kappa() * u);
+          for (int b = 0; b < ns; ++b)
+            expected[a * ns + b] += n * h * rule.weights[j] * guide.pdf_cos(u) *
+                                    (std::exp(-sigma * s_edges[b]) - std::exp(-sigma * s_edges[b + 1]));
+        }
+      const auto r = testing::chi_square(observed, expected);
+      EXPECT_GT(r.p_value, testing::kChiSquareAlpha)
+          << "alpha=" << alpha << " back=" << back << " chi2=" << r.statistic;
+    }
 }
 
 // Unbiasedness of the one-sample MIS weights over channels and strategies: for a
@@ -90,28 +92,28 @@ TEST(WalkStep, ScatterCollisionWeightsAreUnbiased) {
   const std::array<double, 3> sigma_t{1.0, 2.5, 0.4}, albedo{0.5, 0.9, 0.99}, q{0.2, 0.5, 0.3};
   const Vec3d w_in = normalize(Vec3d{0.2, 0.1, -1});
   for (const GuideAxes<3>& axis : guide_configurations())
-  for (double g : {0.0, 0.6})
-    for (double p_guided : {0.0, 0.5, 1.0}) {
-      const MixtureWalkStep<3> step(sigma_t, albedo, g, p_guided);
-      MeanEstimate w[3], ws[3], wu[3];
-      Rng rng(3, uint64_t(p_guided * 10), uint64_t(g * 10) + 100 * axis.has_back);
-      for (int i = 0; i < 200000; ++i) {
-        const FlightProposal f = step.propose_scatter(w_in, axis, q, rng);
-        const auto weight = step.collision_weights(f, axis, q);
+    for (double g : {0.0, 0.6})
+      for (double p_guided : {0.0, 0.5, 1.0}) {
+        const MixtureWalkStep<3> step(sigma_t, albedo, g, p_guided);
+        MeanEstimate w[3], ws[3], wu[3];
+        Rng rng(3, uint64_t(p_guided * 10), uint64_t(g * 10) + 100 * axis.has_back);
+        for (int i = 0; i < 200000; ++i) {
+          const FlightProposal f = step.propose_scatter(w_in, axis, q, rng);
+          const auto weight = step.collision_weights(f, axis, q);
+          for (int c = 0; c < 3; ++c) {
+            w[c].add(weight[c]);
+            ws[c].add(weight[c] * f.distance);
+            wu[c].add(weight[c] * f.cos_axis);
+          }
+        }
         for (int c = 0; c < 3; ++c) {
-          w[c].add(weight[c]);
-          ws[c].add(weight[c] * f.distance);
-          wu[c].add(weight[c] * f.cos_axis);
+          const std::string what = "g=" + std::to_string(g) + " P_g=" + std::to_string(p_guided) +
+                                   " c=" + std::to_string(c) + " back=" + std::to_string(axis.has_back);
+          EXPECT_WITHIN_4_SIGMA(w[c], albedo[c], what);
+          EXPECT_WITHIN_4_SIGMA(ws[c], albedo[c] / sigma_t[c], what);
+          EXPECT_WITHIN_4_SIGMA(wu[c], albedo[c] * g * dot(w_in, kAxis), what);
         }
       }
-      for (int c = 0; c < 3; ++c) {
-        const std::string what = "g=" + std::to_string(g) + " P_g=" + std::to_string(p_guided) +
-                                 " c=" + std::to_string(c) + " back=" + std::to_string(axis.has_back);
-        EXPECT_WITHIN_4_SIGMA(w[c], albedo[c], what);
-        EXPECT_WITHIN_4_SIGMA(ws[c], albedo[c] / sigma_t[c], what);
-        EXPECT_WITHIN_4_SIGMA(wu[c], albedo[c] * g * dot(w_in, kAxis), what);
-      }
-    }
 }
 
 // A flight along a given direction toward a plane boundary at distance d: the
@@ -121,21 +123,23 @@ TEST(WalkStep, FlightWeightsReproduceTransmittance) {
   const Vec3d direction = normalize(kAxis + Vec3d{0.4, 0, 0});  // toward the boundary: u > 0
   const double d = 0.8;
   for (const GuideAxes<3>& axis : guide_configurations())
-  for (double p_guided : {0.0, 0.75, 1.0}) {
-    const MixtureWalkStep<3> step(sigma_t, albedo, 0.3, p_guided);
-    MeanEstimate collided[3], passed[3];
-    Rng rng(5, uint64_t(p_guided * 100), axis.has_back);
-    for (int i = 0; i < 100000; ++i) {
-      const FlightProposal f = step.propose_flight(direction, axis, q, rng);
-      const bool pass = f.distance >= d;
-      const auto weight = pass ? step.passage_weights(f, axis, d, q) : step.collision_weights(f, axis, q);
-      for (int c = 0; c < 3; ++c) collided[c].add(pass ? 0 : weight[c]), passed[c].add(pass ? weight[c] : 0);
+    for (double p_guided : {0.0, 0.75, 1.0}) {
+      const MixtureWalkStep<3> step(sigma_t, albedo, 0.3, p_guided);
+      MeanEstimate collided[3], passed[3];
+      Rng rng(5, uint64_t(p_guided * 100), axis.has_back);
+      for (int i = 0; i < 100000; ++i) {
+        const FlightProposal f = step.propose_flight(direction, axis, q, rng);
+        const bool pass = f.distance >= d;
+        const auto weight = pass ? step.passage_weights(f, axis, d, q) : step.collision_weights(f, axis, q);
+        for (int c = 0; c < 3; ++c) collided[c].add(pass ? 0 : weight[c]), passed[c].add(pass ? weight[c] : 0);
+      }
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_WITHIN_4_SIGMA(passed[c], std::exp(-sigma_t[c] * d),
+                              "P_g=" << p_guided << " c=" << c << " back=" << axis.has_back);
+        EXPECT_WITHIN_4_SIGMA(collided[c], 1 - std::exp(-sigma_t[c] * d),
+                              "P_g=" << p_guided << " c=" << c << " back=" << axis.has_back);
+      }
     }
-    for (int c = 0; c < 3; ++c) {
-      EXPECT_WITHIN_4_SIGMA(passed[c], std::exp(-sigma_t[c] * d), "P_g=" << p_guided << " c=" << c << " back=" << axis.has_back);
-      EXPECT_WITHIN_4_SIGMA(collided[c], 1 - std::exp(-sigma_t[c] * d), "P_g=" << p_guided << " c=" << c << " back=" << axis.has_back);
-    }
-  }
 }
 
 // A scattering event at depth D below a plane with outward normal n, incoming along n:
@@ -145,26 +149,27 @@ TEST(WalkStep, ScatterPassageWeightsMatchQuadrature) {
   const double g = 0.5, depth = 0.7;
   const QuadratureRule rule = gauss_legendre(200, 0.0, 1.0);
   for (const GuideAxes<3>& axis : guide_configurations())
-  for (double p_guided : {0.0, 0.75, 1.0}) {
-    const MixtureWalkStep<3> step(sigma_t, albedo, g, p_guided);
-    MeanEstimate passed[3];
-    Rng rng(9, uint64_t(p_guided * 100), axis.has_back);
-    for (int i = 0; i < 200000; ++i) {
-      const FlightProposal f = step.propose_scatter(kAxis, axis, q, rng);
-      const double boundary = f.cos_axis > 0 ? depth / f.cos_axis : 1e300;
-      const bool pass = f.distance >= boundary;
-      const auto weight = pass ? step.passage_weights(f, axis, boundary, q) : std::array<double, 3>{0, 0, 0};
-      for (int c = 0; c < 3; ++c) passed[c].add(weight[c]);
-    }
-    for (int c = 0; c < 3; ++c) {
-      double reference = 0;
-      for (size_t j = 0; j < rule.nodes.size(); ++j) {
-        const double u = rule.nodes[j];
-        reference += rule.weights[j] * 2 * kPiD * henyey_greenstein(u, g) * std::exp(-sigma_t[c] * depth / u);
+    for (double p_guided : {0.0, 0.75, 1.0}) {
+      const MixtureWalkStep<3> step(sigma_t, albedo, g, p_guided);
+      MeanEstimate passed[3];
+      Rng rng(9, uint64_t(p_guided * 100), axis.has_back);
+      for (int i = 0; i < 200000; ++i) {
+        const FlightProposal f = step.propose_scatter(kAxis, axis, q, rng);
+        const double boundary = f.cos_axis > 0 ? depth / f.cos_axis : 1e300;
+        const bool pass = f.distance >= boundary;
+        const auto weight = pass ? step.passage_weights(f, axis, boundary, q) : std::array<double, 3>{0, 0, 0};
+        for (int c = 0; c < 3; ++c) passed[c].add(weight[c]);
       }
-      EXPECT_WITHIN_4_SIGMA(passed[c], albedo[c] * reference, "P_g=" << p_guided << " c=" << c << " back=" << axis.has_back);
+      for (int c = 0; c < 3; ++c) {
+        double reference = 0;
+        for (size_t j = 0; j < rule.nodes.size(); ++j) {
+          const double u = rule.nodes[j];
+          reference += rule.weights[j] * 2 * kPiD * henyey_greenstein(u, g) * std::exp(-sigma_t[c] * depth / u);
+        }
+        EXPECT_WITHIN_4_SIGMA(passed[c], albedo[c] * reference,
+                              "P_g=" << p_guided << " c=" << c << " back=" << axis.has_back);
+      }
     }
-  }
 }
 
 // The back share is the far plane's part of the summed importance exp(-kappa sigma_t D):
