@@ -5,6 +5,8 @@
 #               FUZZ_SECONDS seconds (docs/robustness.md)
 #   make test-sanitize  (optional) the test suite under AddressSanitizer + UBSan (gcc) in
 #               build-asan (docs/robustness.md)
+#   make format         clang-format every C++ file in place (.clang-format)
+#   make format-check   fail, naming the files, where one is not as clang-format writes it (CI runs it)
 BUILD ?= build
 JOBS ?= $(shell nproc)
 FUZZ_BUILD ?= build-fuzz
@@ -25,7 +27,7 @@ SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/fuzz/lsan.supp:print_suppressions=0
 
-.PHONY: all deps configure build demo test bench fuzz test-sanitize clean
+.PHONY: all deps configure build demo test bench fuzz test-sanitize format format-check clean
 
 all: build
 
@@ -65,6 +67,16 @@ test-sanitize: deps
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target dermis dermis_tests \
 	  $(addsuffix _replay,$(addprefix fuzz_,$(FUZZ_TARGETS)))
 	$(SANITIZE_ENV) ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS) -E '$(SANITIZE_EXCLUDE)'
+
+# Every tracked C++ source and header, as clang-format (Debian's, .clang-format) writes it.
+CXX_SOURCES = $(shell git ls-files '*.cpp' '*.h')
+
+format: deps
+	clang-format -i $(CXX_SOURCES)
+
+format-check: deps
+	@bad=$$(for f in $(CXX_SOURCES); do clang-format --dry-run -Werror "$$f" >/dev/null 2>&1 || echo "$$f"; done); \
+	if [ -n "$$bad" ]; then echo "not formatted (make format):"; echo "$$bad"; exit 1; fi
 
 clean:
 	rm -rf $(BUILD) out

@@ -5,7 +5,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config clang-format
   libembree-dev libtbb-dev
   libopenimageio-dev openimageio-tools libopenexr-dev libpng-dev
   libassimp-dev zlib1g-dev
