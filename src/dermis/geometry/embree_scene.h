@@ -41,7 +41,8 @@ class EmbreeScene {
              AlphaTextureLookup alpha = {}, const LoadMonitor* monitor = nullptr);
 
   // Whether hits need their (u, v): only a scene with textures reads them. Without, the
-  // sphere's (acos, atan2 per hit: 5 % of a medium render) is skipped and hit.uv is (0, 0).
+  // sphere's (acos, atan2 per hit: a measurable share of a medium render) is skipped and
+  // hit.uv is (0, 0).
   void set_uv_needed(bool needed) { uv_needed_ = needed; }
 
   // Closest hit with t in (0, ray.tmax). Fills hit (world space) on success.

@@ -30,14 +30,11 @@
 // What its light samples add is the transmittance computed instead of flown through,
 // which deep in a dense medium under a bright sky is most of the light, and their
 // stratification against an unoccluded sky: where the sky outweighs the others it keeps
-// its share. Measured with bench/compare_efficiency.py on bench/vs_cycles' index-matched
-// medium (a small key light and a dim sky) and variants (4x denser, sky 1.4-2.2x
-// brighter): variance 0.75-0.85x at the same time; under a sky that outweighs the key
-// light (10x brighter sky, key 1/10) the images are unchanged. At surfaces
-// (docs/rendering.md, "Light selection"), at subsurface exits: bust-burley 1.07x
-// efficiency, bust-walk 1.03x, sphere-burley 0.94x; on a Lambertian sphere 0.95x (the
-// sky's stratified light sample and the BSDF's direction two samples of what the cosine
-// lobe covers), so not at other surfaces. SkyRule::GivesWay goes further where the caller
+// its share: in a medium the variance falls at the same time, and under a sky that
+// outweighs the key light the images are unchanged. At surfaces it paid at subsurface
+// exits only, not on a Lambertian sphere (the sky's stratified light sample and the BSDF's
+// direction are two samples of what the cosine lobe covers), so not at other surfaces
+// (measured: docs/rendering.md, "Light selection"). SkyRule::GivesWay goes further where the caller
 // asks: the uniform skies are never chosen (the probe methods' exits, and walk strategies
 // the render's pilot may choose: render/subsurface/subsurface_method.h, exit_sky_rule).
 // With more lights, a point-independent distribution in proportion to power (lights at
@@ -78,9 +75,8 @@ class LightSelection {
   // 2 when finite lights and lights at infinity are sampled separately (group 0 and 1) at
   // a point with normal n, else 1 (group 0: every light). Only surface points split: in a
   // medium (n zero) the sky's light sample is not weighted away by a cosine-like lobe, and
-  // a second shadow ray through the medium cost about what it saved (index-matched
-  // medium: 1.6x the time for 1.7x less variance when measured first; efficiency 0.95x
-  // when measured again with shadow rays through an interface as one query).
+  // a second shadow ray through the medium cost about what it saved (docs/rendering.md,
+  // "Light selection").
   int groups(Vec3 n) const { return split_ && surface(n) ? 2 : 1; }
 
   // Chooses a light for the point p whose scattering sees only the hemisphere about the

@@ -16,9 +16,9 @@
 namespace dermis {
 
 // -ln(1 - u) for u in [0, 1): the exponential's inverse CDF at unit rate, in double, where
-// 1 - u is exact for any float u >= 2^-29 (within 2^-54 below). glibc's double log takes
-// 40 % of log1pf's time, and a medium's segment draws two of these (free flight, next-event
-// point).
+// 1 - u is exact for any float u >= 2^-29 (within 2^-54 below). glibc's double log is
+// much faster than its log1pf, and a medium's segment draws two of these (free flight,
+// next-event point).
 inline float exponential_quantile(float u) { return float(-std::log(1.0 - double(u))); }
 
 // The attenuation over a whole segment [0, t_max), computed once for the segment's free

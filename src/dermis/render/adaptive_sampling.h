@@ -44,9 +44,8 @@ int default_min_spp(int spp);
 // value as written). For a white pixel (value 1) this is the relative error; for darker
 // ones it is the error as a display shows it (display encodings are close to a square
 // root: d sqrt(v) = dv / 2 sqrt(v)), as Cycles' noise threshold measures it. A purely
-// relative error lets near-black pixels lit by rare paths take the whole budget: on the
-// jade sphere lit by the small key light only (bench/vs_cycles f03) its sample allocation
-// has 0.09x the efficiency of uniform sampling, this one 4.5x (docs/rendering.md).
+// relative error lets near-black pixels lit by rare paths take the whole budget (measured
+// against uniform sampling: docs/rendering.md, "Adaptive sampling").
 // Zero for a pixel whose samples are all equal (a background); +infinity with fewer than
 // 2 samples.
 float pixel_noise_error(const Film& film, std::size_t pixel, double output_scale);

@@ -28,14 +28,13 @@ namespace dermis {
 inline constexpr uint64_t kCameraDimensions = 4;
 inline constexpr uint64_t kVertexDimensions = 32;
 // A subsurface exit sampler takes its first 8 numbers (a probe, or the first flight and
-// scattering of a walk) stratified, the rest from the sample's PCG32 stream: on the
-// skin-like sphere (bench scene sphere-walk-diffuse-mis, 16 spp) stratifying every step
-// of the walk left the variance unchanged (x1.79 below independent either way) and
-// cost a fifth more render time in hashing.
+// scattering of a walk) stratified, the rest from the sample's PCG32 stream: stratifying
+// every step of the walk left the variance unchanged and cost render time in hashing
+// (docs/rendering.md, "Sampler").
 inline constexpr uint32_t kStratifiedExitDimensions = 8;
 // Vertices past the first 6 of a path take the sample's PCG32 stream: deep in a medium
-// the hashing of Sobol' dimensions cost a quarter of the render time (a medium in glass)
-// for no measurable gain.
+// the hashing of Sobol' dimensions cost much of the render time for no measurable gain
+// (docs/rendering.md, "Sampler").
 inline constexpr uint64_t kStratifiedVertices = 6;
 
 // What a camera path's first subsurface entry was, for the render's pilot

@@ -9,8 +9,8 @@
 // Where it pays: subsurface exits multiply a path's channels by weights well above one
 // (a disk probe's red weight reaches about A / (q_red P_axis), 3 to 6 on skin; a walk's
 // spectral MIS weights likewise), and a path that meets the object again compounds them:
-// on the bust (bench/vs_cycles bust-burley) the paths past the first exit carried 3 % of
-// the light and 40 % of the variance, in single pixels 1000 times their mean.
+// on a bust, the paths past the first exit carried a small share of the light and much of
+// the variance (docs/rendering.md).
 #pragma once
 
 #include <algorithm>

@@ -11,11 +11,10 @@
 // roulette on that weight from 1 down kills a bright medium's paths as analog absorption
 // would, with probability about 1 - albedo per collision, while they still gather light:
 // the variance implicit capture removes, for little time, as such a path mostly leaves the
-// medium first. On the index-matched sphere of bench/vs_cycles (albedo 0.98 / 0.94 / 0.83)
-// the summed variance fell to 0.88x for 1.02-1.04x the time; 1/4 or 1/8 gave the same
-// variance there and cost time in a denser medium. In a medium enclosed by glass (no
-// light seen: the path gathers only once it leaves) 1/2 added time for no variance, and
-// the rule stays 1 there (docs/rendering.md, "Russian roulette").
+// medium first. Lower thresholds gave no less variance and cost time in a denser medium. In
+// a medium enclosed by glass (no light seen: the path gathers only once it leaves) 1/2
+// added time for no variance, and the rule stays 1 there. Measured: docs/rendering.md,
+// "Russian roulette".
 #pragma once
 
 namespace dermis {

@@ -93,8 +93,8 @@ double pilot_handicap(const SubsurfaceParams& params, int strategy) {
   if (params.method != SubsurfaceParams::Method::RandomWalk) return 1;
   if (strategy <= 0 || strategy >= int(kWalkStrategies.size())) return 1;
   // Backward guiding's far-side terms cost arithmetic at every step that the pilot's ray
-  // count does not see (6-7 % more time per ray), and its estimates read 1.03-1.32x what
-  // the strategy rendered with (kBackwardGuidingHandicap).
+  // count does not see, and its estimates read above what the strategy rendered with
+  // (kBackwardGuidingHandicap).
   if (backward_by_choice(params, strategy)) return kBackwardGuidingHandicap;
   if (params.guided_share_pinned()) return 1;  // every strategy has the given share
   return kWalkStrategies[std::size_t(strategy)].p_guided > kWalkStrategies[0].p_guided ? kHeavierStrategyHandicap : 1;

@@ -49,22 +49,19 @@ struct StrategyMeasure {
 
 // The pilot's estimate of a strategy with more guided flights than the default (heavier-
 // tailed weights: walk_method.h, kWalkStrategies) is divided by this before the choice.
-// Measured on eight configurations of bench/vs_cycles' three sets, such a strategy's
-// estimated gain read 1.05-1.5x the gain it rendered with (median 1.3; docs/rendering.md):
-// a pilot of two independent samples per pixel misses the rare large weights that the mean
-// holds, and Owen-scrambled Sobol' stratifies the default's lighter-tailed walks better.
-// The estimates are precise (standard errors of 1-4 %), so the 2-sigma significance does
-// not catch this; a handicap of 1.1 still let estimates of 1.16-1.24 through on the
-// ketchup bust of the held-out set, which then rendered at 0.91x (64 spp, 16 seeds).
+// Such a strategy's estimated gain reads above the gain it renders with: a pilot of two
+// independent samples per pixel misses the rare large weights that the mean holds, and
+// Owen-scrambled Sobol' stratifies the default's lighter-tailed walks better. The
+// estimates are precise, so the 2-sigma significance does not catch this, and a smaller
+// handicap let through choices that then rendered slower (measured: docs/rendering.md,
+// "The subsurface pilot").
 inline constexpr double kHeavierStrategyHandicap = 1.25;
 // The pilot's estimate of a walk strategy that guides backward too (WalkStrategy::
 // backward_guiding) is divided by this before the choice. Its far-side terms cost
-// arithmetic at every step that the pilot's count of rays does not see (6-7 % more time
-// per ray, measured on six configurations of bench/vs_cycles), and its estimated gains
-// over the choice without it read 1.03-1.32x what it rendered with on the held-out and
-// textured sets (h06, t06, and h01, h04 where it then lost: 0.95x, 0.85x; 64 spp, 8
-// seeds): with this handicap the pilot keeps it on the two fins under the sky alone
-// (docs/rendering.md, "Backward guiding as a strategy").
+// arithmetic at every step that the pilot's count of rays does not see, and its estimated
+// gains over the choice without it read above what it rendered with: with this handicap
+// the pilot keeps it on the fins under the sky alone, where it pays (measured:
+// docs/rendering.md, "Backward guiding as a strategy").
 inline constexpr double kBackwardGuidingHandicap = kHeavierStrategyHandicap;
 // The handicap of walk strategy `strategy` (kWalkStrategies) for a material: the one above
 // where it guides backward (unless the material gives `backwardguiding`: then every
@@ -87,8 +84,8 @@ inline constexpr double kPilotSignificance = 2;
 // object). Where after the first no strategy of any material could be worth switching
 // to, the second is not rendered and every material keeps its default: no strategy's
 // gain, `sigmas` standard errors above its estimate, reaches kPilotWorthwhileGain. (A
-// gain below that is not worth the second stage's cost, which is half the pilot: 2-4 %
-// of a small render's time.) False where any strategy was measured on fewer than
+// gain below that is not worth the second stage's cost, which is half the pilot's:
+// docs/rendering.md, "The subsurface pilot".) False where any strategy was measured on fewer than
 // min_pixels pixels or not comparably (infinite standard error).
 bool no_strategy_can_gain(const std::vector<StrategyMeasure>& measures, int64_t min_pixels, double sigmas);
 inline constexpr double kPilotWorthwhileGain = 1.05;

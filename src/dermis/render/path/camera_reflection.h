@@ -1,8 +1,9 @@
 // The camera's first smooth reflection, split off at a subsurface entry or at smooth glass:
 // the reflection and the transmission are both followed, weighted F and 1 - F (unbiased:
 // one sample of each term of F L_r + (1 - F) L_t). Chosen by Fresnel, a sharp highlight of
-// a small light rests on the few per cent of samples that reflect (on the skin-like sphere
-// it made half the image's error). Where the reflection cannot see a bright emitter it is
+// a small light rests on the few per cent of samples that reflect (much of the image's
+// error on a skin-like sphere: docs/rendering.md). Where the reflection cannot see a
+// bright emitter it is
 // rouletted on its weight (reflection_survival, path_state.h).
 #pragma once
 

@@ -110,8 +110,7 @@ double energy_within(const sss::RadialProfile& profile, double rho) {
 // footprint, whose variance grows with the footprint; choosing channels as the square
 // roots of their variances minimises the sum (Neyman allocation, as the walk's channel
 // choice: sss/walk/walk_step.h channel_probabilities), and A_c sqrt(r_c) is that square
-// root for a variance of A_c^2 r_c. Against the albedo alone: per-pixel variance 0.97x
-// on the skin-like sphere and 0.92x on the bust (docs/probe-sampling.md).
+// root for a variance of A_c^2 r_c. Against the albedo alone: docs/probe-sampling.md.
 RGB probe_channel_weights(const sss::ProfileRGB& profile) {
   double reach[3], largest = 0;
   for (int c = 0; c < 3; ++c) {
@@ -179,9 +178,8 @@ bool ProbeMethod::sample_disk(const sss::ProfileRGB& profile, const sss::DiskPro
   // One number for the axis, the strategy and the radius, cut in turn, and the angle: over
   // a pixel's samples each (axis, strategy)'s radii and angles are stratified together.
   // Against a number for each choice (the sampler's dimensions are independent of one
-  // another), variance 0.45-0.53x on the family's spheres, 0.63x on the back-lit fin,
-  // 0.91-0.93x on the bust and the key-lit fin (docs/probe-sampling.md, "One number for
-  // the choices"). With independent numbers (the render's pilot) both forms have one
+  // another) the variance falls (docs/probe-sampling.md, "One number for the choices").
+  // With independent numbers (the render's pilot) both forms have one
   // distribution, and a number per choice keeps what the pilot's strategies share: the
   // same radius and angle for the same draw whatever their axis probabilities, which its
   // paired comparison of them needs (cut from one number, 0.95's radius is not 0.75's).

@@ -65,10 +65,9 @@ struct SubsurfaceMaterial {
   // (WalkStrategy::exit_sky_sampled; sampled where its parameters pin its strategy,
   // whatever the pilot tries on the others). The probe methods: never (SkyRule::GivesWay;
   // the exit lobe's way on finds them at MIS weight one). Their exit is cosine-like, as a
-  // uniform sky's light sample is, and leaving that sample out kept the variance
-  // (0.97-1.09x) for 0.85-0.98x the render time on every configuration of bench/vs_cycles'
-  // family, held-out and textured sets with a sky (20 of them, efficiency 1.02-1.22x;
-  // docs/probe-sampling.md), where the walk's default lost (0.95-0.98x on the marble bust).
+  // uniform sky's light sample is, and leaving that sample out kept the variance for less
+  // render time on every sky-lit configuration measured, where the walk's default lost
+  // (docs/probe-sampling.md).
   SkyRule exit_sky_rule(int strategy) const {
     if (!std::holds_alternative<WalkMethod>(method))
       return exits_through_lobe() ? SkyRule::GivesWay : SkyRule::Outweighed;  // the point cloud: no exits
@@ -89,9 +88,9 @@ struct SubsurfaceMaterial {
   }
 
   // Whether the camera's first entry's exits are drawn as one Sobol' sequence
-  // (Sampler::set_split): the probes', whose variance is much their first numbers'
-  // (0.84-0.89x with the disk's two exits). Not a walk's: its variance is not in its first
-  // eight numbers, and on the sky-lit fins it rose 1.08x (docs/probe-sampling.md).
+  // (Sampler::set_split): the probes', whose variance is much their first numbers'. Not a
+  // walk's: its variance is not in its first eight numbers, and on the sky-lit fins it rose
+  // (docs/probe-sampling.md, "The exits as one sequence").
   bool exits_as_one_sequence() const { return std::holds_alternative<ProbeMethod>(method); }
 
   // Its exits leave through the exit lobe Sw (SubsurfaceExit::Kind::ThroughLobe): the probe

@@ -203,7 +203,7 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
     // the walk's, which meets the far side farther on where the flight grazes the surface
     // (the chord of a convex part grows as the line moves in), and a collision between
     // the two crossings fell outside the object, where the walk wandered until its step
-    // cap (bench/vs_cycles' milk configurations: a few paths per image;
+    // cap (docs/random-walk.md, "Leaving the surface";
     // WalkMethodOnItsOwn.StaysInsideTheObjectAtAGrazingEntry).
     if (o == start) r.o = start + d * (surface_offset(start) / std::abs(dot(d, start_n)));
     // Bounded by the flight's distance (random_walk.h), padded so that every crossing

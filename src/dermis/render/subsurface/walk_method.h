@@ -35,14 +35,12 @@ namespace dermis {
 // guided flights, the channel weights bounded by the throughput): a short pilot
 // underestimates the variance of a heavy-tailed estimator, so it may choose them on its
 // estimate alone. The last, a guided share of 0.8, is more heavy-tailed: its shorter walks
-// render thick, dense objects faster (1.15-1.5x on the dark bust and fin, the wax sphere and
-// skin and apple busts of bench/vs_cycles at mfp/size 0.01; docs/rendering.md), its estimate
-// reads high by 1.05-1.5x, and the pilot takes it only where its gain survives a handicap
-// (subsurface_pilot.h, kHeavierStrategyHandicap). A share of 1 was not added (no classical
-// flights under the mixture: no bound on a step's weight where a walk must cross a thin
-// part), nor 0.9 (no clearer a gain: 1.14x on the dark bust against 0.8's 1.24x, 1.39x
-// against 1.24x on the wax sphere). A material whose `walksampling` is given keeps it,
-// whatever the share.
+// render thick, dense objects faster, its estimate reads high, and the pilot takes it only
+// where its gain survives a handicap (subsurface_pilot.h, kHeavierStrategyHandicap). A
+// share of 1 was not added (no classical flights under the mixture: no bound on a step's
+// weight where a walk must cross a thin part), nor 0.9 (no clearer a gain than 0.8's).
+// Measured: docs/rendering.md, "The subsurface pilot". A material whose `walksampling` is
+// given keeps it, whatever the share.
 // The fifth to the eighth give each of the camera's first entry's walks one colour channel
 // (channel_per_walk below); their weights are each channel's own, no heavier.
 struct WalkStrategy {
@@ -53,8 +51,8 @@ struct WalkStrategy {
   // channel k mod 3 alone, every flight drawn in that channel: three walks per entry, so
   // that each channel has its own walk in every sample. One walk shared by channels whose
   // extinction differs has weights f_k / q that spread with the walk's length and
-  // free paths (on the family's milk sphere under the sky, 30x the variance of the same
-  // sphere with grey extinction); a walk drawn in its own channel has the weight of a
+  // free paths (far more variance than the same medium with grey extinction:
+  // docs/random-walk.md); a walk drawn in its own channel has the weight of a
   // grey medium's, the albedo to the power of its collisions. Where the channels' walks
   // are alike, or the noise is in finding the light (a backlit thin part), sharing wins:
   // the pilot measures which.
@@ -63,24 +61,19 @@ struct WalkStrategy {
   // where the finite lights do not outweigh them), or never (SkyRule::GivesWay: the exit
   // lobe's sampled direction finds them at MIS weight one). Not a walk setting: the
   // integrator's, at the walk's exits (SubsurfaceMaterial::exit_sky_rule). Each light
-  // sample is a shadow ray and a second estimate of what the lobe's direction sees. Under
-  // a uniform sky alone, with one channel per walk, leaving them out halved the variance
-  // of the held-out marble bust (h04) and changed nothing on the family's dark bust, the
-  // milk sphere, the fins or the textured sky-lit configurations (0.97-1.10x efficiency;
-  // without one channel per walk 0.95-0.98x on h04): docs/rendering.md. The pilot
-  // measures these two only where the scene has a uniform sky
-  // (subsurface_pilot.cpp, offered_strategies).
+  // sample is a shadow ray and a second estimate of what the lobe's direction sees: under a
+  // uniform sky alone, with one channel per walk, leaving them out can pay (measured:
+  // docs/rendering.md, "The subsurface pilot"). The pilot measures these two only where
+  // the scene has a uniform sky (subsurface_pilot.cpp, offered_strategies).
   bool exit_sky_sampled = true;
   // Guided flights also follow the importance of the object's far side below the entry
   // point (sss/walk/random_walk.h, backward guiding; the material's `backwardguiding`).
   // Where light enters a thin part from both faces (a fin under the sky) a walk's way out
   // through either face is worth the same, and guiding toward the entry face alone fights
-  // half of it; elsewhere the far side's terms cost time for nothing. Given to every
-  // strategy, on the 27 walk configurations of bench/vs_cycles' three sets, efficiency
-  // 2.00x on the held-out fin under the sky (h06) and 1.37x on the textured one (t06),
-  // 0.55-0.95x on the other 25 (docs/rendering.md, "Backward guiding as a strategy"): so
-  // two strategies, the channel-per-walk ones the pilot takes on those fins, and only
-  // where the far side is within the walks' reach (WalkMethod::far_side_in_reach).
+  // half of it; elsewhere the far side's terms cost time for nothing (measured for every
+  // strategy: docs/rendering.md, "Backward guiding as a strategy"). So two strategies, the
+  // channel-per-walk ones the pilot takes on fins under a sky, offered only where the far
+  // side is within the walks' reach (WalkMethod::far_side_in_reach).
   bool backward_guiding = false;
 };
 inline constexpr std::array<WalkStrategy, 11> kWalkStrategies{{{0.5f, 0.5f},
@@ -104,8 +97,8 @@ inline constexpr int kChannelWalks = 3;
 // (MixtureWalkStep::importance_length) is below kShortWalkChordFraction of the object's
 // mean chord length 4V/S (geometry/mean_chord.h), strategies whose share is the
 // default's (and not given by the material) guide with kShortWalkGuidedShare. Raising
-// the short channels alone, where a long one shares the walk, did not pay (0.96-1.19x).
-// Measured in docs/rendering.md ("Guiding where the walks are short").
+// the short channels alone, where a long one shares the walk, did not pay. Measured in
+// docs/rendering.md ("Guiding where the walks are short").
 inline constexpr double kShortWalkGuidedShare = 0.8;
 inline constexpr double kShortWalkChordFraction = 0.1;
 // The guided share of each channel for a step whose share is the default's, inside an

@@ -40,10 +40,10 @@ struct WalkSettings {
   // normal; the share of each side follows the depths (MixtureWalkStep::back_shares).
   bool backward_guiding = false;
   // Scattering events before the walk is stopped (truncated: its energy is lost, counted
-  // and reported). At 1024, 45 of the walks of bench/vs_cycles' wax sphere (f04, single-
-  // scattering albedo near 1, one colour channel per walk) were truncated at 16 spp: a red
-  // walk lives about 2300 steps before its throughput reaches the roulette threshold. At
-  // 8192 none were, for the same variance and render time (docs/random-walk.md).
+  // and reported). A walk in a medium whose single-scattering albedo is near 1 lives
+  // thousands of steps before its throughput reaches the roulette threshold; a cap of
+  // 1024 truncated such walks on a wax sphere, 8192 none, for the same variance and time
+  // (docs/random-walk.md).
   int max_steps = 8192;
   // Russian roulette when the largest channel of the throughput drops below this.
   float roulette_threshold = 0.1f;

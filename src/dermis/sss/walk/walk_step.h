@@ -166,9 +166,8 @@ class MixtureWalkStep {
   // about as V_c / q_c, and the sum over channels is least for q_c proportional to
   // sqrt(V_c) (the optimal allocation of stratified sampling, Neyman 1934). A walk's
   // variance grows with its length, and the mean number of collisions before absorption
-  // is 1 / (1 - albedo): k = 1/2 (WalkSettings) takes V_c proportional to that. On
-  // skin-like spheres and the bust (red albedo near 1) the summed per-pixel variance
-  // falls to 0.71-0.75x (docs/random-walk.md).
+  // is 1 / (1 - albedo): k = 1/2 (WalkSettings) takes V_c proportional to that, which
+  // lowers the variance where one channel's albedo is near 1 (skin: docs/random-walk.md).
   Channels channel_probabilities(const Channels& throughput) const {
     Channels q;
     double sum = 0;
@@ -336,7 +335,7 @@ class MixtureWalkStep {
   // Exponential free path -ln(1 - xi)/sigma (Beer-Lambert), sigma = sigma_t classically
   // or sigma_t (1 - kappa u) guided (Krivanek & d'Eon 2014). xi is a multiple of 2^-53
   // (Rng::uniform_double, Sampler's 32-bit fractions), so 1 - xi is exact in double and
-  // log(1 - xi) is as accurate as log1p(-xi), in 36 % of its time (glibc).
+  // log(1 - xi) is as accurate as log1p(-xi), and faster (glibc).
   template <class Random>
   double free_path(int c, bool guided, double u, Random& rng) const {
     const double sigma = guided ? sigma_t_[c] * guide_[c].extinction_scale(u) : sigma_t_[c];
