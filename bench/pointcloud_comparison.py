@@ -13,7 +13,7 @@ by chance, does not dominate every image's error.
   /usr/bin/python3 bench/pointcloud_comparison.py                # the full run
   /usr/bin/python3 bench/pointcloud_comparison.py --scale 0.1    # every time x0.1, a smoke test
 
-Writes docs/results-pointcloud.md (hand-written findings below the marker are kept) and
+Writes docs/results/results-pointcloud.md (hand-written findings below the marker are kept) and
 docs/images/results-pointcloud.png; the study's HTML report stays in --work.
 """
 
@@ -73,7 +73,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--scale", type=float, default=1.0, help="multiply every time (default 1)")
     ap.add_argument("--work", default=WORK, help="folder of the study (its report and images)")
-    ap.add_argument("--no-docs", action="store_true", help="do not write docs/results-pointcloud.md")
+    ap.add_argument("--no-docs", action="store_true", help="do not write docs/results/results-pointcloud.md")
     args = ap.parse_args()
     args.work = os.path.abspath(args.work)
     os.makedirs(sm.SCENES, exist_ok=True)
@@ -102,7 +102,7 @@ def write_docs(data, out, total, args, load_start):
     sm.strip([dermis.read_image(os.path.join(out, "reference.exr"))] +
              [dermis.read_image(os.path.join(out, study._filename(n) + ".exr")) for n in names],
              ["reference"] + names, os.path.join(sm.IMAGES, "results-pointcloud.png"))
-    path = os.path.join(sm.DOCS, "results-pointcloud.md")
+    path = os.path.join(sm.DOCS, "results", "results-pointcloud.md")
     kept = ""
     if os.path.exists(path):
         text = open(path).read()
@@ -118,7 +118,7 @@ def write_docs(data, out, total, args, load_start):
     w.append("# Point-cloud diffusion: the seed's comparison\n")
     w.append("Langlands & Mertens (seed 001) show that a sparse point cloud with their local disk integral matches a "
              "cloud an order of magnitude denser without it, at a fraction of the points, memory and pre-pass time. "
-             "Dermis' reproduction on the Nefertiti bust, as one `dermis study` ([study.md](study.md)).\n")
+             "Dermis' reproduction on the Nefertiti bust, as one `dermis study` ([study.md](../study.md)).\n")
     w.append(f"Produced by `{cmd}` on {datetime.date.today().isoformat()} (code at commit {commit}; {THREADS} "
              f"threads; CPU: {data['machine']['CPU']}; cores: {data['machine']['cores']}; the script took "
              f"{total:.0f} s). Load average (1, 5, 15 min) "
@@ -137,7 +137,7 @@ def write_docs(data, out, total, args, load_start):
     w.append(f"## {data['main_budget']:g} CPU s per render\n")
     w.append(sm.table(data) + "\n")
     w.append(sm.reference_line(data) + "\n")
-    w.append("![point clouds](images/results-pointcloud.png)\n")
+    w.append("![point clouds](../images/results-pointcloud.png)\n")
     with open(path, "w") as f:
         f.write("\n".join(w) + "\n" + MARKER + (kept if kept else "\n"))
     print(f"wrote {path}")

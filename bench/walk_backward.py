@@ -12,7 +12,7 @@ behind (8 and 30 mm), and the fin, sphere and bust of bench/sss_methods.py, fron
   /usr/bin/python3 bench/walk_backward.py                 # the full run
   /usr/bin/python3 bench/walk_backward.py --scale 0.1     # every time x0.1, a smoke test
 
-Writes docs/results-backward.md (tables; hand-written findings below the marker are kept)
+Writes docs/results/results-backward.md (tables; hand-written findings below the marker are kept)
 and docs/images/results-backward-*.png; the studies' HTML reports stay in --work.
 """
 
@@ -112,7 +112,7 @@ def main():
     ap.add_argument("--work", default=WORK, help="folder of the studies (their reports and images)")
     ap.add_argument("--geometries", default="slab,thickslab,fin,sphere,bust", help="comma-separated subset")
     ap.add_argument("--boundaries", default="dielectric,diffuse", help="comma-separated subset")
-    ap.add_argument("--no-docs", action="store_true", help="do not write docs/results-backward.md")
+    ap.add_argument("--no-docs", action="store_true", help="do not write docs/results/results-backward.md")
     args = ap.parse_args()
     args.work = os.path.abspath(args.work)
     os.makedirs(sm.SCENES, exist_ok=True)
@@ -136,7 +136,7 @@ def write_docs(results, total, args, load_start):
         sm.strip([dermis.read_image(os.path.join(args.work, key, "reference.exr"))] +
                  [sm.exr(args.work, key, n) for n in names], ["reference"] + names,
                  os.path.join(sm.IMAGES, f"results-backward-{key}.png"))
-    path = os.path.join(sm.DOCS, "results-backward.md")
+    path = os.path.join(sm.DOCS, "results", "results-backward.md")
     kept = ""
     if os.path.exists(path):
         text = open(path).read()
@@ -159,7 +159,7 @@ def write_docs(results, total, args, load_start):
            f"the end (the studies' own {THREADS} threads count in it); equal **CPU** time keeps the comparison fair "
            "on a loaded machine, but the references (rendered for a wall time) then reach fewer samples: their "
            "sample counts and own noise are under each table.\n",
-           "Each section is one `dermis study` ([study.md](study.md)) whose interactive report the script leaves in "
+           "Each section is one `dermis study` ([study.md](../study.md)) whose interactive report the script leaves in "
            f"`{args.work}/<boundary>-<geometry>/index.html`; its rows are labelled method specs "
            "(`mis + backward=randomwalk:boundary=…:walksampling=mis:backwardguiding=true`). How to read the tables: "
            f"as in [results.md](results.md): {REPEATS} independent repeats per row, mean ± standard error; "
@@ -174,7 +174,7 @@ def write_docs(results, total, args, load_start):
         out.append(f"## `{b}` boundary: {TITLES[g]}, {data['main_budget']:g} CPU s each\n")
         out.append(sm.table(data) + "\n")
         out.append(sm.reference_line(data) + "\n")
-        out.append(f"![{b} {g}](images/results-backward-{key}.png)\n")
+        out.append(f"![{b} {g}](../images/results-backward-{key}.png)\n")
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n" + MARKER + (kept if kept else "\n"))
     print(f"wrote {path}")

@@ -18,7 +18,7 @@ pbrt-v4's gains are larger for that reason too. The standard error of a ratio co
 the K per-seed MSEs of both renders (delta method).
 
 pbrt-v4's `pmj02bn` reads a table that this build of pbrt-v4 may lack: the public snapshot
-omits it and the build used for docs/results-vs-pbrt-v4.md put in a stand-in, an
+omits it and the build used for docs/results/results-vs-pbrt-v4.md put in a stand-in, an
 Owen-scrambled (0,2)-sequence without the blue-noise optimisation (bench/pbrt_v4/README.md).
 Its column is then that stand-in's, not pmj02bn's.
 Writes --out/samplers.md (and .json); renders are kept and reused as in compare.py.

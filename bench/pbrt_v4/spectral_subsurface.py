@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """How much of the difference between pbrt-v4 and Dermis' `--subsurface pbrt-v4` on a coloured
-subsurface material is pbrt-v4's spectral rendering (docs/results-vs-pbrt-v4.md).
+subsurface material is pbrt-v4's spectral rendering (docs/results/results-vs-pbrt-v4.md).
 
 pbrt-v4 uplifts sigma_a and sigma_s to smooth spectra (RGBUnboundedSpectrum, Jakob & Hanika
 2019) and evaluates the BSSRDF per wavelength: the single-scattering albedo rho(lambda) =

@@ -49,11 +49,11 @@ from dermis_output import LIMIT_RE, RENDER_RE, strip, write_png  # noqa: E402
 HUGE_SPP = 1000000
 # The family's report, the held-out configurations' and the classic seven scenes' (issue 15)
 # beside it.
-DOC = {"family": os.path.join(ROOT, "docs", "results-vs-cycles.md"),
-       "heldout": os.path.join(ROOT, "docs", "results-vs-cycles-heldout.md"),
-       "textured": os.path.join(ROOT, "docs", "results-vs-cycles-textured.md"),
-       "closeup": os.path.join(ROOT, "docs", "results-vs-cycles-closeup.md"),
-       "classic": os.path.join(ROOT, "docs", "results-vs-cycles-classic.md")}
+DOC = {"family": os.path.join(ROOT, "docs", "results", "results-vs-cycles.md"),
+       "heldout": os.path.join(ROOT, "docs", "results", "results-vs-cycles-heldout.md"),
+       "textured": os.path.join(ROOT, "docs", "results", "results-vs-cycles-textured.md"),
+       "closeup": os.path.join(ROOT, "docs", "results", "results-vs-cycles-closeup.md"),
+       "classic": os.path.join(ROOT, "docs", "results", "results-vs-cycles-classic.md")}
 IMAGES = {"family": os.path.join(ROOT, "docs", "images", "vs-cycles"),
           "heldout": os.path.join(ROOT, "docs", "images", "vs-cycles-heldout"),
           "textured": os.path.join(ROOT, "docs", "images", "vs-cycles-textured"),
@@ -328,7 +328,7 @@ def make_highlights(args, sc, work, mask):
     share of its area the mirror image covers, whatever the subsurface method: in the
     twenty-second family run, the 17 highlight pixels of the key-lit spheres (of 3710) held
     12-53 % of Dermis' squared error over the object at 64 spp and 58-91 % of Cycles', and 3
-    of the fin's 2310 held 96 % of Dermis' on f12's disk (docs/results-vs-cycles.md, the
+    of the fin's 2310 held 96 % of Dermis' on f12's disk (docs/results/results-vs-cycles.md, the
     findings of the thirty-ninth session). None where the object shows no light's image.
     """
     text = pbrt_writer.highlight_text(sc, 1024)
@@ -805,11 +805,11 @@ def main():
     ap.add_argument("--set", choices=["family", "heldout", "textured", "closeup", "classic"], default="family",
                     help="family (default): the scene family of issue 40, chosen before tuning (scenes.FAMILY); "
                          "heldout: eight other configurations on the family's geometries, never used for tuning "
-                         "(scenes.HELDOUT; the family's settings, report docs/results-vs-cycles-heldout.md); "
+                         "(scenes.HELDOUT; the family's settings, report docs/results/results-vs-cycles-heldout.md); "
                          "textured: six configurations whose reflectance is a checkerboard (scenes.TEXTURED; the "
-                         "family's settings, report docs/results-vs-cycles-textured.md); "
+                         "family's settings, report docs/results/results-vs-cycles-textured.md); "
                          "closeup: the family's twelve configurations framed close, the object about three quarters "
-                         "of the frame (scenes.CLOSEUP; report docs/results-vs-cycles-closeup.md); "
+                         "of the frame (scenes.CLOSEUP; report docs/results/results-vs-cycles-closeup.md); "
                          "classic: the seven scenes of issue 15")
     ap.add_argument("--scenes", default="", help=f"comma-separated scene names instead of --set, from "
                     f"{', '.join(S.SCENES)}")

@@ -5,7 +5,7 @@
 // cost. Every strategy is unbiased, so the choice changes the noise and the time, never
 // the mean.
 //
-// Why: which strategy renders a scene fastest depends on the scene (docs/results-vs-cycles.md,
+// Why: which strategy renders a scene fastest depends on the scene (docs/results/results-vs-cycles.md,
 // the scene family): guiding toward the entry plane wins on thick, dense objects and loses
 // where light crosses a thin one; k = 1/2 suits skin, k = 0 a milk-like medium under the
 // sky; probes along the normal alone suit a surface flat at the profile's reach, and all

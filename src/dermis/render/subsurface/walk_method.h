@@ -27,7 +27,7 @@ namespace dermis {
 // The walk's sampling strategies, each unbiased (sss/walk/walk_step.h): the share of
 // Dwivedi-guided flights (WalkSettings::p_guided) and the exponent k of the channel choice
 // (WalkSettings::channel_preference). Which one renders a scene fastest at equal noise
-// depends on the scene (docs/results-vs-cycles.md: guiding toward the entry plane wins on
+// depends on the scene (docs/results/results-vs-cycles.md: guiding toward the entry plane wins on
 // thick, dense objects and loses where light crosses a thin or translucent one; k = 1/2
 // wins on skin, k = 0 on a milk-like medium lit by the sky): the render's pilot
 // (render/subsurface_pilot.h) measures them and picks one per material. The first is
