@@ -68,6 +68,28 @@ std::string existing_file(const ParamList& pl, const std::string& name, const st
   return file;
 }
 
+// pbrt-v4's 2D mappings of a texture (TextureMapping2D::Create): "uv" (uscale, vscale,
+// udelta, vdelta), "spherical", "cylindrical" (no parameters), "planar" (v1, v2, udelta, vdelta).
+void read_mapping_2d(const ParamList& pl, TextureDesc& t) {
+  t.mapping = pl.get_string("mapping", "uv");
+  if (t.mapping == "uv") {
+    t.uscale = pl.get_float("uscale", 1);
+    t.vscale = pl.get_float("vscale", 1);
+    t.udelta = pl.get_float("udelta", 0);
+    t.vdelta = pl.get_float("vdelta", 0);
+  } else if (t.mapping == "planar") {
+    t.v1 = pl.get_vec3("v1", {"vector3"}).value_or(t.v1);
+    t.v2 = pl.get_vec3("v2", {"vector3"}).value_or(t.v2);
+    t.udelta = pl.get_float("udelta", 0);
+    t.vdelta = pl.get_float("vdelta", 0);
+  } else if (t.mapping != "spherical" && t.mapping != "cylindrical") {
+    throw SceneError(pl.find("mapping")->value_loc,
+                     fmt::format("texture mapping must be \"uv\", \"spherical\", \"cylindrical\" or \"planar\", got "
+                                 "\"{}\"",
+                                 t.mapping));
+  }
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- materials
@@ -106,54 +128,83 @@ float SceneParser::float_or_texture(const ParamList& pl, const std::string& name
   return def;
 }
 
+// dielectric, conductor: pbrt-v4's microfacet roughness. "roughness" sets both axes,
+// "uroughness" / "vroughness" override one each; each may be a float texture (evaluated per
+// hit, negative values taken as 0). The renderer maps roughness to alpha. The coated
+// materials' interface and conductor read the same names with a prefix ("interface.",
+// "conductor.").
+void SceneParser::read_microfacet_roughness(const ParamList& pl, const std::string& prefix, MaterialDesc& m, float& u,
+                                            float& v, std::array<int, 2>& textures) {
+  auto read = [&](const std::string& name, float fallback, int fallback_texture, int& texture) {
+    texture = pl.has(name) ? -1 : fallback_texture;  // a value given here overrides "roughness"'s texture
+    const float r = float_or_texture(pl, name, fallback, texture);
+    if (!(r >= 0)) throw SceneError(pl.find(name)->value_loc, fmt::format("{} must be >= 0, got {}", name, r));
+    return r;
+  };
+  int both = -1;
+  const float r = read(prefix + "roughness", 0, -1, both);
+  u = read(prefix + "uroughness", r, both, textures[0]);
+  v = read(prefix + "vroughness", r, both, textures[1]);
+  m.remap_roughness = pl.get_bool("remaproughness", true);
+  m.roughness = std::max({m.roughness, u, v, textures[0] >= 0 || textures[1] >= 0 ? 1.0f : 0.0f});
+}
+
+// pbrt-v4's coating parameters, common to coateddiffuse and coatedconductor; thickness and g
+// may be float textures, albedo a spectrum texture (evaluated per hit, clamped to their
+// ranges as pbrt-v4 does).
+void SceneParser::read_coating(const ParamList& pl, MaterialDesc& m) {
+  m.thickness = float_or_texture(pl, "thickness", 0.01f, m.thickness_texture);
+  if (!(m.thickness >= 0) || !std::isfinite(m.thickness))
+    throw SceneError(pl.find("thickness")->value_loc,
+                     fmt::format("thickness must be finite and >= 0, got {}", m.thickness));
+  m.g = float_or_texture(pl, "g", 0, m.g_texture);
+  if (!(m.g > -1 && m.g < 1))
+    throw SceneError(pl.find("g")->value_loc, fmt::format("g must lie in (-1, 1), got {}", m.g));
+  const RGBTexture albedo = spectrum_or_texture(pl, "albedo", RGB(0));
+  m.albedo = albedo.value;
+  m.albedo_texture = albedo.texture;
+  for (int c = 0; c < 3; ++c)
+    if (!(m.albedo[c] >= 0 && m.albedo[c] <= 1))
+      throw SceneError(pl.find("albedo")->value_loc, fmt::format("albedo must lie in [0, 1], got {}", m.albedo[c]));
+  m.max_depth = pl.get_int("maxdepth", 10);
+  if (m.max_depth < 1 || m.max_depth > 100000)
+    throw SceneError(pl.find("maxdepth")->value_loc,
+                     fmt::format("maxdepth must lie in [1, 100000], got {}", m.max_depth));
+  m.n_samples = pl.get_int("nsamples", 1);
+  if (m.n_samples < 1 || m.n_samples > 1024)
+    throw SceneError(pl.find("nsamples")->value_loc,
+                     fmt::format("nsamples must lie in [1, 1024], got {}", m.n_samples));
+}
+
+// A mix's two materials: named materials made before it, neither an interface nor a
+// subsurface material.
+void SceneParser::read_mix_materials(const ParamList& pl, const SourceLoc& loc, MaterialDesc& m) {
+  const ParsedParam* p = pl.find("materials");
+  if (!p) throw SceneError(loc, "mix material needs \"string materials\" [ \"first\" \"second\" ]");
+  pl.expect_type(*p, {"string"});
+  if (p->param.strings.size() != 2)
+    throw SceneError(p->value_loc,
+                     fmt::format("\"materials\" of a mix must name two materials, got {}", p->param.strings.size()));
+  for (int i = 0; i < 2; ++i) {
+    const std::string& name = p->param.strings[std::size_t(i)];
+    auto it = named_materials_.find(name);
+    if (it == named_materials_.end())
+      throw SceneError(p->value_at(std::size_t(i)),
+                       fmt::format("mix: unknown named material \"{}\" (a mix names materials made before it by "
+                                   "MakeNamedMaterial; defined: {})",
+                                   name, names_of(named_materials_)));
+    const MaterialDesc& named = s_.materials[std::size_t(it->second)];
+    if (named.type == MaterialDesc::Type::Interface || named.type == MaterialDesc::Type::Subsurface)
+      throw SceneError(p->value_at(std::size_t(i)),
+                       fmt::format("mix: material \"{}\" is {}; a mix of {} materials is not supported", name,
+                                   named.type_name, named.type_name));
+    m.mix_materials[std::size_t(i)] = it->second;
+  }
+}
+
 MaterialDesc SceneParser::build_material(const std::string& type, const ParamList& pl, const SourceLoc& loc) {
   MaterialDesc m;
   m.loc = loc;
-  // dielectric, conductor: pbrt-v4's microfacet roughness. "roughness" sets both axes,
-  // "uroughness" / "vroughness" override one each; each may be a float texture (evaluated
-  // per hit, negative values taken as 0). The renderer maps roughness to alpha. The coated
-  // materials' interface and conductor read the same names with a prefix ("interface.",
-  // "conductor.").
-  auto microfacet_roughness = [&](const std::string& prefix, float& u, float& v, std::array<int, 2>& textures) {
-    auto read = [&](const std::string& name, float fallback, int fallback_texture, int& texture) {
-      texture = pl.has(name) ? -1 : fallback_texture;  // a value given here overrides "roughness"'s texture
-      const float r = float_or_texture(pl, name, fallback, texture);
-      if (!(r >= 0)) throw SceneError(pl.find(name)->value_loc, fmt::format("{} must be >= 0, got {}", name, r));
-      return r;
-    };
-    int both = -1;
-    const float r = read(prefix + "roughness", 0, -1, both);
-    u = read(prefix + "uroughness", r, both, textures[0]);
-    v = read(prefix + "vroughness", r, both, textures[1]);
-    m.remap_roughness = pl.get_bool("remaproughness", true);
-    m.roughness = std::max({m.roughness, u, v, textures[0] >= 0 || textures[1] >= 0 ? 1.0f : 0.0f});
-  };
-  // pbrt-v4's coating parameters, common to coateddiffuse and coatedconductor; thickness and
-  // g may be float textures, albedo a spectrum texture (evaluated per hit, clamped to their
-  // ranges as pbrt-v4 does).
-  auto coating = [&]() {
-    m.thickness = float_or_texture(pl, "thickness", 0.01f, m.thickness_texture);
-    if (!(m.thickness >= 0) || !std::isfinite(m.thickness))
-      throw SceneError(pl.find("thickness")->value_loc,
-                       fmt::format("thickness must be finite and >= 0, got {}", m.thickness));
-    m.g = float_or_texture(pl, "g", 0, m.g_texture);
-    if (!(m.g > -1 && m.g < 1))
-      throw SceneError(pl.find("g")->value_loc, fmt::format("g must lie in (-1, 1), got {}", m.g));
-    const RGBTexture albedo = spectrum_or_texture(pl, "albedo", RGB(0));
-    m.albedo = albedo.value;
-    m.albedo_texture = albedo.texture;
-    for (int c = 0; c < 3; ++c)
-      if (!(m.albedo[c] >= 0 && m.albedo[c] <= 1))
-        throw SceneError(pl.find("albedo")->value_loc, fmt::format("albedo must lie in [0, 1], got {}", m.albedo[c]));
-    m.max_depth = pl.get_int("maxdepth", 10);
-    if (m.max_depth < 1 || m.max_depth > 100000)
-      throw SceneError(pl.find("maxdepth")->value_loc,
-                       fmt::format("maxdepth must lie in [1, 100000], got {}", m.max_depth));
-    m.n_samples = pl.get_int("nsamples", 1);
-    if (m.n_samples < 1 || m.n_samples > 1024)
-      throw SceneError(pl.find("nsamples")->value_loc,
-                       fmt::format("nsamples must lie in [1, 1024], got {}", m.n_samples));
-  };
   if (type == "diffuse") {
     m.type = MaterialDesc::Type::Diffuse;
     m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));
@@ -161,7 +212,7 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
     if (type == "thindielectric") s_.diagnostics.warn(loc, "thindielectric is rendered as dielectric");
     m.type = MaterialDesc::Type::Dielectric;
     if (const ParsedParam* p = pl.find("eta")) m.eta = ior_param(*p, s_.diagnostics);
-    microfacet_roughness("", m.uroughness, m.vroughness, m.roughness_texture);
+    read_microfacet_roughness(pl, "", m, m.uroughness, m.vroughness, m.roughness_texture);
   } else if (type == "conductor") {
     m.type = MaterialDesc::Type::Conductor;
     if (pl.has("reflectance")) {
@@ -177,20 +228,21 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
       m.conductor_eta = rgb_param(pl, "eta", m.conductor_eta, s_.diagnostics);
       m.conductor_k = rgb_param(pl, "k", m.conductor_k, s_.diagnostics);
     }
-    microfacet_roughness("", m.uroughness, m.vroughness, m.roughness_texture);
+    read_microfacet_roughness(pl, "", m, m.uroughness, m.vroughness, m.roughness_texture);
   } else if (type == "interface" || type == "" || type == "none") {
     m.type = MaterialDesc::Type::Interface;
   } else if (type == "coateddiffuse") {
     m.type = MaterialDesc::Type::CoatedDiffuse;
     m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.5f));
     if (const ParsedParam* p = pl.find("eta")) m.eta = ior_param(*p, s_.diagnostics);
-    microfacet_roughness("", m.uroughness, m.vroughness, m.roughness_texture);
-    coating();
+    read_microfacet_roughness(pl, "", m, m.uroughness, m.vroughness, m.roughness_texture);
+    read_coating(pl, m);
   } else if (type == "coatedconductor") {
     m.type = MaterialDesc::Type::CoatedConductor;
     if (const ParsedParam* p = pl.find("interface.eta")) m.eta = ior_param(*p, s_.diagnostics);
-    microfacet_roughness("interface.", m.uroughness, m.vroughness, m.roughness_texture);
-    microfacet_roughness("conductor.", m.conductor_uroughness, m.conductor_vroughness, m.conductor_roughness_texture);
+    read_microfacet_roughness(pl, "interface.", m, m.uroughness, m.vroughness, m.roughness_texture);
+    read_microfacet_roughness(pl, "conductor.", m, m.conductor_uroughness, m.conductor_vroughness,
+                              m.conductor_roughness_texture);
     if (pl.has("reflectance")) {
       m.has_reflectance = true;
       m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(1));
@@ -204,7 +256,7 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
       m.conductor_eta = rgb_param(pl, "conductor.eta", *named_spectrum_rgb("metal-Cu-eta"), s_.diagnostics);
       m.conductor_k = rgb_param(pl, "conductor.k", *named_spectrum_rgb("metal-Cu-k"), s_.diagnostics);
     }
-    coating();
+    read_coating(pl, m);
   } else if (type == "diffusetransmission") {
     m.type = MaterialDesc::Type::DiffuseTransmission;
     m.reflectance = spectrum_or_texture(pl, "reflectance", RGB(0.25f));
@@ -220,27 +272,7 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
       throw SceneError(pl.find("scale")->value_loc, fmt::format("scale must be finite and >= 0, got {}", m.scale));
   } else if (type == "mix") {
     m.type = MaterialDesc::Type::Mix;
-    const ParsedParam* p = pl.find("materials");
-    if (!p) throw SceneError(loc, "mix material needs \"string materials\" [ \"first\" \"second\" ]");
-    pl.expect_type(*p, {"string"});
-    if (p->param.strings.size() != 2)
-      throw SceneError(p->value_loc,
-                       fmt::format("\"materials\" of a mix must name two materials, got {}", p->param.strings.size()));
-    for (int i = 0; i < 2; ++i) {
-      const std::string& name = p->param.strings[std::size_t(i)];
-      auto it = named_materials_.find(name);
-      if (it == named_materials_.end())
-        throw SceneError(p->value_at(std::size_t(i)),
-                         fmt::format("mix: unknown named material \"{}\" (a mix names materials made before it by "
-                                     "MakeNamedMaterial; defined: {})",
-                                     name, names_of(named_materials_)));
-      const MaterialDesc& named = s_.materials[std::size_t(it->second)];
-      if (named.type == MaterialDesc::Type::Interface || named.type == MaterialDesc::Type::Subsurface)
-        throw SceneError(p->value_at(std::size_t(i)),
-                         fmt::format("mix: material \"{}\" is {}; a mix of {} materials is not supported", name,
-                                     named.type_name, named.type_name));
-      m.mix_materials[std::size_t(i)] = it->second;
-    }
+    read_mix_materials(pl, loc, m);
     m.amount = float_or_texture(pl, "amount", 0.5f, m.amount_texture);
   } else if (type == "subsurface") {
     m.type = MaterialDesc::Type::Subsurface;
@@ -343,6 +375,31 @@ void SceneParser::named_material(const Token& d, TokenStream& ts) {
 
 // ---------------------------------------------------------------- textures
 
+// An imagemap texture's file and how it is read: pbrt-v4's parameters, its 2D mapping.
+void SceneParser::read_image_map(const ParamList& pl, const SourceLoc& loc, TextureDesc& t) {
+  t.type = TextureDesc::Type::ImageMap;
+  read_mapping_2d(pl, t);
+  if (!pl.has("filename")) throw SceneError(loc, "imagemap texture needs \"string filename\"");
+  t.filename =
+      existing_file(pl, "filename", scene_path(pl.get_string("filename", ""), pl.find("filename")->value_loc, "image"),
+                    "imagemap texture");
+  t.scale = pl.get_float("scale", 1);
+  t.invert = pl.get_bool("invert", false);
+  t.encoding = pl.get_string("encoding", t.encoding);
+  if (t.encoding != "sRGB" && t.encoding != "linear" && t.encoding.rfind("gamma ", 0) != 0)
+    throw SceneError(pl.find("encoding")->value_loc,
+                     fmt::format("encoding must be \"sRGB\", \"linear\" or \"gamma <value>\", got \"{}\"", t.encoding));
+  t.wrap = pl.get_string("wrap", t.wrap);
+  if (t.wrap != "repeat" && t.wrap != "black" && t.wrap != "clamp" && t.wrap != "octahedralsphere")
+    throw SceneError(pl.find("wrap")->value_loc,
+                     fmt::format("wrap must be \"repeat\", \"black\" or \"clamp\", got \"{}\"", t.wrap));
+  for (const char* ignored : {"filter", "maxanisotropy"})
+    if (const ParsedParam* f = pl.find(ignored)) {
+      f->used = true;
+      s_.diagnostics.warn(f->param.loc, fmt::format("imagemap \"{}\" ignored (Dermis filters bilinearly)", ignored));
+    }
+}
+
 void SceneParser::texture(const Token& d, TokenStream& ts) {
   require_world(d, ts);
   const SourceLoc loc = ts.loc(d);
@@ -390,27 +447,6 @@ void SceneParser::texture(const Token& d, TokenStream& ts) {
                                            float_only ? "float" : "spectrum", float_only ? "float" : "spectrum"));
   // The texture's space: the CTM at this directive (pbrt-v4's renderFromTexture).
   t.texture_from_world = gs_.ctm.inverse();
-  // pbrt-v4's 2D mappings (TextureMapping2D::Create): "uv" (uscale, vscale, udelta,
-  // vdelta), "spherical", "cylindrical" (no parameters), "planar" (v1, v2, udelta, vdelta).
-  auto mapping_2d = [&] {
-    t.mapping = pl.get_string("mapping", "uv");
-    if (t.mapping == "uv") {
-      t.uscale = pl.get_float("uscale", 1);
-      t.vscale = pl.get_float("vscale", 1);
-      t.udelta = pl.get_float("udelta", 0);
-      t.vdelta = pl.get_float("vdelta", 0);
-    } else if (t.mapping == "planar") {
-      t.v1 = pl.get_vec3("v1", {"vector3"}).value_or(t.v1);
-      t.v2 = pl.get_vec3("v2", {"vector3"}).value_or(t.v2);
-      t.udelta = pl.get_float("udelta", 0);
-      t.vdelta = pl.get_float("vdelta", 0);
-    } else if (t.mapping != "spherical" && t.mapping != "cylindrical") {
-      throw SceneError(pl.find("mapping")->value_loc,
-                       fmt::format("texture mapping must be \"uv\", \"spherical\", \"cylindrical\" or \"planar\", got "
-                                   "\"{}\"",
-                                   t.mapping));
-    }
-  };
   auto octaves_param = [&](const char* pname, int def) {
     const int v = pl.get_int(pname, def);
     if (v < 0 || v > 64)
@@ -418,28 +454,7 @@ void SceneParser::texture(const Token& d, TokenStream& ts) {
     return v;
   };
   if (cls == "imagemap") {
-    t.type = TextureDesc::Type::ImageMap;
-    mapping_2d();
-    if (!pl.has("filename")) throw SceneError(loc, "imagemap texture needs \"string filename\"");
-    t.filename = existing_file(pl, "filename",
-                               scene_path(pl.get_string("filename", ""), pl.find("filename")->value_loc, "image"),
-                               "imagemap texture");
-    t.scale = pl.get_float("scale", 1);
-    t.invert = pl.get_bool("invert", false);
-    t.encoding = pl.get_string("encoding", t.encoding);
-    if (t.encoding != "sRGB" && t.encoding != "linear" && t.encoding.rfind("gamma ", 0) != 0)
-      throw SceneError(
-          pl.find("encoding")->value_loc,
-          fmt::format("encoding must be \"sRGB\", \"linear\" or \"gamma <value>\", got \"{}\"", t.encoding));
-    t.wrap = pl.get_string("wrap", t.wrap);
-    if (t.wrap != "repeat" && t.wrap != "black" && t.wrap != "clamp" && t.wrap != "octahedralsphere")
-      throw SceneError(pl.find("wrap")->value_loc,
-                       fmt::format("wrap must be \"repeat\", \"black\" or \"clamp\", got \"{}\"", t.wrap));
-    for (const char* ignored : {"filter", "maxanisotropy"})
-      if (const ParsedParam* f = pl.find(ignored)) {
-        f->used = true;
-        s_.diagnostics.warn(f->param.loc, fmt::format("imagemap \"{}\" ignored (Dermis filters bilinearly)", ignored));
-      }
+    read_image_map(pl, loc, t);
   } else if (cls == "constant") {
     t.type = TextureDesc::Type::Constant;
     t.value = value_param("value", RGB(1));
@@ -473,7 +488,7 @@ void SceneParser::texture(const Token& d, TokenStream& ts) {
   } else if (cls == "bilerp") {
     // pbrt-v4: bilinear in (s, t) between the values at the corners v00, v01, v10, v11.
     t.type = TextureDesc::Type::Bilerp;
-    mapping_2d();
+    read_mapping_2d(pl, t);
     t.corners = {value_param("v00", RGB(0)), value_param("v01", RGB(1)), value_param("v10", RGB(0)),
                  value_param("v11", RGB(1))};
   } else if (cls == "checkerboard") {
@@ -486,13 +501,13 @@ void SceneParser::texture(const Token& d, TokenStream& ts) {
       throw SceneError(pl.find("dimension")->value_loc,
                        fmt::format("checkerboard \"dimension\" must be 2 or 3, got {}", dimension));
     if (dimension == 2)
-      mapping_2d();
+      read_mapping_2d(pl, t);
     else
       t.mapping = "3d";
   } else if (cls == "dots") {
     // pbrt-v4's polka dots: inside (1) in the dots, outside (0) elsewhere.
     t.type = TextureDesc::Type::Dots;
-    mapping_2d();
+    read_mapping_2d(pl, t);
     t.value = value_or_texture("inside", RGB(1), t.tex1);
     t.value2 = value_or_texture("outside", RGB(0), t.tex2);
   } else if (cls == "fbm" || cls == "wrinkled" || cls == "marble") {

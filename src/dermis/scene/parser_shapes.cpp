@@ -110,54 +110,55 @@ void read_curve(const ParamList& pl, const SourceLoc& loc, ShapeDesc& sh, Diagno
   sh.type = ShapeDesc::Type::Curve;
 }
 
-}  // namespace
-
-void SceneParser::shape(const Token& d, TokenStream& ts) {
-  require_world(d, ts);
-  const SourceLoc loc = ts.loc(d);
-  SourceLoc type_loc;
-  std::string type = string_arg(ts, d, &type_loc);
-  require_known_type(TypedDirective::Shape, type, type_loc);
-  ParamList pl = ParamList::parse(ts);
-
-  ShapeDesc sh;
-  sh.loc = loc;
-  sh.object_to_world = gs_.ctm;
-  sh.material = gs_.material;
-  sh.reverse_orientation = gs_.reverse_orientation != gs_.ctm.swaps_handedness();
-  if (open_object_ < 0) {
-    sh.area_light = gs_.area_light;
-    sh.inside_medium = gs_.inside_medium;
-    sh.outside_medium = gs_.outside_medium;
-    sh.has_medium_interface = sh.inside_medium != sh.outside_medium;
-  } else if (gs_.area_light) {
-    s_.diagnostics.warn(loc,
-                        "area lights are not supported on instanced shapes (as in pbrt-v4); the shape is not emissive");
+// pbrt-v4 "alpha" on any shape: a float, or the name of a float texture.
+void read_alpha(const ParamList& pl, const std::map<std::string, int>& float_textures,
+                const std::map<std::string, int>& spectrum_textures, Diagnostics& diagnostics, ShapeDesc& sh) {
+  const ParsedParam* ap = pl.find("alpha");
+  if (!ap) return;
+  if (ap->type == "texture") {
+    const std::string tex = *pl.get_texture("alpha");
+    auto it = float_textures.find(tex);
+    if (it == float_textures.end())
+      throw SceneError(ap->value_loc,
+                       fmt::format("unknown float texture \"{}\" for \"alpha\"{}", tex,
+                                   spectrum_textures.count(tex) ? " (a spectrum texture has that name)" : ""));
+    sh.alpha_texture = it->second;
+  } else {
+    sh.alpha = pl.get_float("alpha", 1);
   }
+  if (sh.area_light && (sh.alpha < 1 || sh.alpha_texture >= 0))
+    diagnostics.warn(ap->param.loc,
+                     "alpha on an emissive shape: light sampling ignores the cut-outs (the "
+                     "emission seen directly respects them)");
+}
 
-  // pbrt-v4 "alpha" on any shape: a float, or the name of a float texture.
-  if (const ParsedParam* ap = pl.find("alpha")) {
-    if (ap->type == "texture") {
-      const std::string tex = *pl.get_texture("alpha");
-      auto it = float_textures_.find(tex);
-      if (it == float_textures_.end())
-        throw SceneError(ap->value_loc,
-                         fmt::format("unknown float texture \"{}\" for \"alpha\"{}", tex,
-                                     spectrum_textures_.count(tex) ? " (a spectrum texture has that name)" : ""));
-      sh.alpha_texture = it->second;
-    } else {
-      sh.alpha = pl.get_float("alpha", 1);
-    }
-    if (sh.area_light && (sh.alpha < 1 || sh.alpha_texture >= 0))
-      s_.diagnostics.warn(ap->param.loc,
-                          "alpha on an emissive shape: light sampling ignores the cut-outs (the "
-                          "emission seen directly respects them)");
-  }
-
-  auto mesh_error = [&](const std::string& file, const std::string& why) {
+// A mesh file's triangles (plymesh: Dermis' PLY reader; objmesh: Assimp, through the mesh
+// cache), its importer's notes as warnings; a file that cannot be read is a SceneError at loc.
+TriangleMeshDesc read_mesh_file(const std::string& type, const std::string& file, const SourceLoc& loc,
+                                const LoadMonitor* monitor, Diagnostics& diagnostics) {
+  auto mesh_error = [&](const std::string& why) {
     return SceneError(loc, fmt::format("Shape \"{}\": could not read mesh file '{}': {}", type, file, why));
   };
+  try {
+    if (type == "plymesh") return read_ply(file, monitor);
+    ImportedMesh im = import_mesh_cached(file, monitor, default_cache_dir());
+    for (const std::string& note : im.notes) diagnostics.warn(loc, fmt::format("'{}': {}", file, note));
+    return std::move(im.mesh);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const Interrupted&) {
+    throw;
+  } catch (const FileReadError& e) {
+    throw mesh_error(e.reason());  // the message names the file already
+  } catch (const std::exception& e) {
+    throw mesh_error(e.what());
+  }
+}
 
+// The shapes given by their parameters alone (sphere, cylinder, disk, the meshes written in
+// the file): their geometry into sh. False for any other type.
+bool read_parametric_shape(const std::string& type, const ParamList& pl, const SourceLoc& loc,
+                           const LoadMonitor* monitor, ShapeDesc& sh) {
   if (type == "sphere") {
     const float radius = pl.get_float("radius", 1);
     if (!(radius > 0)) throw SceneError(pl.find("radius")->value_loc, "sphere radius must be positive");
@@ -186,7 +187,7 @@ void SceneParser::shape(const Token& d, TokenStream& ts) {
     std::vector<uint32_t> idx = checked_indices(pl, P.size(), 3);
     const int levels = pl.get_int("levels", 3);
     try {
-      sh.mesh = loop_subdivision_surface(P, idx, levels, monitor_);
+      sh.mesh = loop_subdivision_surface(P, idx, levels, monitor);
     } catch (const std::invalid_argument& e) {
       throw SceneError(loc, fmt::format("Shape \"loopsubdiv\": {}", e.what()));
     }
@@ -231,32 +232,50 @@ void SceneParser::shape(const Token& d, TokenStream& ts) {
     const float phimax = pl.get_float("phimax", 360);
     if (!(phimax > 0)) throw SceneError(pl.find("phimax")->value_loc, "disk phimax must be positive");
     sh.mesh = tessellate_disk(height, radius, inner, kDiskSegments, phimax);
-  } else if (type == "curve") {
+  } else {
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void SceneParser::shape(const Token& d, TokenStream& ts) {
+  require_world(d, ts);
+  const SourceLoc loc = ts.loc(d);
+  SourceLoc type_loc;
+  std::string type = string_arg(ts, d, &type_loc);
+  require_known_type(TypedDirective::Shape, type, type_loc);
+  ParamList pl = ParamList::parse(ts);
+
+  ShapeDesc sh;
+  sh.loc = loc;
+  sh.object_to_world = gs_.ctm;
+  sh.material = gs_.material;
+  sh.reverse_orientation = gs_.reverse_orientation != gs_.ctm.swaps_handedness();
+  if (open_object_ < 0) {
+    sh.area_light = gs_.area_light;
+    sh.inside_medium = gs_.inside_medium;
+    sh.outside_medium = gs_.outside_medium;
+    sh.has_medium_interface = sh.inside_medium != sh.outside_medium;
+  } else if (gs_.area_light) {
+    s_.diagnostics.warn(loc,
+                        "area lights are not supported on instanced shapes (as in pbrt-v4); the shape is not emissive");
+  }
+
+  read_alpha(pl, float_textures_, spectrum_textures_, s_.diagnostics, sh);
+
+  if (type == "curve") {
     read_curve(pl, loc, sh, s_.diagnostics);
   } else if (type == "plymesh" || type == "objmesh") {
     const ParsedParam* fp = pl.find("filename");
     if (!fp) throw SceneError(loc, fmt::format("Shape \"{}\" needs \"string filename\"", type));
-    std::string file = scene_path(pl.get_string("filename", ""), fp->value_loc, "mesh");
-    try {
-      if (type == "plymesh") {
-        sh.mesh = read_ply(file, monitor_);
-      } else {
-        ImportedMesh im = import_mesh_cached(file, monitor_, default_cache_dir());
-        for (const std::string& note : im.notes) s_.diagnostics.warn(loc, fmt::format("'{}': {}", file, note));
-        sh.mesh = std::move(im.mesh);
-      }
-    } catch (const SceneError&) {
-      throw;
-    } catch (const Interrupted&) {
-      throw;
-    } catch (const FileReadError& e) {
-      throw mesh_error(file, e.reason());  // the message names the file already
-    } catch (const std::exception& e) {
-      throw mesh_error(file, e.what());
-    }
+    const std::string file = scene_path(pl.get_string("filename", ""), fp->value_loc, "mesh");
+    sh.mesh = read_mesh_file(type, file, loc, monitor_, s_.diagnostics);
     if (type == "plymesh" && (pl.has("displacement") || pl.has("edgelength")))
       s_.diagnostics.warn(loc, "plymesh displacement is not supported (ignored)");
-  } else {  // unreachable: require_known_type refused unknown names, and every pbrt-v4 shape is read above
+  } else if (!read_parametric_shape(type, pl, loc, monitor_, sh)) {
+    // Unreachable: require_known_type refused unknown names, and every pbrt-v4 shape is read.
     s_.diagnostics.warn(loc, fmt::format("unsupported Shape \"{}\" ignored", type));
     pl.warn_unused(s_.diagnostics, fmt::format("Shape \"{}\"", type));  // each of its parameters, where it is
     return;

@@ -4,6 +4,7 @@
 // media).
 #pragma once
 
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -103,6 +104,12 @@ class SceneParser {
   void make_named_material(const Token& d, TokenStream& ts);
   void named_material(const Token& d, TokenStream& ts);
   MaterialDesc build_material(const std::string& type, const ParamList& pl, const SourceLoc& loc);
+  // Parts of build_material shared by several material types, or long (parser_appearance.cpp).
+  void read_microfacet_roughness(const ParamList& pl, const std::string& prefix, MaterialDesc& m, float& u, float& v,
+                                 std::array<int, 2>& textures);
+  void read_coating(const ParamList& pl, MaterialDesc& m);
+  void read_mix_materials(const ParamList& pl, const SourceLoc& loc, MaterialDesc& m);
+  void read_image_map(const ParamList& pl, const SourceLoc& loc, TextureDesc& t);
   RGBTexture spectrum_or_texture(const ParamList& pl, const std::string& name, RGB def);
   // A float parameter (or `def`), or a float texture: then its index in `texture` and `def` returned.
   float float_or_texture(const ParamList& pl, const std::string& name, float def, int& texture);
