@@ -4,6 +4,8 @@ import os
 import shutil
 import sys
 import tempfile
+import threading
+import time
 
 import pytest
 
@@ -63,3 +65,35 @@ def dermis_binary():
     if not path or not os.path.exists(path):
         pytest.skip("DERMIS_BINARY (the dermis executable) is not set; ctest sets it")
     return path
+
+
+class GilProbe:
+    """Shows that a call releases the GIL while it works, whatever the machine's speed.
+
+    Inside `with GilProbe() as probe:` the interpreter's forced switches are off
+    (sys.setswitchinterval), so a thread waiting for the GIL gets it only when the holder
+    lets it go. Once the call's first progress callback sets probe.started, the probe's
+    thread runs 20 steps, each taking the GIL back after a sleep; probe.finished is set
+    after them. A call that kept the GIL would let it run none of them until it returned."""
+
+    def __init__(self):
+        self.started, self.finished = threading.Event(), threading.Event()
+        self._thread = threading.Thread(target=self._run)
+
+    def _run(self):
+        self.started.wait()
+        for _ in range(20):
+            time.sleep(0.001)
+        self.finished.set()
+
+    def __enter__(self):
+        self._interval = sys.getswitchinterval()
+        sys.setswitchinterval(1000.0)
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        sys.setswitchinterval(self._interval)
+        self.started.set()
+        self._thread.join()
+        return False

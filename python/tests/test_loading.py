@@ -9,12 +9,12 @@ with the interpreter's forced switches turned off (sys.setswitchinterval)."""
 import os
 import signal
 import subprocess
-import sys
 import threading
 import time
 
 import numpy as np
 import pytest
+from conftest import GilProbe
 
 # The grid's side: 800^2 = 640k vertices and 1.3M triangles (a 24 MB binary PLY), read in
 # about 80 reports of 1 % (one every 16384 elements at most).
@@ -67,30 +67,13 @@ def stage_runs(calls):
 
 
 def test_load_progress_is_monotone_per_stage_and_the_gil_is_free(dermis_module, big_scene):
-    # With forced switches off, a thread waiting for the GIL gets it only when the holder
-    # lets it go: a load that kept the GIL would let the helper below run none of its steps
-    # until the load returned (progress callbacks run no blocking call that releases it).
     calls, helper_done_at_call = [], []
-    started, finished = threading.Event(), threading.Event()
-    def progress(stage, fraction):
-        calls.append((stage, fraction))
-        helper_done_at_call.append(finished.is_set())
-        started.set()
-    def helper():
-        started.wait()
-        for _ in range(20):
-            time.sleep(0.001)  # releases the GIL; taking it back needs the load to have let it go
-        finished.set()
-    thread = threading.Thread(target=helper)
-    old_interval = sys.getswitchinterval()
-    sys.setswitchinterval(1000.0)
-    try:
-        thread.start()
+    with GilProbe() as probe:
+        def progress(stage, fraction):
+            calls.append((stage, fraction))
+            helper_done_at_call.append(probe.finished.is_set())
+            probe.started.set()
         scene = dermis_module.load_scene(big_scene, progress=progress)
-    finally:
-        sys.setswitchinterval(old_interval)
-        started.set()
-        thread.join()
     assert scene.shape_count == 1
     runs = stage_runs(calls)
     for stage, fractions in runs:

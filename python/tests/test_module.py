@@ -1,15 +1,13 @@
 """The Python module: scenes, rendering, errors, images (issue 13)."""
 import os
 import signal
-import sys
 import subprocess
-import threading
 import time
 
 import numpy as np
 import pytest
 
-from conftest import SOURCE_DIR, SPHERE_SCENE
+from conftest import SOURCE_DIR, SPHERE_SCENE, GilProbe
 
 
 def test_demo_scene_renders_from_a_path(dermis_module):
@@ -178,38 +176,21 @@ def test_an_exception_in_progress_stops_the_render(dermis_module, sphere_scene):
 
 
 def test_render_releases_the_gil(dermis_module, sphere_scene):
-    """With the interpreter's forced switches off (sys.setswitchinterval), a thread waiting
-    for the GIL gets it only when the holder lets it go: a render that kept the GIL would let
-    the helper run none of its steps until it returned (at its time limit, without the
-    helper's exception). Nothing here depends on the machine's speed."""
+    """The GIL is free while the render works (conftest.GilProbe): the probe's helper runs its
+    steps during the render, whose progress callback then stops it. A render that kept the GIL
+    would run to its time limit without the helper's exception."""
     sphere_scene.resolution = (96, 72)
-    started, finished = threading.Event(), threading.Event()
 
     class HelperRan(Exception):
         pass
 
-    def progress(done, total):
-        started.set()
-        if finished.is_set():
-            raise HelperRan()
-
-    def helper():
-        started.wait()
-        for _ in range(20):
-            time.sleep(0.001)  # releases the GIL; taking it back needs the render to have let it go
-        finished.set()
-
-    thread = threading.Thread(target=helper)
-    old_interval = sys.getswitchinterval()
-    sys.setswitchinterval(1000.0)
-    try:
-        thread.start()
+    with GilProbe() as probe:
+        def progress(done, total):
+            probe.started.set()
+            if probe.finished.is_set():
+                raise HelperRan()
         with pytest.raises(HelperRan):
             dermis_module.render(sphere_scene, spp=1 << 20, time_limit=300, threads=1, progress=progress)
-    finally:
-        sys.setswitchinterval(old_interval)
-        started.set()
-        thread.join()
     with pytest.raises(ValueError):
         sphere_scene.resolution = (0, 10)
 
