@@ -157,16 +157,24 @@ const char* to_string(SubsurfaceParams::Profile p) {
 
 std::span<const SubsurfaceParameter> subsurface_parameters() { return kParameters; }
 
-SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& loc, Diagnostics& diag,
-                                        const TextureIndexOf& texture_index_of) {
-  SubsurfaceParams s;
-  s.loc = loc;
+namespace {
+
+// What the parameter list gave, for the rules across parameters and the medium's
+// parametrisation (read_subsurface_params).
+struct GivenParameters {
   float scale = 1;
   const ParsedParam *sigma_a = nullptr, *sigma_s = nullptr, *reflectance = nullptr, *mfp = nullptr, *name = nullptr;
   const ParsedParam* entry = nullptr;
   const ParsedParam* normal_axis = nullptr;
   bool profile_given = false;
   std::optional<float> roughness, uroughness, vroughness;
+};
+
+// Each parameter of the subsurface table (kParameters) read into s, or kept in g for later;
+// textures by texture_index_of; ignored ones warned.
+GivenParameters read_each_parameter(const ParamList& pl, Diagnostics& diag, const TextureIndexOf& texture_index_of,
+                                    SubsurfaceParams& s) {
+  GivenParameters g;
   for (const ParsedParam& item : pl.items()) {
     const ParsedParam& p = item;
     const std::string& n = p.param.name;
@@ -175,27 +183,27 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
     if (!known) continue;  // reported by the parser as unused
     p.used = true;
     if (n == "sigma_a")
-      sigma_a = &p;
+      g.sigma_a = &p;
     else if (n == "sigma_s")
-      sigma_s = &p;
+      g.sigma_s = &p;
     else if (n == "reflectance")
-      reflectance = &p;
+      g.reflectance = &p;
     else if (n == "mfp")
-      mfp = &p;
+      g.mfp = &p;
     else if (n == "name")
-      name = &p;
+      g.name = &p;
     else if (n == "scale") {
       if (p.type == "texture")
         s.scale_texture = texture_index_of(p, true);
       else
-        scale = read_float(p);
+        g.scale = read_float(p);
     } else if (n == "eta")
       s.eta = read_float(p);
     else if (n == "g")
       s.g = read_float(p);
     else if (n == "profile") {
       s.profile = lookup(kProfiles, p, "profile");
-      profile_given = true;
+      g.profile_given = true;
     } else if (n == "method")
       s.method = lookup(kMethods, p, "subsurface method");
     else if (n == "boundary")
@@ -205,7 +213,7 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
           (p.param.strings[0] != "refracted" && p.param.strings[0] != "lambertian"))
         throw SceneError(p.value_loc, "\"entry\" must be \"refracted\" or \"lambertian\"");
       s.lambertian_entry = p.param.strings[0] == "lambertian";
-      entry = &p;
+      g.entry = &p;
     } else if (n == "walksampling")
       s.walk_sampling = lookup(kWalkSamplings, p, "walk sampling"), s.walk_sampling_given = true;
     else if (n == "epsilon")
@@ -241,7 +249,7 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
                          "bitangent share the rest; none along one of them would miss its hits)");
       s.normal_axis = v;
       s.normal_axis_given = true;
-      normal_axis = &p;
+      g.normal_axis = &p;
     } else if (n == "channelperwalk") {
       s.channel_per_walk = read_bool(p);
       s.channel_per_walk_given = true;
@@ -275,32 +283,32 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
       const float r = read_float(p);
       if (r < 0) throw SceneError(p.value_loc, fmt::format("\"{}\" must be >= 0", n));
       if (n == "roughness")
-        roughness = r;
+        g.roughness = r;
       else
-        (n == "uroughness" ? uroughness : vroughness) = r;
+        (n == "uroughness" ? g.uroughness : g.vroughness) = r;
     } else if (n == "remaproughness")
       s.remap_roughness = read_bool(p);
     else {  // normalmap, displacement
       diag.warn(p.param.loc, fmt::format("subsurface: \"{}\" ignored", n));
     }
   }
-  // A spectrum parameter: its value, or its texture (the value is then a stand-in).
-  auto spectrum = [&](const ParsedParam& p, int& texture, RGB stand_in) {
-    if (p.type != "texture") return read_rgb(p, diag);
-    texture = texture_index_of(p, false);
-    return stand_in;
-  };
+  return g;
+}
+
+// The rules across parameters: roughness per axis, ranges, what a method ignores, defaults
+// that follow the method.
+void check_across_parameters(const GivenParameters& g, const SourceLoc& loc, Diagnostics& diag, SubsurfaceParams& s) {
   // pbrt-v4: "roughness" sets both axes, "uroughness" / "vroughness" override one each.
-  s.uroughness = uroughness.value_or(roughness.value_or(0));
-  s.vroughness = vroughness.value_or(roughness.value_or(0));
-  if (s.roughness_texture >= 0 && (uroughness || vroughness)) {
+  s.uroughness = g.uroughness.value_or(g.roughness.value_or(0));
+  s.vroughness = g.vroughness.value_or(g.roughness.value_or(0));
+  if (s.roughness_texture >= 0 && (g.uroughness || g.vroughness)) {
     diag.warn(loc,
               "subsurface: \"uroughness\" / \"vroughness\" ignored beside a textured \"roughness\" "
               "(a textured boundary is isotropic)");
     s.uroughness = s.vroughness = 0;
   }
-  if (scale <= 0) throw SceneError(loc, "subsurface: \"scale\" must be positive");
-  s.scale = scale;
+  if (g.scale <= 0) throw SceneError(loc, "subsurface: \"scale\" must be positive");
+  s.scale = g.scale;
   if (s.eta < 1.0f || s.eta > 3.0f)
     throw SceneError(loc, fmt::format("subsurface: \"eta\" {} is outside [1, 3]", s.eta));
   if (s.g <= -1 || s.g >= 1) throw SceneError(loc, "subsurface: \"g\" must be in (-1, 1)");
@@ -315,61 +323,85 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
   }
   if (s.lambertian_entry && s.method == SubsurfaceParams::Method::RandomWalk &&
       s.boundary != SubsurfaceParams::Boundary::Diffuse)
-    throw SceneError(entry->value_loc,
+    throw SceneError(g.entry->value_loc,
                      "\"entry\" \"lambertian\" needs \"boundary\" \"diffuse\" (a diffuse "
                      "transmission in and out; the other boundaries refract)");
   if (s.lambertian_entry && s.method != SubsurfaceParams::Method::RandomWalk) {
-    diag.warn(entry->param.loc, fmt::format("subsurface: \"entry\" applies to the random walk only; ignored by \"{}\"",
-                                            to_string(s.method)));
+    diag.warn(
+        g.entry->param.loc,
+        fmt::format("subsurface: \"entry\" applies to the random walk only; ignored by \"{}\"", to_string(s.method)));
     s.lambertian_entry = false;
   }
-  if (normal_axis && s.method != SubsurfaceParams::Method::Disk) {
+  if (g.normal_axis && s.method != SubsurfaceParams::Method::Disk) {
     diag.warn(
-        normal_axis->param.loc,
+        g.normal_axis->param.loc,
         fmt::format("subsurface: \"normalaxis\" applies to the disk only; ignored by \"{}\"", to_string(s.method)));
     s.normal_axis_given = false;
   }
   // The point cloud's profile is the dipole by default, as in Jensen & Buehler 2002.
-  if (s.method == SubsurfaceParams::Method::PointCloud && !profile_given) s.profile = SubsurfaceParams::Profile::Dipole;
+  if (s.method == SubsurfaceParams::Method::PointCloud && !g.profile_given)
+    s.profile = SubsurfaceParams::Profile::Dipole;
+}
 
-  int ways = (name != nullptr) + (sigma_a || sigma_s) + (reflectance || mfp);
+// The medium, given one way: a named measured medium, reflectance + mfp, or the coefficients
+// (pbrt-v4's whole milk when none is given); scale applied as pbrt-v4 does.
+void read_medium(const GivenParameters& g, const SourceLoc& loc, Diagnostics& diag,
+                 const TextureIndexOf& texture_index_of, SubsurfaceParams& s) {
+  // A spectrum parameter: its value, or its texture (the value is then a stand-in).
+  auto spectrum = [&](const ParsedParam& p, int& texture, RGB stand_in) {
+    if (p.type != "texture") return read_rgb(p, diag);
+    texture = texture_index_of(p, false);
+    return stand_in;
+  };
+  int ways = (g.name != nullptr) + (g.sigma_a || g.sigma_s) + (g.reflectance || g.mfp);
   if (ways > 1)
     throw SceneError(
         loc,
         "subsurface: give either \"name\", or \"sigma_a\" + \"sigma_s\", or \"reflectance\" + \"mfp\", not several");
-  if (name) {
-    if (name->param.strings.size() != 1) throw SceneError(name->value_loc, "\"name\" needs one string");
-    auto preset = find_medium_preset(name->param.strings[0]);
+  if (g.name) {
+    if (g.name->param.strings.size() != 1) throw SceneError(g.name->value_loc, "\"name\" needs one string");
+    auto preset = find_medium_preset(g.name->param.strings[0]);
     if (!preset)
-      throw SceneError(name->value_loc,
-                       fmt::format("unknown subsurface preset \"{}\"{} (valid: {})", name->param.strings[0],
-                                   medium_preset_suggestion(name->param.strings[0]), medium_preset_names()));
+      throw SceneError(g.name->value_loc,
+                       fmt::format("unknown subsurface preset \"{}\"{} (valid: {})", g.name->param.strings[0],
+                                   medium_preset_suggestion(g.name->param.strings[0]), medium_preset_names()));
     // The measured values are per mm, used per scene unit as pbrt does; scale converts.
-    s.sigma_a = preset->sigma_a * scale;
-    s.sigma_s = preset->sigma_s_prime * scale;
+    s.sigma_a = preset->sigma_a * g.scale;
+    s.sigma_s = preset->sigma_s_prime * g.scale;
     s.g = 0;
-  } else if (reflectance || mfp) {
-    if (!reflectance || !mfp) throw SceneError(loc, "subsurface: \"reflectance\" needs \"mfp\" and vice versa");
-    RGB a = spectrum(*reflectance, s.reflectance_texture, RGB(0.5f));
-    RGB l = spectrum(*mfp, s.mfp_texture, RGB(1.0f));
+  } else if (g.reflectance || g.mfp) {
+    if (!g.reflectance || !g.mfp) throw SceneError(loc, "subsurface: \"reflectance\" needs \"mfp\" and vice versa");
+    RGB a = spectrum(*g.reflectance, s.reflectance_texture, RGB(0.5f));
+    RGB l = spectrum(*g.mfp, s.mfp_texture, RGB(1.0f));
     for (int c = 0; c < 3; ++c) {
-      if (a[c] > 1) throw SceneError(reflectance->value_loc, "subsurface: \"reflectance\" must be in [0, 1]");
-      if (l[c] <= 0) throw SceneError(mfp->value_loc, "subsurface: \"mfp\" must be positive");
+      if (a[c] > 1) throw SceneError(g.reflectance->value_loc, "subsurface: \"reflectance\" must be in [0, 1]");
+      if (l[c] <= 0) throw SceneError(g.mfp->value_loc, "subsurface: \"mfp\" must be positive");
     }
     s.reflectance = a;
     // pbrt-v4 multiplies mfp by scale too (SubsurfaceMaterial::GetBSSRDF: mfree = scale * mfp).
-    s.mfp = l * scale;
+    s.mfp = l * g.scale;
   } else {
     // pbrt-v4's defaults when nothing is given: whole milk, per scene unit.
     RGB sa(0.0011f, 0.0024f, 0.014f), ss(2.55f, 3.21f, 3.77f);
-    if (sigma_a) sa = spectrum(*sigma_a, s.sigma_a_texture, sa);
-    if (sigma_s) ss = spectrum(*sigma_s, s.sigma_s_texture, ss);
-    s.sigma_a = sa * scale;
-    s.sigma_s = ss * scale;
+    if (g.sigma_a) sa = spectrum(*g.sigma_a, s.sigma_a_texture, sa);
+    if (g.sigma_s) ss = spectrum(*g.sigma_s, s.sigma_s_texture, ss);
+    s.sigma_a = sa * g.scale;
+    s.sigma_s = ss * g.scale;
     for (int c = 0; c < 3; ++c)
       if ((*s.sigma_a)[c] + (*s.sigma_s)[c] <= 0)
-        throw SceneError(loc, "subsurface: sigma_a + sigma_s must be positive in every channel");
+        throw SceneError(loc, "subsurface: g.sigma_a + g.sigma_s must be positive in every channel");
   }
+}
+
+}  // namespace
+
+SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& loc, Diagnostics& diag,
+                                        const TextureIndexOf& texture_index_of) {
+  SubsurfaceParams s;
+  s.loc = loc;
+  const GivenParameters g = read_each_parameter(pl, diag, texture_index_of, s);
+  check_across_parameters(g, loc, diag, s);
+  read_medium(g, loc, diag, texture_index_of, s);
   return s;
 }
 
