@@ -144,6 +144,137 @@ int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& gr
                      const std::string& ext, RenderResult& r, const PreparationReport& preparation,
                      const RenderOptions& opt);
 
+// The command line's settings over the scene's: resolution, samples, sampler, the
+// subsurface materials' parameters.
+void apply_render_args(const RenderArgs& a, SceneDesc& desc) {
+  if (!a.res.empty()) {
+    int w = 0, h = 0, consumed = 0;
+    char x = 0;
+    if (std::sscanf(a.res.c_str(), "%d%c%d%n", &w, &x, &h, &consumed) != 3 || consumed != int(a.res.size()) ||
+        (x != 'x' && x != 'X') || w <= 0 || h <= 0 || w > 65536 || h > 65536)
+      throw std::invalid_argument(
+          fmt::format("--res {}: expected WIDTHxHEIGHT with positive integers, e.g. 640x480", a.res));
+    desc.film.xres = w;
+    desc.film.yres = h;
+  }
+  {
+    // The film's sums, squares and counts: refuse what cannot be allocated.
+    const PixelBounds px = film_pixel_bounds(desc.film);
+    const double pixels = double(px.width()) * px.height(),
+                 gib = pixels * double(Film::kBytesPerPixel) / double(1ull << 30);
+    if (pixels > double(1ull << 28))
+      throw std::invalid_argument(
+          fmt::format("{}: a film of {}x{} pixels is too large (it would need {:.0f} GiB); "
+                      "lower the Film's xresolution/yresolution or use --res",
+                      a.scene, px.width(), px.height(), gib));
+  }
+  if (a.spp > 0) desc.settings.spp = a.spp;
+  if (a.noise_threshold >= 0) desc.settings.noise_threshold = a.noise_threshold;
+  if (a.min_spp > 0) desc.settings.min_spp = a.min_spp;
+  if (!a.sampler.empty()) parse_sampler_kind(a.sampler, desc.settings.sampler);  // checked by CLI11
+  if (!a.subsurface.empty()) {
+    const std::string text = a.subsurface == "pbrt-v4" ? kPbrtV4Subsurface : a.subsurface;
+    for (std::size_t i = 0; i < desc.materials.size(); ++i)
+      if (desc.materials[i].type == MaterialDesc::Type::Subsurface)
+        for (auto& w : set_material_parameters(desc, i, text, "--subsurface"))
+          desc.diagnostics.warnings.push_back(std::move(w));
+  }
+}
+
+uint64_t render_seed(const RenderArgs& a, const SceneDesc& desc) {
+  return a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
+}
+
+// Reading and assembling (each process alone); the warnings printed by rank 0. Returns
+// the error, if any.
+std::optional<std::string> load_scene(const RenderArgs& a, const std::string& program, bool root, LoadMonitor& load,
+                                      SceneDesc& desc, std::unique_ptr<RenderScene>& scene) {
+  try {
+    desc = parse_scene_file(a.scene, a.file_access, &load);
+    apply_render_args(a, desc);
+    if (root)
+      for (const auto& w : desc.diagnostics.warnings) fmt::print(stderr, "{}\n", w);
+    Diagnostics build_diag;
+    scene = assemble_scene(desc, build_diag, &load);
+    if (root)
+      for (const auto& w : build_diag.warnings) fmt::print(stderr, "{}\n", w);
+  } catch (const Interrupted&) {
+    return fmt::format("{}: interrupted while loading the scene; nothing written", program);
+  } catch (const std::bad_alloc&) {
+    return fmt::format("{}: {}: out of memory while loading or preparing the scene", program, a.scene);
+  } catch (const std::exception& e) {
+    return fmt::format("{}: {}", program, e.what());
+  }
+  return std::nullopt;
+}
+
+// The output's format and place, checked before rendering (rank 0): failing at the write
+// would waste the render, or leave an .exr without its preview.
+std::optional<std::string> check_output(const RenderArgs& a, const std::string& program, const std::string& out,
+                                        const std::string& ext) {
+  const std::filesystem::path out_path(out);
+  if (ext != ".exr" && ext != ".png" && ext != ".hdr" && ext != ".tif" && ext != ".tiff" && ext != ".jpg")
+    return fmt::format("{}: {}: unsupported output format '{}' (use .exr, .png, .hdr, .tif or .jpg)", program, out,
+                       ext);
+  if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path()))
+    return fmt::format("{}: {}: output directory '{}' does not exist", program, out, out_path.parent_path().string());
+  if (const auto png = std::filesystem::path(out).replace_extension(".png");
+      std::filesystem::is_directory(out_path) || (ext == ".exr" && !a.no_png && std::filesystem::is_directory(png)))
+    return fmt::format("{}: {}: the output {} is a directory", program, out,
+                       std::filesystem::is_directory(out_path) ? "path" : fmt::format("preview '{}'", png.string()));
+  return std::nullopt;
+}
+
+// Checkpoints: the film state, with what it must match to be resumed; the film of
+// --resume read. Returns the error, if any.
+std::optional<std::string> open_checkpoints(const RenderArgs& a, const std::string& program, const ProcessGroup& group,
+                                            const SceneDesc& desc, const RenderScene& scene, CheckpointKey& key,
+                                            std::optional<Film>& resumed) {
+  if (a.checkpoint.empty() && a.resume.empty()) return std::nullopt;
+  try {
+    if (group.size() > 1)
+      throw std::invalid_argument("--checkpoint and --resume work with one process only (not with dermis-mpi yet)");
+    key.scene_hash = fingerprint(read_file_contents(a.scene));
+    key.seed = render_seed(a, desc);
+    key.sampler = desc.settings.sampler;
+    key.full_width = scene.film.xres;
+    key.full_height = scene.film.yres;
+    key.pixels = film_pixel_bounds(scene.film);
+    if (!a.resume.empty()) resumed = read_checkpoint(a.resume, key);
+  } catch (const std::exception& e) {
+    return fmt::format("{}: {}", program, e.what());
+  }
+  return std::nullopt;
+}
+
+RenderOptions render_options(const RenderArgs& a, const RenderJob& job, const SceneDesc& desc, ProcessGroup& group) {
+  RenderOptions opt;
+  opt.spp = desc.settings.spp;
+  opt.threads = a.threads;
+  opt.seed = render_seed(a, desc);
+  opt.sampler = desc.settings.sampler;
+  opt.time_limit = a.time_limit;
+  opt.adaptive.noise_threshold = desc.settings.noise_threshold;
+  opt.adaptive.min_spp = desc.settings.min_spp;
+  opt.cancel = &g_interrupted;
+  opt.group = &group;
+  opt.tile_assignment = job.tile_assignment;
+  return opt;
+}
+
+// The line that opens a render: the scene, its size, the samples, what it holds.
+void print_render_header(const RenderArgs& a, const RenderScene& scene, const RenderOptions& opt,
+                         const ProcessGroup& group) {
+  fmt::print(
+      stderr, "dermis: {} — {}x{}, {}{} spp{}, {} shapes, {} lights{}\n", a.scene, scene.film.xres, scene.film.yres,
+      opt.adaptive.enabled() ? "at most " : "", opt.spp,
+      opt.adaptive.enabled()
+          ? fmt::format(" (noise threshold {:g}, at least {})", opt.adaptive.noise_threshold,
+                        opt.adaptive.min_spp > 0 ? std::min(opt.adaptive.min_spp, opt.spp) : default_min_spp(opt.spp))
+          : "",
+      scene.shapes.size(), scene.lights.size(), group.size() > 1 ? fmt::format(", {} processes", group.size()) : "");
+}
+
 }  // namespace
 
 int run_render(const RenderArgs& a, const RenderJob& job) {
@@ -157,82 +288,31 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   const std::vector<int> stop_signals = job.stop_signals.empty() ? std::vector<int>{SIGINT} : job.stop_signals;
   g_interrupted = false;
   for (int s : stop_signals) std::signal(s, on_stop_signal);
-  auto restore_signals = [&] {
-    for (int s : stop_signals) std::signal(s, SIG_DFL);
-  };
   // --threads bounds every stage, not only the render: the BVH build (Embree), the albedo
   // tables and the point-cloud pre-pass all run on TBB's pool.
   std::optional<tbb::global_control> thread_limit;
   if (a.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(a.threads));
+
   SceneDesc desc;
   std::unique_ptr<RenderScene> scene;
-  PreparationReport preparation;
-  PointCloudOptions pco;
-  std::optional<std::string> error;
   LoadMonitor load;
   load.cancel = &g_interrupted;
   if (progress_style != Progress::Style::kQuiet)
     load.progress = [display = std::make_shared<LoadProgressDisplay>(progress_style)](
                         const std::string& stage, double fraction) { (*display)(stage, fraction); };
-  // Reading and assembling: each process alone.
-  try {
-    desc = parse_scene_file(a.scene, a.file_access, &load);
-    if (!a.res.empty()) {
-      int w = 0, h = 0, consumed = 0;
-      char x = 0;
-      if (std::sscanf(a.res.c_str(), "%d%c%d%n", &w, &x, &h, &consumed) != 3 || consumed != int(a.res.size()) ||
-          (x != 'x' && x != 'X') || w <= 0 || h <= 0 || w > 65536 || h > 65536)
-        throw std::invalid_argument(
-            fmt::format("--res {}: expected WIDTHxHEIGHT with positive integers, e.g. 640x480", a.res));
-      desc.film.xres = w;
-      desc.film.yres = h;
-    }
-    {
-      // The film's sums, squares and counts: refuse what cannot be allocated.
-      const PixelBounds px = film_pixel_bounds(desc.film);
-      const double pixels = double(px.width()) * px.height(),
-                   gib = pixels * double(Film::kBytesPerPixel) / double(1ull << 30);
-      if (pixels > double(1ull << 28))
-        throw std::invalid_argument(
-            fmt::format("{}: a film of {}x{} pixels is too large (it would need {:.0f} GiB); "
-                        "lower the Film's xresolution/yresolution or use --res",
-                        a.scene, px.width(), px.height(), gib));
-    }
-    if (a.spp > 0) desc.settings.spp = a.spp;
-    if (a.noise_threshold >= 0) desc.settings.noise_threshold = a.noise_threshold;
-    if (a.min_spp > 0) desc.settings.min_spp = a.min_spp;
-    if (!a.sampler.empty()) parse_sampler_kind(a.sampler, desc.settings.sampler);  // checked by CLI11
-    if (!a.subsurface.empty()) {
-      const std::string text = a.subsurface == "pbrt-v4" ? kPbrtV4Subsurface : a.subsurface;
-      for (std::size_t i = 0; i < desc.materials.size(); ++i)
-        if (desc.materials[i].type == MaterialDesc::Type::Subsurface)
-          for (auto& w : set_material_parameters(desc, i, text, "--subsurface"))
-            desc.diagnostics.warnings.push_back(std::move(w));
-    }
-    if (root)
-      for (const auto& w : desc.diagnostics.warnings) fmt::print(stderr, "{}\n", w);
-    Diagnostics build_diag;
-    pco.points = std::size_t(a.points);
-    pco.save_path = a.save_pointcloud;
-    pco.load_path = a.load_pointcloud;
-    pco.seed = a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
-    pco.sampler = desc.settings.sampler;
-    scene = assemble_scene(desc, build_diag, &load);
-    if (root)
-      for (const auto& w : build_diag.warnings) fmt::print(stderr, "{}\n", w);
-  } catch (const Interrupted&) {
-    error = fmt::format("{}: interrupted while loading the scene; nothing written", program);
-  } catch (const std::bad_alloc&) {
-    error = fmt::format("{}: {}: out of memory while loading or preparing the scene", program, a.scene);
-  } catch (const std::exception& e) {
-    error = fmt::format("{}: {}", program, e.what());
-  }
+  std::optional<std::string> error = load_scene(a, program, root, load, desc, scene);
   load.progress = nullptr;  // its display is not drawn to after this point
   if (failed_somewhere(group, error)) return g_interrupted ? 130 : 2;
+
   // Preparing: together (the group shares the tables and the point clouds).
+  PreparationReport preparation;
   try {
     PreparationOptions prep;
-    prep.point_clouds = pco;
+    prep.point_clouds.points = std::size_t(a.points);
+    prep.point_clouds.save_path = a.save_pointcloud;
+    prep.point_clouds.load_path = a.load_pointcloud;
+    prep.point_clouds.seed = render_seed(a, desc);
+    prep.point_clouds.sampler = desc.settings.sampler;
     prep.progress = progress_style;
     prep.cancel = &g_interrupted;
     prep.group = &group;
@@ -256,57 +336,18 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   if (failed_somewhere(group, error)) return 2;
 
   // The output: rank 0 writes it.
-  std::string out = a.output.empty() ? desc.film.filename : a.output;
-  std::filesystem::path out_path(out);
-  std::string ext = out_path.extension().string();
+  const std::string out = a.output.empty() ? desc.film.filename : a.output;
+  std::string ext = std::filesystem::path(out).extension().string();
   for (char& c : ext) c = char(std::tolower(c));
-  if (root) {
-    if (ext != ".exr" && ext != ".png" && ext != ".hdr" && ext != ".tif" && ext != ".tiff" && ext != ".jpg")
-      error =
-          fmt::format("{}: {}: unsupported output format '{}' (use .exr, .png, .hdr, .tif or .jpg)", program, out, ext);
-    else if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path()))
-      error =
-          fmt::format("{}: {}: output directory '{}' does not exist", program, out, out_path.parent_path().string());
-    else if (const auto png = std::filesystem::path(out).replace_extension(".png");
-             std::filesystem::is_directory(out_path) ||
-             (ext == ".exr" && !a.no_png && std::filesystem::is_directory(png)))
-      // Refused before rendering: failing at the write would leave the .exr without its preview.
-      error = fmt::format("{}: {}: the output {} is a directory", program, out,
-                          std::filesystem::is_directory(out_path) ? "path" : fmt::format("preview '{}'", png.string()));
-  }
+  if (root) error = check_output(a, program, out, ext);
   if (failed_somewhere(group, error)) return 2;
 
-  // Checkpoints: the film state, with what it must match to be resumed.
   std::optional<Film> resumed;
   CheckpointKey key;
-  if (!a.checkpoint.empty() || !a.resume.empty()) {
-    try {
-      if (group.size() > 1)
-        throw std::invalid_argument("--checkpoint and --resume work with one process only (not with dermis-mpi yet)");
-      key.scene_hash = fingerprint(read_file_contents(a.scene));
-      key.seed = a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
-      key.sampler = desc.settings.sampler;
-      key.full_width = scene->film.xres;
-      key.full_height = scene->film.yres;
-      key.pixels = film_pixel_bounds(scene->film);
-      if (!a.resume.empty()) resumed = read_checkpoint(a.resume, key);
-    } catch (const std::exception& e) {
-      error = fmt::format("{}: {}", program, e.what());
-    }
-  }
+  error = open_checkpoints(a, program, group, desc, *scene, key, resumed);
   if (failed_somewhere(group, error)) return 2;
 
-  RenderOptions opt;
-  opt.spp = desc.settings.spp;
-  opt.threads = a.threads;
-  opt.seed = a.seed >= 0 ? uint64_t(a.seed) : uint64_t(desc.settings.seed);
-  opt.sampler = desc.settings.sampler;
-  opt.time_limit = a.time_limit;
-  opt.adaptive.noise_threshold = desc.settings.noise_threshold;
-  opt.adaptive.min_spp = desc.settings.min_spp;
-  opt.cancel = &g_interrupted;
-  opt.group = &group;
-  opt.tile_assignment = job.tile_assignment;
+  RenderOptions opt = render_options(a, job, desc, group);
   const PixelBounds pixels = film_pixel_bounds(scene->film);
   const int64_t total = int64_t(pixels.width()) * pixels.height() * opt.spp;
   Progress progress("Rendering", total, progress_style);
@@ -334,18 +375,9 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
     };
   }
 
-  if (!quiet)
-    fmt::print(
-        stderr, "dermis: {} — {}x{}, {}{} spp{}, {} shapes, {} lights{}\n", a.scene, scene->film.xres, scene->film.yres,
-        opt.adaptive.enabled() ? "at most " : "", opt.spp,
-        opt.adaptive.enabled()
-            ? fmt::format(" (noise threshold {:g}, at least {})", opt.adaptive.noise_threshold,
-                          opt.adaptive.min_spp > 0 ? std::min(opt.adaptive.min_spp, opt.spp) : default_min_spp(opt.spp))
-            : "",
-        scene->shapes.size(), scene->lights.size(),
-        group.size() > 1 ? fmt::format(", {} processes", group.size()) : "");
+  if (!quiet) print_render_header(a, *scene, opt, group);
   RenderResult r = render_image(*scene, opt);  // stops at once if a stop signal came during preparation
-  restore_signals();
+  for (int s : stop_signals) std::signal(s, SIG_DFL);
   progress.finish();
   // Rank 0 holds the image. The others wait until it is written (mpirun ends the job
   // as soon as one rank exits with a non-zero status) and exit with its status.

@@ -196,10 +196,6 @@ Texture make_texture(const TextureDesc& d) {
   return t;
 }
 
-}  // namespace
-
-namespace {
-
 // Converts a shape description into the renderer's shape, positioned by `xf`.
 Shape make_shape(const ShapeDesc& d, const Transform& xf, int default_material) {
   Shape s;
@@ -259,6 +255,287 @@ Shape make_shape(const ShapeDesc& d, const Transform& xf, int default_material) 
   return s;
 }
 
+// Subsurface materials: the parameters now, the methods at preparation. The
+// `volumetric` method is the brute-force reference: the material becomes a smooth
+// dielectric filled with the homogeneous medium it describes, rendered by the
+// volumetric path tracer itself (its coefficients too are resolved at preparation).
+// Returns, per material, the medium inside it (-1: none).
+std::vector<int> resolve_subsurface_materials(const SceneDesc& desc, RenderScene& sc) {
+  std::vector<int> subsurface_medium(sc.materials.size(), -1);
+  for (std::size_t i = 0; i < desc.materials.size(); ++i) {
+    const MaterialDesc& md = desc.materials[i];
+    if (md.type != MaterialDesc::Type::Subsurface) continue;
+    const SubsurfaceParams& sp = md.subsurface;
+    Material& m = sc.materials[i];
+    if (sp.method != SubsurfaceParams::Method::Volumetric) {
+      m.type = Material::Type::Subsurface;
+      m.subsurface = int(sc.subsurface_params.size());
+      sc.subsurface_params.push_back(sp);
+      continue;
+    }
+    m.type = Material::Type::Dielectric;
+    m.eta = sp.eta;
+    m.alpha_x = roughness_to_alpha(sp.uroughness, sp.remap_roughness);
+    m.alpha_y = roughness_to_alpha(sp.vroughness, sp.remap_roughness);
+    // A textured roughness: per hit, as the walk's boundary (clamped alike:
+    // subsurface/boundary_roughness.h).
+    m.roughness_texture[0] = m.roughness_texture[1] = sp.roughness_texture;
+    m.remap_roughness = sp.remap_roughness;
+    subsurface_medium[i] = int(sc.media.size());
+    sc.volumetric_media.push_back({sp, subsurface_medium[i], {}, {}});
+    sc.media.push_back(HomogeneousMedium{});
+  }
+  return subsurface_medium;
+}
+
+// Converts a shape description into the renderer's shape, with the medium of a
+// `volumetric` subsurface material inside it.
+Shape make_scene_shape(const ShapeDesc& d, int default_material, const std::vector<int>& subsurface_medium) {
+  Shape s = make_shape(d, d.object_to_world, default_material);
+  check_shape_extent(s, Transform(), d.loc);
+  if (s.material < int(subsurface_medium.size()) && subsurface_medium[s.material] >= 0) {
+    s.inside_medium = subsurface_medium[s.material];
+    s.outside_medium = d.outside_medium;
+    s.has_medium_interface = true;
+  }
+  return s;
+}
+
+// The lights of an emitting shape: one sphere light, or one light per triangle.
+void add_area_lights(Shape& s, const ShapeDesc& d, int shape_id, std::vector<Light>& lights) {
+  RGB L = d.area_light->L * d.area_light->scale;
+  if (L.is_black()) return;
+  s.first_light = int(lights.size());
+  if (s.type == Shape::Type::Sphere) {
+    Light l;
+    l.type = Light::Type::Sphere;
+    l.emission = L;
+    l.two_sided = d.area_light->two_sided;
+    l.center = s.center;
+    l.radius = s.radius;
+    l.inward = s.flip_normals;
+    l.shape = shape_id;
+    l.medium = d.outside_medium;
+    lights.push_back(l);
+  } else {
+    for (std::size_t t = 0; t < s.indices.size() / 3; ++t) {
+      Light l;
+      l.type = Light::Type::Triangle;
+      l.emission = L;
+      l.two_sided = d.area_light->two_sided;
+      l.p0 = s.positions[s.indices[3 * t]];
+      l.p1 = s.positions[s.indices[3 * t + 1]];
+      l.p2 = s.positions[s.indices[3 * t + 2]];
+      l.area = 0.5f * length(cross(l.p1 - l.p0, l.p2 - l.p0));
+      l.shape = shape_id;
+      l.prim = int(t);
+      if (s.normals.empty()) {
+        l.flat = true;
+        l.normal = s.triangle_normal(int(t), 0, 0);
+      }
+      // Degenerate triangles get a zero selection probability through their power.
+      lights.push_back(l);
+    }
+  }
+  check_light_power(std::span(lights).subspan(std::size_t(s.first_light)), d.loc);
+}
+
+// The shapes outside any object instance, with their area lights; returns their ids.
+std::vector<int> add_top_level_shapes(const SceneDesc& desc, int default_material,
+                                      const std::vector<int>& subsurface_medium, RenderScene& sc) {
+  std::vector<int> top_level;
+  for (const ShapeDesc& d : desc.shapes) {
+    Shape s = make_scene_shape(d, default_material, subsurface_medium);
+    const int id = int(sc.shapes.size());
+    if (d.area_light) add_area_lights(s, d, id, sc.lights);
+    if (sc.materials[s.material].is_interface()) sc.has_interfaces = true;
+    sc.shapes.push_back(std::move(s));
+    top_level.push_back(id);
+  }
+  return top_level;
+}
+
+// An instanced object's shapes, and their bounds in object space (for the instances'
+// extent check).
+struct ObjectShapes {
+  std::vector<int> ids;
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  void grow(const Vec3& p) {
+    lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
+    hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
+  }
+  bool empty_bounds() const { return !(lo.x <= hi.x); }
+};
+
+ObjectShapes add_object_shapes(const ObjectDesc& o, int default_material, const std::vector<int>& subsurface_medium,
+                               RenderScene& sc, Diagnostics& diag) {
+  ObjectShapes object;
+  for (const ShapeDesc& d : o.shapes) {
+    if (d.area_light)
+      diag.warn(d.loc, "area lights inside object instances are not supported (as in pbrt-v4); ignored");
+    Shape s = make_scene_shape(d, default_material, subsurface_medium);
+    if (s.type == Shape::Type::Sphere) {
+      object.grow(s.center - Vec3(s.radius, s.radius, s.radius));
+      object.grow(s.center + Vec3(s.radius, s.radius, s.radius));
+    }
+    for (const Vec3& p : s.positions) object.grow(p);
+    if (sc.materials[s.material].is_interface()) sc.has_interfaces = true;
+    object.ids.push_back(int(sc.shapes.size()));
+    sc.shapes.push_back(std::move(s));
+  }
+  return object;
+}
+
+// The instances, checked against their object's extent; each shape learns its object.
+std::vector<Instance> make_instances(const SceneDesc& desc, const std::vector<ObjectShapes>& objects, RenderScene& sc) {
+  std::vector<Instance> instances;
+  for (const InstanceDesc& i : desc.instances) {
+    if (i.object >= 0 && std::size_t(i.object) < objects.size() && !objects[std::size_t(i.object)].empty_bounds())
+      check_box_extent(objects[std::size_t(i.object)].lo, objects[std::size_t(i.object)].hi, i.object_to_world, i.loc,
+                       "the instanced object");
+    instances.push_back({i.object, i.object_to_world});
+  }
+  for (std::size_t o = 0; o < objects.size(); ++o)
+    for (int id : objects[o].ids) sc.shapes[id].instance = int(o);
+  return instances;
+}
+
+// The scene's geometry in Embree: the top-level shapes and the instanced objects.
+void build_geometry(const std::vector<int>& top_level, const std::vector<ObjectShapes>& objects,
+                    const std::vector<Instance>& instances, RenderScene& sc, const LoadMonitor* monitor) {
+  std::vector<std::vector<int>> object_ids;
+  for (const ObjectShapes& o : objects) object_ids.push_back(o.ids);
+  sc.embree = std::make_unique<EmbreeScene>();
+  // Alpha textures are float textures: their first channel.
+  const AlphaTextureLookup alpha_lookup{
+      [](const void* textures, int texture, Vec2 uv) {
+        return evaluate_texture(*static_cast<const std::vector<Texture>*>(textures), texture, uv).r();
+      },
+      &sc.textures};
+  sc.embree->build(sc.shapes, top_level, object_ids, instances, alpha_lookup, monitor);
+  sc.embree->set_uv_needed(!sc.textures.empty());  // only textures read (u, v)
+}
+
+// An environment map light's map, scaled as the file asks; returns the emission scale.
+float load_environment_map(const LightDesc& d, Light& l) {
+  Image img;
+  try {
+    img = read_image(d.filename);
+  } catch (const std::exception& ex) {
+    throw SceneError(d.loc, ex.what());
+  }
+  const auto mapping = d.latlong ? EnvironmentMap::Mapping::LatLong : EnvironmentMap::Mapping::EqualArea;
+  float scale = d.scale;
+  try {
+    if (d.illuminance >= 0) {
+      // pbrt-v4: scaled so that a surface facing up (light-space +z) receives it.
+      const EnvironmentMap unit(img.width, img.height, img.pixels, d.light_to_world, 1, mapping);
+      if (unit.upper_hemisphere_illuminance() > 0) scale *= d.illuminance / unit.upper_hemisphere_illuminance();
+    }
+    l.environment = std::make_shared<EnvironmentMap>(img.width, img.height, std::move(img.pixels), d.light_to_world,
+                                                     scale, mapping);
+  } catch (const std::invalid_argument& ex) {
+    throw SceneError(d.loc, fmt::format("infinite light \"{}\": {}", d.filename, ex.what()));
+  }
+  return scale;
+}
+
+void make_infinite_light(const LightDesc& d, Light& l) {
+  l.type = Light::Type::Infinite;
+  if (!d.filename.empty()) {
+    l.emission = RGB(load_environment_map(d, l));
+  } else if (d.illuminance >= 0 && d.spectrum.luminance() > 0) {
+    // pbrt-v4: uniform radiance L gives the illuminance pi L on any surface.
+    l.emission = d.spectrum * (d.scale * d.illuminance / (kPi * d.spectrum.luminance()));
+  }
+  if (!d.portal.empty()) {
+    // pbrt-v4: Frame::FromXY(p03, p01), its z = p03 x p01, in world space.
+    const Vec3 p0 = d.light_to_world.point(d.portal[0]);
+    const Vec3 z = cross(d.light_to_world.point(d.portal[3]) - p0, d.light_to_world.point(d.portal[1]) - p0);
+    if (!(length(z) > 0)) throw SceneError(d.loc, "infinite light \"portal\": the rectangle has no area");
+    l.portal_normal = normalize(z);
+  }
+}
+
+// A light that is not a shape's: point, spot, distant or infinite.
+Light make_light(const LightDesc& d) {
+  Light l;
+  l.medium = d.medium;
+  l.emission = d.spectrum * d.scale;
+  switch (d.type) {
+    case LightDesc::Type::Point:
+      l.type = Light::Type::Point;
+      l.position = d.light_to_world.point(d.from);
+      check_scene_point(l.position, d.loc, "the point light");
+      break;
+    case LightDesc::Type::Spot: {
+      l.type = Light::Type::Spot;
+      l.position = d.light_to_world.point(d.from);
+      Vec3 axis = d.light_to_world.point(d.to) - l.position;
+      if (length(axis) == 0) throw SceneError(d.loc, "spot light: 'from' and 'to' coincide");
+      l.direction = normalize(axis);
+      l.cos_falloff_end = std::cos(d.cone_angle * kPi / 180);
+      l.cos_falloff_start = std::cos((d.cone_angle - d.cone_delta) * kPi / 180);
+      break;
+    }
+    case LightDesc::Type::Distant: {
+      l.type = Light::Type::Distant;
+      // pbrt-v4: the illuminance on a surface facing the light is L's luminance.
+      if (d.illuminance >= 0 && d.spectrum.luminance() > 0)
+        l.emission = d.spectrum * (d.scale * d.illuminance / d.spectrum.luminance());
+      Vec3 w = d.light_to_world.vector(d.from - d.to);
+      if (length(w) == 0) throw SceneError(d.loc, "distant light: 'from' and 'to' coincide");
+      l.direction = normalize(w);
+      break;
+    }
+    case LightDesc::Type::Infinite:
+      make_infinite_light(d, l);
+      break;
+  }
+  // The parser bounds "L" x "scale"; "illuminance" normalises after it and may still overflow.
+  if (d.illuminance >= 0 && !l.emission.is_finite())
+    throw SceneError(d.loc, fmt::format("the light's emission is beyond the range of 32-bit floats (\"scale\" {:g}, "
+                                        "\"illuminance\" {:g}): lower them",
+                                        double(d.scale), double(d.illuminance)));
+  check_light_power(std::span(&l, 1), d.loc);
+  return l;
+}
+
+// A medium is enclosed when it appears only inside non-interface boundaries.
+void mark_media_that_see_lights(RenderScene& sc) {
+  sc.medium_sees_lights.assign(sc.media.size(), 0);
+  auto open_medium = [&](int m) {
+    if (m >= 0) sc.medium_sees_lights[m] = 1;
+  };
+  open_medium(sc.camera_medium);
+  for (const Light& l : sc.lights) open_medium(l.medium);
+  for (const Shape& s : sc.shapes) {
+    if (!s.has_medium_interface) continue;
+    open_medium(s.outside_medium);
+    if (sc.materials[s.material].is_interface() || s.first_light >= 0) open_medium(s.inside_medium);
+  }
+}
+
+// Subsurface objects (render_scene.h): the shapes sharing a subsurface material form
+// one object (pbrt-v4's rule), and so do all shapes of the materials that name the
+// same "sssgroup"; every other shape is an object of its own (a boundary a walk inside
+// another object reflects from), except index-matched interfaces (-1: passed through).
+// Shapes reached through an instance are told apart by the instance (object_tracer.h).
+void group_subsurface_objects(RenderScene& sc) {
+  std::map<std::string, int> object_of_key;
+  sc.object_of_shape.resize(sc.shapes.size());
+  for (std::size_t i = 0; i < sc.shapes.size(); ++i) {
+    const Material& m = sc.materials[sc.shapes[i].material];
+    std::string key = fmt::format("shape {}", i);
+    if (m.type == Material::Type::Subsurface) {
+      const std::string& group = sc.subsurface_params[m.subsurface].group;
+      key = group.empty() ? fmt::format("material {}", sc.shapes[i].material) : "group " + group;
+    }
+    auto [it, added] = object_of_key.try_emplace(key, int(object_of_key.size()));
+    sc.object_of_shape[i] = m.is_interface() ? -1 : it->second;  // walks pass through interfaces
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& diag, const LoadMonitor* monitor) {
@@ -280,254 +557,27 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
     // Emission (Le) is not rendered: the parser has warned about it, once.
     sc->media.push_back(HomogeneousMedium::from_coefficients(m.sigma_a, m.sigma_s, m.scale, m.g));
   }
+  const std::vector<int> subsurface_medium = resolve_subsurface_materials(desc, *sc);
 
-  // Subsurface materials: the parameters now, the methods at preparation. The
-  // `volumetric` method is the brute-force reference: the material becomes a smooth
-  // dielectric filled with the homogeneous medium it describes, rendered by the
-  // volumetric path tracer itself (its coefficients too are resolved at preparation).
-  std::vector<int> subsurface_medium(sc->materials.size(), -1);
-  for (std::size_t i = 0; i < desc.materials.size(); ++i) {
-    const MaterialDesc& md = desc.materials[i];
-    if (md.type != MaterialDesc::Type::Subsurface) continue;
-    const SubsurfaceParams& sp = md.subsurface;
-    if (sp.method != SubsurfaceParams::Method::Volumetric) {
-      sc->materials[i].type = Material::Type::Subsurface;
-      sc->materials[i].subsurface = int(sc->subsurface_params.size());
-      sc->subsurface_params.push_back(sp);
-      continue;
-    }
-    sc->materials[i].type = Material::Type::Dielectric;
-    sc->materials[i].eta = sp.eta;
-    sc->materials[i].alpha_x = roughness_to_alpha(sp.uroughness, sp.remap_roughness);
-    sc->materials[i].alpha_y = roughness_to_alpha(sp.vroughness, sp.remap_roughness);
-    // A textured roughness: per hit, as the walk's boundary (clamped alike:
-    // subsurface/boundary_roughness.h).
-    sc->materials[i].roughness_texture[0] = sc->materials[i].roughness_texture[1] = sp.roughness_texture;
-    sc->materials[i].remap_roughness = sp.remap_roughness;
-    subsurface_medium[i] = int(sc->media.size());
-    sc->volumetric_media.push_back({sp, subsurface_medium[i], {}, {}});
-    sc->media.push_back(HomogeneousMedium{});
-  }
-  auto fill_subsurface = [&](Shape& s, const ShapeDesc& d) {
-    if (s.material < int(subsurface_medium.size()) && subsurface_medium[s.material] >= 0) {
-      s.inside_medium = subsurface_medium[s.material];
-      s.outside_medium = d.outside_medium;
-      s.has_medium_interface = true;
-    }
-  };
-
-  std::vector<int> top_level;
-  for (const ShapeDesc& d : desc.shapes) {
-    Shape s = make_shape(d, d.object_to_world, default_material);
-    check_shape_extent(s, Transform(), d.loc);
-    fill_subsurface(s, d);
-    int id = int(sc->shapes.size());
-    if (d.area_light) {
-      RGB L = d.area_light->L * d.area_light->scale;
-      if (!L.is_black()) {
-        s.first_light = int(sc->lights.size());
-        if (s.type == Shape::Type::Sphere) {
-          Light l;
-          l.type = Light::Type::Sphere;
-          l.emission = L;
-          l.two_sided = d.area_light->two_sided;
-          l.center = s.center;
-          l.radius = s.radius;
-          l.inward = s.flip_normals;
-          l.shape = id;
-          l.medium = d.outside_medium;
-          sc->lights.push_back(l);
-        } else {
-          for (std::size_t t = 0; t < s.indices.size() / 3; ++t) {
-            Light l;
-            l.type = Light::Type::Triangle;
-            l.emission = L;
-            l.two_sided = d.area_light->two_sided;
-            l.p0 = s.positions[s.indices[3 * t]];
-            l.p1 = s.positions[s.indices[3 * t + 1]];
-            l.p2 = s.positions[s.indices[3 * t + 2]];
-            l.area = 0.5f * length(cross(l.p1 - l.p0, l.p2 - l.p0));
-            l.shape = id;
-            l.prim = int(t);
-            if (s.normals.empty()) {
-              l.flat = true;
-              l.normal = s.triangle_normal(int(t), 0, 0);
-            }
-            // Degenerate triangles get a zero selection probability through their power.
-            sc->lights.push_back(l);
-          }
-        }
-        check_light_power(std::span(sc->lights).subspan(std::size_t(s.first_light)), d.loc);
-      }
-    }
-    if (sc->materials[s.material].is_interface()) sc->has_interfaces = true;
-    sc->shapes.push_back(std::move(s));
-    top_level.push_back(id);
-  }
-
-  std::vector<std::vector<int>> objects;
-  std::vector<std::pair<Vec3, Vec3>> object_bounds;  // in object space, for the instances' extent check
-  for (const ObjectDesc& o : desc.objects) {
-    std::vector<int> ids;
-    Vec3 lo(INFINITY, INFINITY, INFINITY), hi(-INFINITY, -INFINITY, -INFINITY);
-    auto grow = [&lo, &hi](const Vec3& p) {
-      lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
-      hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
-    };
-    for (const ShapeDesc& d : o.shapes) {
-      if (d.area_light)
-        diag.warn(d.loc, "area lights inside object instances are not supported (as in pbrt-v4); ignored");
-      Shape s = make_shape(d, d.object_to_world, default_material);
-      check_shape_extent(s, Transform(), d.loc);
-      if (s.type == Shape::Type::Sphere) {
-        grow(s.center - Vec3(s.radius, s.radius, s.radius));
-        grow(s.center + Vec3(s.radius, s.radius, s.radius));
-      }
-      for (const Vec3& p : s.positions) grow(p);
-      fill_subsurface(s, d);
-      if (sc->materials[s.material].is_interface()) sc->has_interfaces = true;
-      ids.push_back(int(sc->shapes.size()));
-      sc->shapes.push_back(std::move(s));
-    }
-    objects.push_back(std::move(ids));
-    object_bounds.emplace_back(lo, hi);
-  }
+  const std::vector<int> top_level = add_top_level_shapes(desc, default_material, subsurface_medium, *sc);
+  std::vector<ObjectShapes> objects;
+  for (const ObjectDesc& o : desc.objects)
+    objects.push_back(add_object_shapes(o, default_material, subsurface_medium, *sc, diag));
   sc->interface_shape.resize(sc->shapes.size());
   for (std::size_t i = 0; i < sc->shapes.size(); ++i)
     sc->interface_shape[i] = sc->materials[sc->shapes[i].material].is_interface();
-  std::vector<Instance> instances;
-  for (const InstanceDesc& i : desc.instances) {
-    if (i.object >= 0 && std::size_t(i.object) < object_bounds.size() &&
-        object_bounds[std::size_t(i.object)].first.x <= object_bounds[std::size_t(i.object)].second.x)
-      check_box_extent(object_bounds[std::size_t(i.object)].first, object_bounds[std::size_t(i.object)].second,
-                       i.object_to_world, i.loc, "the instanced object");
-    instances.push_back({i.object, i.object_to_world});
-  }
-  for (std::size_t o = 0; o < objects.size(); ++o)
-    for (int id : objects[o]) sc->shapes[id].instance = int(o);
-
-  sc->embree = std::make_unique<EmbreeScene>();
-  // Alpha textures are float textures: their first channel.
-  const AlphaTextureLookup alpha_lookup{
-      [](const void* textures, int texture, Vec2 uv) {
-        return evaluate_texture(*static_cast<const std::vector<Texture>*>(textures), texture, uv).r();
-      },
-      &sc->textures};
-  sc->embree->build(sc->shapes, top_level, objects, instances, alpha_lookup, monitor);
-  sc->embree->set_uv_needed(!sc->textures.empty());  // only textures read (u, v)
+  const std::vector<Instance> instances = make_instances(desc, objects, *sc);
+  build_geometry(top_level, objects, instances, *sc, monitor);
 
   for (const LightDesc& d : desc.lights) {
-    Light l;
-    l.medium = d.medium;
-    RGB e = d.spectrum * d.scale;
-    l.emission = e;
-    switch (d.type) {
-      case LightDesc::Type::Point:
-        l.type = Light::Type::Point;
-        l.position = d.light_to_world.point(d.from);
-        check_scene_point(l.position, d.loc, "the point light");
-        break;
-      case LightDesc::Type::Spot: {
-        l.type = Light::Type::Spot;
-        l.position = d.light_to_world.point(d.from);
-        Vec3 axis = d.light_to_world.point(d.to) - l.position;
-        if (length(axis) == 0) throw SceneError(d.loc, "spot light: 'from' and 'to' coincide");
-        l.direction = normalize(axis);
-        l.cos_falloff_end = std::cos(d.cone_angle * kPi / 180);
-        l.cos_falloff_start = std::cos((d.cone_angle - d.cone_delta) * kPi / 180);
-        break;
-      }
-      case LightDesc::Type::Distant: {
-        l.type = Light::Type::Distant;
-        // pbrt-v4: the illuminance on a surface facing the light is L's luminance.
-        if (d.illuminance >= 0 && d.spectrum.luminance() > 0)
-          l.emission = d.spectrum * (d.scale * d.illuminance / d.spectrum.luminance());
-        Vec3 w = d.light_to_world.vector(d.from - d.to);
-        if (length(w) == 0) throw SceneError(d.loc, "distant light: 'from' and 'to' coincide");
-        l.direction = normalize(w);
-        break;
-      }
-      case LightDesc::Type::Infinite: {
-        l.type = Light::Type::Infinite;
-        if (!d.filename.empty()) {
-          Image img;
-          try {
-            img = read_image(d.filename);
-          } catch (const std::exception& ex) {
-            throw SceneError(d.loc, ex.what());
-          }
-          const auto mapping = d.latlong ? EnvironmentMap::Mapping::LatLong : EnvironmentMap::Mapping::EqualArea;
-          float scale = d.scale;
-          try {
-            if (d.illuminance >= 0) {
-              // pbrt-v4: scaled so that a surface facing up (light-space +z) receives it.
-              const EnvironmentMap unit(img.width, img.height, img.pixels, d.light_to_world, 1, mapping);
-              if (unit.upper_hemisphere_illuminance() > 0) scale *= d.illuminance / unit.upper_hemisphere_illuminance();
-            }
-            l.environment = std::make_shared<EnvironmentMap>(img.width, img.height, std::move(img.pixels),
-                                                             d.light_to_world, scale, mapping);
-          } catch (const std::invalid_argument& ex) {
-            throw SceneError(d.loc, fmt::format("infinite light \"{}\": {}", d.filename, ex.what()));
-          }
-          l.emission = RGB(scale);
-        } else if (d.illuminance >= 0 && d.spectrum.luminance() > 0) {
-          // pbrt-v4: uniform radiance L gives the illuminance pi L on any surface.
-          l.emission = d.spectrum * (d.scale * d.illuminance / (kPi * d.spectrum.luminance()));
-        }
-        if (!d.portal.empty()) {
-          // pbrt-v4: Frame::FromXY(p03, p01), its z = p03 x p01, in world space.
-          const Vec3 p0 = d.light_to_world.point(d.portal[0]);
-          const Vec3 z = cross(d.light_to_world.point(d.portal[3]) - p0, d.light_to_world.point(d.portal[1]) - p0);
-          if (!(length(z) > 0)) throw SceneError(d.loc, "infinite light \"portal\": the rectangle has no area");
-          l.portal_normal = normalize(z);
-        }
-        sc->infinite_lights.push_back(int(sc->lights.size()));
-        break;
-      }
-    }
-    // The parser bounds "L" x "scale"; "illuminance" normalises after it and may still overflow.
-    if (d.illuminance >= 0 && !l.emission.is_finite())
-      throw SceneError(d.loc, fmt::format("the light's emission is beyond the range of 32-bit floats (\"scale\" {:g}, "
-                                          "\"illuminance\" {:g}): lower them",
-                                          double(d.scale), double(d.illuminance)));
-    check_light_power(std::span(&l, 1), d.loc);
-    sc->lights.push_back(l);
+    if (d.type == LightDesc::Type::Infinite) sc->infinite_lights.push_back(int(sc->lights.size()));
+    sc->lights.push_back(make_light(d));
   }
-
-  // A medium is enclosed when it appears only inside non-interface boundaries.
-  sc->medium_sees_lights.assign(sc->media.size(), 0);
-  auto open_medium = [&](int m) {
-    if (m >= 0) sc->medium_sees_lights[m] = 1;
-  };
-  open_medium(sc->camera_medium);
-  for (const Light& l : sc->lights) open_medium(l.medium);
-  for (const Shape& s : sc->shapes) {
-    if (!s.has_medium_interface) continue;
-    open_medium(s.outside_medium);
-    if (sc->materials[s.material].is_interface() || s.first_light >= 0) open_medium(s.inside_medium);
-  }
-
+  mark_media_that_see_lights(*sc);
   // Light selection (lights/light_selection.h): by each light's importance at the
   // shading point with few lights, by power with many.
   sc->light_selection = LightSelection(sc->lights, sc->embree->bounds_radius());
-
-  // Subsurface objects (render_scene.h): the shapes sharing a subsurface material form
-  // one object (pbrt-v4's rule), and so do all shapes of the materials that name the
-  // same "sssgroup"; every other shape is an object of its own (a boundary a walk inside
-  // another object reflects from), except index-matched interfaces (-1: passed through).
-  // Shapes reached through an instance are told apart by the instance (object_tracer.h).
-  std::map<std::string, int> object_of_key;
-  sc->object_of_shape.resize(sc->shapes.size());
-  for (std::size_t i = 0; i < sc->shapes.size(); ++i) {
-    const Material& m = sc->materials[sc->shapes[i].material];
-    std::string key = fmt::format("shape {}", i);
-    if (m.type == Material::Type::Subsurface) {
-      const std::string& group = sc->subsurface_params[m.subsurface].group;
-      key = group.empty() ? fmt::format("material {}", sc->shapes[i].material) : "group " + group;
-    }
-    auto [it, added] = object_of_key.try_emplace(key, int(object_of_key.size()));
-    sc->object_of_shape[i] = m.is_interface() ? -1 : it->second;  // walks pass through interfaces
-  }
+  group_subsurface_objects(*sc);
   return sc;
 }
 

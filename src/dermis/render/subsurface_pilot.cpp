@@ -158,64 +158,91 @@ std::vector<int> offered_strategies(const RenderScene& sc, int count) {
   return offered;
 }
 
-std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const SubsurfacePilotOptions& opt) {
-  int most = 1;
-  for (const auto& m : sc.subsurface)
-    if (m) most = std::max(most, m->strategy_count());
-  const std::vector<int> offered = offered_strategies(sc, most);
-  const int strategies = int(offered.size());  // measured, indexed by their place in `offered`
+namespace {
 
-  // The pixels whose centre sees a subsurface object (of at most kPilotProbes, evenly
-  // spaced in raster order): the pilot spends its samples there.
-  const int64_t rendered = int64_t(opt.bounds.width()) * opt.bounds.height();
-  const int64_t probes = std::min(rendered, kPilotProbes);
+// The pixels whose centre sees a subsurface object, of at most kPilotProbes evenly spaced
+// in raster order (indices into the rendered bounds): the pilot spends its samples there.
+// `rendered` is the number of pixels rendered; `probes`, how many were probed.
+std::vector<int64_t> pixels_seeing_subsurface(const RenderScene& sc, const PixelBounds& bounds, int64_t& probes) {
+  const int64_t rendered = int64_t(bounds.width()) * bounds.height();
+  probes = std::min(rendered, kPilotProbes);
   if (probes <= 0) return {};
   std::vector<uint8_t> sees(std::size_t(probes), 0);
   auto probe_pixel = [&](int64_t i) { return int64_t((double(i) + 0.5) * double(rendered) / double(probes)); };
   tbb::parallel_for(int64_t(0), probes, [&](int64_t i) {
     const int64_t index = probe_pixel(i);
-    const Vec2 centre{float(opt.bounds.x0 + index % opt.bounds.width()) + 0.5f,
-                      float(opt.bounds.y0 + index / opt.bounds.width()) + 0.5f};
+    const Vec2 centre{float(bounds.x0 + index % bounds.width()) + 0.5f,
+                      float(bounds.y0 + index / bounds.width()) + 0.5f};
     sees[std::size_t(i)] = camera_sees_subsurface(sc, sc.camera.generate_ray(centre, Vec2{0.5f, 0.5f})) ? 1 : 0;
   });
   std::vector<int64_t> candidates;
   for (int64_t i = 0; i < probes; ++i)
     if (sees[std::size_t(i)]) candidates.push_back(probe_pixel(i));
-  if (candidates.empty()) return {};
+  return candidates;
+}
 
-  // The pilot's pixels: evenly spaced among those.
-  const double object_pixels = double(candidates.size()) * double(rendered) / double(probes);
-  const int64_t samples =
-      std::clamp<int64_t>(int64_t(kPilotSharePerStrategy * strategies * double(opt.spp) * object_pixels),
-                          kPilotMinSamplesPerStrategy * strategies, kPilotMaxSamplesPerStrategy * strategies);
-  const int64_t count =
-      std::clamp<int64_t>(samples / (int64_t(kPilotSamples) * strategies), 1, int64_t(candidates.size()));
-  std::vector<PilotPixel> pixels(std::size_t(count) * std::size_t(strategies));
-  FilterSampler filter(sc.film.filter);
-  const uint64_t pilot_seed = mix64(opt.seed ^ 0x5eb5a11f0ull);  // not the image's numbers
-  std::vector<std::vector<int>> every_material;                  // strategy offered[i] for every material
-  for (int v : offered) every_material.emplace_back(sc.subsurface.size(), v);
+// The pilot: every strategy offered rendered on pixels that see a subsurface object, and
+// each material's strategies measured against its default.
+class SubsurfacePilot {
+ public:
+  SubsurfacePilot(const RenderScene& sc, const SubsurfacePilotOptions& opt, std::vector<int> offered,
+                  std::vector<int64_t> candidates, double object_pixels)
+      : sc_(sc),
+        opt_(opt),
+        offered_(std::move(offered)),
+        strategies_(int(offered_.size())),
+        candidates_(std::move(candidates)),
+        filter_(sc.film.filter),
+        pilot_seed_(mix64(opt.seed ^ 0x5eb5a11f0ull)) {  // not the image's numbers
+    const int64_t samples =
+        std::clamp<int64_t>(int64_t(kPilotSharePerStrategy * strategies_ * double(opt.spp) * object_pixels),
+                            kPilotMinSamplesPerStrategy * strategies_, kPilotMaxSamplesPerStrategy * strategies_);
+    count_ = std::clamp<int64_t>(samples / (int64_t(kPilotSamples) * strategies_), 1, int64_t(candidates_.size()));
+    pixels_.resize(std::size_t(count_) * std::size_t(strategies_));
+    for (int v : offered_) every_material_.emplace_back(sc.subsurface.size(), v);
+  }
+
+  // The two stages: the even pilot pixels, then the odd ones (each stage spread over the
+  // whole object), both where the first did not settle every material.
+  std::vector<SubsurfaceChoice> run() {
+    render_stage(0);
+    if (opt_.cancel && opt_.cancel->load()) return {};
+    bool settled = true;  // every material's choice is the default after the first stage
+    for (std::size_t m = 0; m < sc_.subsurface.size() && settled; ++m)
+      if (!strategies_of(m).empty()) settled = no_strategy_can_gain(measure(m, 2), kMinPilotPixels, kPilotSignificance);
+    if (!settled) {
+      render_stage(1);
+      if (opt_.cancel && opt_.cancel->load()) return {};
+    }
+    return choose(settled);
+  }
+
+ private:
+  PilotPixel& pixel(int64_t k, int v) { return pixels_[std::size_t(k) * std::size_t(strategies_) + std::size_t(v)]; }
+  const PilotPixel& pixel(int64_t k, int v) const {
+    return pixels_[std::size_t(k) * std::size_t(strategies_) + std::size_t(v)];
+  }
 
   // Pilot pixel k, every strategy offered: two samples each, with the same numbers.
-  auto render_pixel = [&](int64_t k) {
-    const int64_t index = candidates[std::size_t((double(k) + 0.5) * double(candidates.size()) / double(count))];
-    const int x = opt.bounds.x0 + int(index % opt.bounds.width()), y = opt.bounds.y0 + int(index / opt.bounds.width());
-    const uint64_t image_pixel = uint64_t(y) * uint64_t(opt.full_width) + uint64_t(x);
-    for (int v = 0; v < strategies; ++v) {
-      PilotPixel& out = pixels[std::size_t(k) * std::size_t(strategies) + std::size_t(v)];
-      const std::vector<int>& all_v = every_material[std::size_t(v)];
+  void render_pixel(int64_t k) {
+    const int64_t index = candidates_[std::size_t((double(k) + 0.5) * double(candidates_.size()) / double(count_))];
+    const PixelBounds& b = opt_.bounds;
+    const int x = b.x0 + int(index % b.width()), y = b.y0 + int(index / b.width());
+    const uint64_t image_pixel = uint64_t(y) * uint64_t(opt_.full_width) + uint64_t(x);
+    for (int v = 0; v < strategies_; ++v) {
+      PilotPixel& out = pixel(k, v);
       PathCounters counters;
       for (int s = 0; s < kPilotSamples; ++s) {
         // The same numbers for every strategy: their differences are measured, not the draws'.
-        Sampler sampler(SamplerKind::Independent, pilot_seed, image_pixel, uint32_t(s));
-        const Vec2 offset = filter.sample(sampler.get2d());
+        Sampler sampler(SamplerKind::Independent, pilot_seed_, image_pixel, uint32_t(s));
+        const Vec2 offset = filter_.sample(sampler.get2d());
         const Vec2 film_pos{float(x) + 0.5f + offset.x, float(y) + 0.5f + offset.y};
-        const Ray ray = sc.camera.generate_ray(film_pos, sampler.get2d());
+        const Ray ray = sc_.camera.generate_ray(film_pos, sampler.get2d());
         SubsurfaceEntryRecord record;
         PathStart start;
-        start.subsurface_strategies = &all_v;
+        start.subsurface_strategies = &every_material_[std::size_t(v)];
         start.subsurface_record = &record;
-        const RGB L = trace_path(sc, ray, sc.camera_medium, sampler, counters, start);
+        const RGB L = trace_path(sc_, ray, sc_.camera_medium, sampler, counters, start);
         out.finite = out.finite && L.is_finite();
         out.material[std::size_t(s)] = record.material;
         // Less the reflection split off at the camera's first hit, which every strategy
@@ -227,21 +254,19 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
       }
       out.rays = counters.rays;
     }
-  };
-  // The two stages: the even pilot pixels, then the odd ones (each stage spread over the
-  // whole object), both where the first did not settle every material.
-  auto render_stage = [&](int stage) {
-    tbb::parallel_for(int64_t(0), (count - stage + 1) / 2, [&](int64_t i) {
-      if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) return;
+  }
+
+  void render_stage(int stage) {
+    tbb::parallel_for(int64_t(0), (count_ - stage + 1) / 2, [&](int64_t i) {
+      if (opt_.cancel && opt_.cancel->load(std::memory_order_relaxed)) return;
       render_pixel(2 * i + stage);
     });
-  };
+  }
 
-  // Per material and strategy, each pilot pixel's variance of one sample (R + G + B;
-  // negative: the pixel does not measure the material), and the sums in pixel order.
-  const std::size_t materials = sc.subsurface.size();
-  auto pixel_variance = [&](int64_t k, int v, std::size_t m) {
-    const PilotPixel& p = pixels[std::size_t(k) * std::size_t(strategies) + std::size_t(v)];
+  // A pilot pixel's variance of one sample (R + G + B) for strategy v and material m;
+  // negative: the pixel does not measure the material.
+  double pixel_variance(int64_t k, int v, std::size_t m) const {
+    const PilotPixel& p = pixel(k, v);
     if (!p.finite || p.material[0] != int(m) || p.material[1] != int(m)) return -1.0;
     double variance = 0;
     for (int c = 0; c < 3; ++c) {
@@ -249,19 +274,21 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
       variance += d * d / 2;  // the sample variance of two values
     }
     return variance;
-  };
+  }
+
   // The places in `offered` of the strategies that differ for material m (the default's
   // first); empty: none to choose.
-  auto strategies_of = [&](std::size_t m) {
+  std::vector<int> strategies_of(std::size_t m) const {
     std::vector<int> places;
-    if (sc.subsurface[m]->strategy_count() < 2) return places;
-    for (int i = 0; i < strategies; ++i)
-      if (strategy_differs(sc, *sc.subsurface[m], offered[std::size_t(i)])) places.push_back(i);
+    if (sc_.subsurface[m]->strategy_count() < 2) return places;
+    for (int i = 0; i < strategies_; ++i)
+      if (strategy_differs(sc_, *sc_.subsurface[m], offered_[std::size_t(i)])) places.push_back(i);
     return places;
-  };
-  // What material m's strategies measured on the pilot pixels k < `upto` with k % step == 0
-  // (in the order of strategies_of(m)).
-  auto measure = [&](std::size_t m, int64_t upto, int64_t step) {
+  }
+
+  // What material m's strategies measured on the pilot pixels k with k % step == 0 (in
+  // the order of strategies_of(m)).
+  std::vector<StrategyMeasure> measure(std::size_t m, int64_t step) const {
     const std::vector<int> places = strategies_of(m);
     std::vector<StrategyMeasure> e(places.size());
     for (int i = 0; i < int(e.size()); ++i) {
@@ -270,18 +297,18 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
       double sum_rays = 0, sum = 0;
       // Paired with the default: sums of a, b, a^2, b^2, ab over the pixels both measured.
       double n = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
-      for (int64_t k = 0; k < upto; k += step) {
+      for (int64_t k = 0; k < count_; k += step) {
         const double a = pixel_variance(k, v, m);
         if (a < 0) continue;
         ++s.pixels;
         sum += a;
-        sum_rays += double(pixels[std::size_t(k) * std::size_t(strategies) + std::size_t(v)].rays) / kPilotSamples;
+        sum_rays += double(pixel(k, v).rays) / kPilotSamples;
         const double b = pixel_variance(k, 0, m);
         if (b < 0) continue;
         n += 1, sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b;
       }
       if (s.pixels == 0) continue;
-      s.handicap = pilot_handicap(sc.subsurface[m]->params, offered[std::size_t(v)]);
+      s.handicap = pilot_handicap(sc_.subsurface[m]->params, offered_[std::size_t(v)]);
       s.variance = sum / double(s.pixels);
       s.rays = sum_rays / double(s.pixels);
       if (i > 0 && n > 1 && sa > 0 && sb > 0) {
@@ -294,39 +321,57 @@ std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const 
       }
     }
     return e;
-  };
-
-  render_stage(0);
-  if (opt.cancel && opt.cancel->load()) return {};
-  bool settled = true;  // every material's choice is the default after the first stage
-  for (std::size_t m = 0; m < materials && settled; ++m)
-    if (!strategies_of(m).empty())
-      settled = no_strategy_can_gain(measure(m, count, 2), kMinPilotPixels, kPilotSignificance);
-  if (!settled) {
-    render_stage(1);
-    if (opt.cancel && opt.cancel->load()) return {};
   }
-  const int64_t step = settled ? 2 : 1;
 
-  std::vector<SubsurfaceChoice> choices;
-  for (std::size_t m = 0; m < materials; ++m) {
-    const std::vector<int> places = strategies_of(m);
-    if (places.empty()) continue;
-    const std::vector<StrategyMeasure> e = measure(m, count, step);
-    if (e[0].pixels < kMinPilotPixels) continue;
-    SubsurfaceChoice choice;
-    choice.material = int(m);
-    const int best = settled ? 0 : best_strategy(e, kMinPilotPixels, kPilotSignificance);
-    choice.strategy = offered[std::size_t(places[std::size_t(best)])];
-    const StrategyMeasure& chosen = e[std::size_t(best)];
-    choice.pixels = int(chosen.pixels);
-    choice.gain = chosen.variance_cost() > 0 ? e[0].variance_cost() / chosen.variance_cost() : 1;
-    choice.gain_se = choice.gain * chosen.log_ratio_se;
-    choice.first_stage_only = settled;
-    choice.description = describe_subsurface_choice(sc, choice);
-    choices.push_back(choice);
+  // Each material's choice, from the pixels of the stages rendered.
+  std::vector<SubsurfaceChoice> choose(bool settled) const {
+    const int64_t step = settled ? 2 : 1;
+    std::vector<SubsurfaceChoice> choices;
+    for (std::size_t m = 0; m < sc_.subsurface.size(); ++m) {
+      const std::vector<int> places = strategies_of(m);
+      if (places.empty()) continue;
+      const std::vector<StrategyMeasure> e = measure(m, step);
+      if (e[0].pixels < kMinPilotPixels) continue;
+      SubsurfaceChoice choice;
+      choice.material = int(m);
+      const int best = settled ? 0 : best_strategy(e, kMinPilotPixels, kPilotSignificance);
+      choice.strategy = offered_[std::size_t(places[std::size_t(best)])];
+      const StrategyMeasure& chosen = e[std::size_t(best)];
+      choice.pixels = int(chosen.pixels);
+      choice.gain = chosen.variance_cost() > 0 ? e[0].variance_cost() / chosen.variance_cost() : 1;
+      choice.gain_se = choice.gain * chosen.log_ratio_se;
+      choice.first_stage_only = settled;
+      choice.description = describe_subsurface_choice(sc_, choice);
+      choices.push_back(choice);
+    }
+    return choices;
   }
-  return choices;
+
+  const RenderScene& sc_;
+  const SubsurfacePilotOptions& opt_;
+  const std::vector<int> offered_;  // the strategies measured, indexed by their place here
+  const int strategies_;
+  const std::vector<int64_t> candidates_;
+  FilterSampler filter_;
+  const uint64_t pilot_seed_;
+  int64_t count_ = 0;                             // pilot pixels
+  std::vector<PilotPixel> pixels_;                // per pilot pixel, per strategy
+  std::vector<std::vector<int>> every_material_;  // strategy offered[i] for every material
+};
+
+}  // namespace
+
+std::vector<SubsurfaceChoice> run_subsurface_pilot(const RenderScene& sc, const SubsurfacePilotOptions& opt) {
+  int most = 1;
+  for (const auto& m : sc.subsurface)
+    if (m) most = std::max(most, m->strategy_count());
+  int64_t probes = 0;
+  std::vector<int64_t> candidates = pixels_seeing_subsurface(sc, opt.bounds, probes);
+  if (candidates.empty()) return {};
+  // The pilot's pixels: evenly spaced among those.
+  const int64_t rendered = int64_t(opt.bounds.width()) * opt.bounds.height();
+  const double object_pixels = double(candidates.size()) * double(rendered) / double(probes);
+  return SubsurfacePilot(sc, opt, offered_strategies(sc, most), std::move(candidates), object_pixels).run();
 }
 
 std::vector<int> subsurface_strategies(const RenderScene& sc, const std::vector<SubsurfaceChoice>& choices) {
