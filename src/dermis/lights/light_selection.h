@@ -34,7 +34,7 @@
 // outweighs the key light the images are unchanged. At surfaces it paid at subsurface
 // exits only, not on a Lambertian sphere (the sky's stratified light sample and the BSDF's
 // direction are two samples of what the cosine lobe covers), so not at other surfaces
-// (measured: docs/rendering.md, "Light selection"). SkyRule::GivesWay goes further where the caller
+// (measured: docs/results/results-rendering.md, "Light selection"). SkyRule::GivesWay goes further where the caller
 // asks: the uniform skies are never chosen (the probe methods' exits, and walk strategies
 // the render's pilot may choose: render/subsurface/subsurface_method.h, exit_sky_rule).
 // With more lights, a point-independent distribution in proportion to power (lights at

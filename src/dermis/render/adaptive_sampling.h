@@ -45,7 +45,7 @@ int default_min_spp(int spp);
 // ones it is the error as a display shows it (display encodings are close to a square
 // root: d sqrt(v) = dv / 2 sqrt(v)), as Cycles' noise threshold measures it. A purely
 // relative error lets near-black pixels lit by rare paths take the whole budget (measured
-// against uniform sampling: docs/rendering.md, "Adaptive sampling").
+// against uniform sampling: docs/results/results-adaptive.md, "The error criterion").
 // Zero for a pixel whose samples are all equal (a background); +infinity with fewer than
 // 2 samples.
 float pixel_noise_error(const Film& film, std::size_t pixel, double output_scale);

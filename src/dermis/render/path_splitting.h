@@ -10,7 +10,7 @@
 // (a disk probe's red weight reaches about A / (q_red P_axis), 3 to 6 on skin; a walk's
 // spectral MIS weights likewise), and a path that meets the object again compounds them:
 // on a bust, the paths past the first exit carried a small share of the light and much of
-// the variance (docs/rendering.md).
+// the variance (docs/results/results-rendering.md, "Heavy paths are split").
 #pragma once
 
 #include <algorithm>

@@ -13,8 +13,8 @@
 // the variance implicit capture removes, for little time, as such a path mostly leaves the
 // medium first. Lower thresholds gave no less variance and cost time in a denser medium. In
 // a medium enclosed by glass (no light seen: the path gathers only once it leaves) 1/2
-// added time for no variance, and the rule stays 1 there. Measured: docs/rendering.md,
-// "Russian roulette".
+// added time for no variance, and the rule stays 1 there. Measured: docs/results/results-rendering.md,
+// "Russian roulette in media".
 #pragma once
 
 namespace dermis {

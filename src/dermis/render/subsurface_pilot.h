@@ -53,15 +53,15 @@ struct StrategyMeasure {
 // independent samples per pixel misses the rare large weights that the mean holds, and
 // Owen-scrambled Sobol' stratifies the default's lighter-tailed walks better. The
 // estimates are precise, so the 2-sigma significance does not catch this, and a smaller
-// handicap let through choices that then rendered slower (measured: docs/rendering.md,
-// "The subsurface pilot").
+// handicap let through choices that then rendered slower (measured: docs/results/results-pilot.md,
+// "A guided share of 0.8 with a handicap").
 inline constexpr double kHeavierStrategyHandicap = 1.25;
 // The pilot's estimate of a walk strategy that guides backward too (WalkStrategy::
 // backward_guiding) is divided by this before the choice. Its far-side terms cost
 // arithmetic at every step that the pilot's count of rays does not see, and its estimated
 // gains over the choice without it read above what it rendered with: with this handicap
 // the pilot keeps it on the fins under the sky alone, where it pays (measured:
-// docs/rendering.md, "Backward guiding as a strategy").
+// docs/results/results-pilot.md, "Backward guiding as a strategy").
 inline constexpr double kBackwardGuidingHandicap = kHeavierStrategyHandicap;
 // The handicap of walk strategy `strategy` (kWalkStrategies) for a material: the one above
 // where it guides backward (unless the material gives `backwardguiding`: then every

@@ -3,7 +3,7 @@
 //
 // Why: Assimp's OBJ reader takes 0.2-0.4 s for the 100k-triangle bust
 // (scenes/meshes/nefertiti.obj), most of it in its allocations and page faults
-// (docs/rendering.md, "Loading large meshes"): three quarters of a small render's process
+// (docs/results/results-rendering.md, "Loading large meshes"): three quarters of a small render's process
 // and, in the family's whole-process convention, of Dermis' time on the bust. Reading the
 // imported arrays back takes milliseconds. An artist re-rendering an asset pays the parse
 // once.

@@ -98,7 +98,7 @@ bool first_vertex_survives(PathContext& ctx, PathState& st);
 // (PathStart::first_vertex_roulette), so that the sky its first ray meets counts in full
 // for the price of that ray; with no sky, before the ray is traced, since nothing it meets
 // directly can then be bright (rouletted before the ray, a dark object's reflection of a
-// uniform sky was met by one sample in 1/F: docs/rendering.md). Returns the probability the
+// uniform sky was met by one sample in 1/F: docs/results/results-rendering.md). Returns the probability the
 // reflected path is traced with, 0 when it is not; the decision's number comes from a
 // region of its own.
 float reflection_survival(PathContext& ctx, const PathState& st, const Ray& reflected_ray, float weight,

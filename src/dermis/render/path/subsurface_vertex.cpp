@@ -266,7 +266,7 @@ void SubsurfaceVertex::sample_more_exits(SubsurfaceEntry& entry, SubsurfaceExit&
   // on carries 1/n of its exit's weight, the first as the path itself, the others as nested
   // paths from their exits (the mean of n unbiased estimates). With the first alone going
   // on with its whole weight, the light its lobe finds by MIS (about half of a uniform
-  // sky's) rested on one walk of the n (measured: docs/rendering.md).
+  // sky's) rested on one walk of the n (measured: docs/results/results-rendering.md, "Every exit goes on").
   const bool continue_all = first_entry_;
   RGB sum = exit_estimate(first, found_first);
   for (int k = 1; k < exits; ++k) {

@@ -27,7 +27,7 @@ VertexOutcome shade_volume(PathContext& ctx, PathState& st, float t_hit) {
   // every segment whatever the other's outcome, so the light sample keeps its exact
   // distribution on its segment and the path its own: the sum stays unbiased (the
   // expectation of a sum is the sum of the expectations, however the terms correlate).
-  // Against an independent number for the point: docs/rendering.md, "Direct light in a medium".
+  // Against an independent number for the point: docs/results/results-rendering.md, "Direct light in a medium".
   const float u_segment_channel = sampler.get1d();
   const bool sees_lights = sc.medium_sees_lights[st.medium];
   if (sees_lights && st.depth < sc.settings.max_depth) {

@@ -39,7 +39,7 @@ namespace dermis {
 // where its gain survives a handicap (subsurface_pilot.h, kHeavierStrategyHandicap). A
 // share of 1 was not added (no classical flights under the mixture: no bound on a step's
 // weight where a walk must cross a thin part), nor 0.9 (no clearer a gain than 0.8's).
-// Measured: docs/rendering.md, "The subsurface pilot". A material whose `walksampling` is
+// Measured: docs/results/results-pilot.md, "The strategies". A material whose `walksampling` is
 // given keeps it, whatever the share.
 // The fifth to the eighth give each of the camera's first entry's walks one colour channel
 // (channel_per_walk below); their weights are each channel's own, no heavier.
@@ -63,7 +63,7 @@ struct WalkStrategy {
   // integrator's, at the walk's exits (SubsurfaceMaterial::exit_sky_rule). Each light
   // sample is a shadow ray and a second estimate of what the lobe's direction sees: under a
   // uniform sky alone, with one channel per walk, leaving them out can pay (measured:
-  // docs/rendering.md, "The subsurface pilot"). The pilot measures these two only where
+  // docs/results/results-pilot.md, "The strategies"). The pilot measures these two only where
   // the scene has a uniform sky (subsurface_pilot.cpp, offered_strategies).
   bool exit_sky_sampled = true;
   // Guided flights also follow the importance of the object's far side below the entry
@@ -71,7 +71,7 @@ struct WalkStrategy {
   // Where light enters a thin part from both faces (a fin under the sky) a walk's way out
   // through either face is worth the same, and guiding toward the entry face alone fights
   // half of it; elsewhere the far side's terms cost time for nothing (measured for every
-  // strategy: docs/rendering.md, "Backward guiding as a strategy"). So two strategies, the
+  // strategy: docs/results/results-pilot.md, "Backward guiding as a strategy"). So two strategies, the
   // channel-per-walk ones the pilot takes on fins under a sky, offered only where the far
   // side is within the walks' reach (WalkMethod::far_side_in_reach).
   bool backward_guiding = false;
@@ -98,7 +98,7 @@ inline constexpr int kChannelWalks = 3;
 // mean chord length 4V/S (geometry/mean_chord.h), strategies whose share is the
 // default's (and not given by the material) guide with kShortWalkGuidedShare. Raising
 // the short channels alone, where a long one shares the walk, did not pay. Measured in
-// docs/rendering.md ("Guiding where the walks are short").
+// docs/results/results-pilot.md ("Guiding where the walks are short").
 inline constexpr double kShortWalkGuidedShare = 0.8;
 inline constexpr double kShortWalkChordFraction = 0.1;
 // The guided share of each channel for a step whose share is the default's, inside an
