@@ -3,7 +3,7 @@
 run interleaved in one session (the machine is shared and noisy: only ratios measured in one
 run mean anything).
 
-  /usr/bin/python3 bench/compare_efficiency.py OLD_DERMIS NEW_DERMIS SCENE.pbrt [SCENE ...]
+  /usr/bin/python3 -m bench.compare_efficiency OLD_DERMIS NEW_DERMIS SCENE.pbrt [SCENE ...]
       [--spp 16] [--res 96x96] [--seeds 6] [--threads 1] [--time cpu|render]
 
 For each build and scene: --seeds renders (seeds 1..N, the two builds alternating); the
@@ -25,31 +25,22 @@ changed the image shows much more).
 """
 import argparse
 import os
-import re
-import resource
 import statistics
-import subprocess
 import tempfile
 
 import numpy as np
-import OpenImageIO as oiio
+
+from bench.harness import render
+from bench.harness.exr import read_exr
 
 
-RENDER_TIME = re.compile(r"in ([0-9.]+) s \(")
-
-
-def render(binary, scene, seed, args, out):
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    p = subprocess.run([binary, "render", scene, "--spp", str(args.spp), "--res", args.res, "--seed", str(seed),
-                        "--threads", str(args.threads), "-q", "--no-png", "-o", out], check=True,
-                       capture_output=True, text=True)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+def render_once(binary, scene, seed, args, out):
+    """The image and the time of one render (the process's CPU time, or its printed render time)."""
+    r = render.render(binary, scene, out, spp=args.spp, res=args.res, seed=seed, threads=args.threads)
+    cpu = r.cpu
     if args.time == "render":
-        cpu = max(float(RENDER_TIME.search(p.stderr).group(1)), 1e-3)  # printed in ms
-    inp = oiio.ImageInput.open(out)  # not ImageBuf: its cache would return the file's first contents again
-    img = inp.read_image(format="float")[:, :, :3].astype(np.float64)
-    inp.close()
+        cpu = max(render.render_stats(r.log).seconds, 1e-3)  # printed in ms
+    img = read_exr(out).rgb
     os.remove(out)
     return img, cpu
 
@@ -60,9 +51,7 @@ def coverage(mask_dir, scene, shape):
     names = [f[:-4] for f in os.listdir(mask_dir) if f.endswith(".exr") and base.startswith(f[:-4])]
     if not names:
         raise SystemExit(f"{mask_dir}: no coverage image for {base} (its name must begin with the image's)")
-    inp = oiio.ImageInput.open(os.path.join(mask_dir, max(names, key=len) + ".exr"))
-    img = inp.read_image(format="float")[:, :, :3].mean(axis=2)
-    inp.close()
+    img = read_exr(os.path.join(mask_dir, max(names, key=len) + ".exr")).rgb.mean(axis=2)
     if img.shape != shape:
         raise SystemExit(f"{base}: the coverage image is {img.shape[1]}x{img.shape[0]}, the renders "
                          f"{shape[1]}x{shape[0]}")
@@ -91,7 +80,7 @@ def main():
         for seed in range(1, args.seeds + 1):
             for name, binary in (("old", args.old), ("new", args.new)) if seed % 2 else (("new", args.new),
                                                                                        ("old", args.old)):
-                img, t = render(binary, scene, seed, args, os.path.join(work, f"{name}-{seed}.exr"))
+                img, t = render_once(binary, scene, seed, args, os.path.join(work, f"{name}-{seed}.exr"))
                 images[name].append(img)
                 cpu[name].append(t)
         stats = {}

@@ -3,7 +3,7 @@
 scene's noise is (which light, which scattering orders, which channel), measured by
 rendering each variant over seeds.
 
-  /usr/bin/python3 bench/pixel_variance.py DERMIS SCENE.pbrt [SCENE ...] [--spp 32]
+  /usr/bin/python3 -m bench.pixel_variance DERMIS SCENE.pbrt [SCENE ...] [--spp 32]
       [--res 96x96] [--seeds 8] [--threads 2] [--mask-from SCENE.pbrt]
 
 Each scene is rendered with seeds 1..N; the variance of each pixel over the seeds (of the
@@ -18,31 +18,26 @@ by light).
 """
 import argparse
 import os
-import re
 import statistics
-import subprocess
 import tempfile
 
 import numpy as np
-import OpenImageIO as oiio
 
-RENDER_TIME = re.compile(r"in ([0-9.]+) s \(")
+from bench.harness import render
+from bench.harness.exr import read_exr
 
 
-def render(binary, scene, seed, args, out):
-    p = subprocess.run([binary, "render", scene, "--spp", str(args.spp), "--res", args.res, "--seed", str(seed),
-                        "--threads", str(args.threads), "-q", "--no-png", "-o", out], check=True,
-                       capture_output=True, text=True)
-    m = RENDER_TIME.search(p.stderr)
-    inp = oiio.ImageInput.open(out)  # not ImageBuf: its cache would return the file's first contents again
-    img = inp.read_image(format="float")[:, :, :3].astype(np.float64)
-    inp.close()
+def render_once(binary, scene, seed, args, out):
+    """The image of one render and its printed render time (NaN if none)."""
+    r = render.render(binary, scene, out, spp=args.spp, res=args.res, seed=seed, threads=args.threads)
+    stats = render.render_stats(r.log)
+    img = read_exr(out).rgb
     os.remove(out)
-    return img, float(m.group(1)) if m else float("nan")
+    return img, stats.seconds if stats else float("nan")
 
 
 def images(binary, scene, args, out):
-    runs = [render(binary, scene, s, args, out) for s in range(1, args.seeds + 1)]
+    runs = [render_once(binary, scene, s, args, out) for s in range(1, args.seeds + 1)]
     return np.array([r[0] for r in runs]), statistics.median(r[1] for r in runs)
 
 

@@ -10,8 +10,8 @@ points). The scene is scenes/demo.pbrt with a skin-like dipole material and its 
 light made 3x wider and 9x dimmer (same power), so that its specular reflection, found
 by chance, does not dominate every image's error.
 
-  /usr/bin/python3 bench/pointcloud_comparison.py                # the full run
-  /usr/bin/python3 bench/pointcloud_comparison.py --scale 0.1    # every time x0.1, a smoke test
+  /usr/bin/python3 -m bench.pointcloud_comparison                # the full run
+  /usr/bin/python3 -m bench.pointcloud_comparison --scale 0.1    # every time x0.1, a smoke test
 
 Writes docs/results/results-pointcloud.md (hand-written findings below the marker are kept) and
 docs/images/results-pointcloud.png; the study's HTML report stays in --work.
@@ -19,16 +19,13 @@ docs/images/results-pointcloud.png; the study's HTML report stays in --work.
 
 import argparse
 import datetime
-import json
 import os
-import subprocess
 import sys
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import sss_methods as sm  # noqa: E402  (paths, the Markdown helpers)
-import dermis  # noqa: E402
-from dermis import study  # noqa: E402
+from bench import sss_methods as sm  # where the scenes go
+from bench.harness import docs_page, progress, provenance, study
+from bench.harness.paths import IMAGES, RESULTS, ROOT
 
 WORK = "/tmp/dermis-pointcloud"
 SPARSE = 3000   # points of the sparse cloud; the dense one has 12x as many
@@ -43,7 +40,7 @@ MATERIAL = '"rgb reflectance" [0.8 0.55 0.4] "rgb mfp" [12 6 3]'
 
 def scene():
     """scenes/demo.pbrt with the dipole material and the wider, dimmer key light."""
-    text = open(os.path.join(sm.ROOT, "scenes", "demo.pbrt")).read()
+    text = open(os.path.join(ROOT, "scenes", "demo.pbrt")).read()
     for old, new in (('"string name" "Skin1" "float scale" 0.1', MATERIAL),
                      ('"string method" "randomwalk" "string boundary" "diffuse" "string walksampling" "mis"',
                       '"string method" "disk" "string profile" "dipole"'),
@@ -80,37 +77,25 @@ def main():
     t0, load_start = time.time(), os.getloadavg()
     path = scene()
     out = os.path.join(args.work, "bust-pointcloud")
-    argv = [os.path.relpath(path, sm.ROOT), "--methods", ",".join(f"{label}={cloud(n, d)}" for label, n, d in ROWS),
-            "--time", f"{EQUAL_TIME * args.scale:g}", "--budgets", f"{EQUAL_TIME * args.scale / 2:g}", "--repeats",
-            str(REPEATS), "--cpu-time", "--threads", str(THREADS), "--res", RES, "--reference-method",
-            "disk:profile=dipole", "--reference-time", f"{REF_TIME * args.scale:g}", "--out", out]
-    print(f"dermis study {' '.join(argv)}", flush=True)
-    os.chdir(sm.ROOT)
-    if study.main(argv) != 0:
-        sys.exit("the study failed")
-    with open(os.path.join(out, "study.json")) as f:
-        data = json.load(f)
+    options = ["--methods", ",".join(f"{label}={cloud(n, d)}" for label, n, d in ROWS), "--time",
+               f"{EQUAL_TIME * args.scale:g}", "--budgets", f"{EQUAL_TIME * args.scale / 2:g}", "--repeats",
+               str(REPEATS), "--cpu-time", "--threads", str(THREADS), "--res", RES, "--reference-method",
+               "disk:profile=dipole", "--reference-time", f"{REF_TIME * args.scale:g}"]
+    data = study.run_study(path, options, out)
     total = time.time() - t0
-    print(f"total wall time {total:.0f} s", flush=True)
+    progress.log(f"total wall time {total:.0f} s", sys.stdout)
     if not args.no_docs:
         write_docs(data, out, total, args, load_start)
 
 
 def write_docs(data, out, total, args, load_start):
-    os.makedirs(sm.IMAGES, exist_ok=True)
+    os.makedirs(IMAGES, exist_ok=True)
     names = [m["name"] for m in data["methods"]]
-    sm.strip([dermis.read_image(os.path.join(out, "reference.exr"))] +
-             [dermis.read_image(os.path.join(out, study._filename(n) + ".exr")) for n in names],
-             ["reference"] + names, os.path.join(sm.IMAGES, "results-pointcloud.png"))
-    path = os.path.join(sm.DOCS, "results", "results-pointcloud.md")
-    kept = ""
-    if os.path.exists(path):
-        text = open(path).read()
-        if MARKER in text:
-            kept = text[text.rindex(MARKER) + len(MARKER):]
-    commit = subprocess.run(["git", "-C", sm.ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True).stdout.strip()
-    cmd = "/usr/bin/python3 bench/pointcloud_comparison.py" + (
+    study.strip([study.reference_image(out)] + [study.method_image(out, n) for n in names],
+                ["reference"] + names, os.path.join(IMAGES, "results-pointcloud.png"))
+    path = os.path.join(RESULTS, "results-pointcloud.md")
+    commit = provenance.git_commit()
+    cmd = "/usr/bin/python3 -m bench.pointcloud_comparison" + (
         f" --scale {args.scale:g}" if args.scale != 1 else "")
     load_end = os.getloadavg()
     prep = "; ".join(f"{m['name']} {m['warmup_seconds']:.1f} s" for m in data["methods"])
@@ -135,11 +120,10 @@ def write_docs(data, out, total, args, load_start):
              "Equal **CPU** time per render; the pre-pass (points and their irradiance) is done once per row before "
              f"the timed renders and not counted: {prep} (the warm-up render, pre-pass included).\n")
     w.append(f"## {data['main_budget']:g} CPU s per render\n")
-    w.append(sm.table(data) + "\n")
-    w.append(sm.reference_line(data) + "\n")
+    w.append(study.table(data) + "\n")
+    w.append(study.reference_line(data) + "\n")
     w.append("![point clouds](../images/results-pointcloud.png)\n")
-    with open(path, "w") as f:
-        f.write("\n".join(w) + "\n" + MARKER + (kept if kept else "\n"))
+    docs_page.write_page(path, "\n".join(w), MARKER)  # the findings below the marker are kept
     print(f"wrote {path}")
 
 

@@ -6,8 +6,8 @@ docs/study.md) per family of methods, and writes docs/results/results.md: each s
 (mean ± standard error over independent repeats) and image strips in docs/images/results-*.png.
 The interactive HTML report of every family stays in the work folder (WORK/<family>/index.html).
 
-  /usr/bin/python3 bench/sss_methods.py              # the full run
-  /usr/bin/python3 bench/sss_methods.py --scale 0.1  # every time x0.1, a smoke test
+  /usr/bin/python3 -m bench.sss_methods              # the full run
+  /usr/bin/python3 -m bench.sss_methods --scale 0.1  # every time x0.1, a smoke test
 
 Every family: equal CPU time (--cpu-time: the renders of a shared machine get the same CPU
 seconds), budgets T/4, T/2, T, 3 repeats each, 2 threads; the reference rendered by the
@@ -16,20 +16,14 @@ study (two independent halves, whose difference gives its own noise).
 
 import argparse
 import datetime
-import json
 import os
-import subprocess
 import sys
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.append(os.path.join(ROOT, "build", "python"))  # the module, from the build tree (unless on PYTHONPATH)
-import dermis  # noqa: E402
-from dermis import report, study  # noqa: E402
+from bench.harness import dermis_module, docs_page, progress, provenance, study
+from bench.harness.paths import IMAGES, RESULTS, ROOT
 
 SCENES = os.path.join(ROOT, "scenes", "bench")
-DOCS = os.path.join(ROOT, "docs")
-IMAGES = os.path.join(DOCS, "images")
 THREADS = 2
 WORK = "/tmp/dermis-sss-methods"  # the studies' folders (--work)
 EQUAL_TIME = dict(bust=6, fin=4, sphere=4)  # CPU seconds of the main budget
@@ -161,79 +155,39 @@ def families():
 
 def run_study(key, scene, methods, ref_method, geometry, scale, work):
     """One study (in this process); returns its study.json as a dict."""
-    out = os.path.join(work, key)
     ref_time = REF_TIME[geometry] * scale * (0.5 if key == "bust-walk-diffuse" else 1)
-    argv = [os.path.relpath(scene, ROOT), "--methods", ",".join(methods), "--time", f"{EQUAL_TIME[geometry] * scale:g}",
-            "--repeats", str(REPEATS), "--cpu-time", "--threads", str(THREADS), "--reference-method", ref_method,
-            "--reference-time", f"{ref_time:g}", "--out", out]
-    print(f"[{key}] dermis study {' '.join(argv)}", flush=True)
-    cwd = os.getcwd()
-    os.chdir(ROOT)  # scene paths relative to the repository, as the report shows them
-    try:
-        rc = study.main(argv)
-    finally:
-        os.chdir(cwd)
-    if rc != 0:
-        sys.exit(f"[{key}] the study failed ({rc})")
-    with open(os.path.join(out, "study.json")) as f:
-        return json.load(f)
+    options = ["--methods", ",".join(methods), "--time", f"{EQUAL_TIME[geometry] * scale:g}", "--repeats",
+               str(REPEATS), "--cpu-time", "--threads", str(THREADS), "--reference-method", ref_method,
+               "--reference-time", f"{ref_time:g}"]
+    return study.run_study(scene, options, os.path.join(work, key), label=key)
 
 
 # ---------------------------------------------------------------------------- docs
-
-def strip(images, labels, path):
-    """Side-by-side panels of linear images (sRGB, palette PNG), labelled."""
-    from PIL import Image, ImageDraw
-    h, w = images[0].shape[:2]
-    S = Image.new("RGB", (w * len(images), h))
-    d = ImageDraw.Draw(S)
-    for i, (img, t) in enumerate(zip(images, labels)):
-        S.paste(Image.fromarray(report.tonemap(img)), (i * w, 0))
-        d.rectangle([i * w, 0, i * w + 6 * len(t) + 4, 12], fill=(0, 0, 0))
-        d.text((i * w + 2, 0), t, fill=(255, 255, 255))
-    S.quantize(256, dither=Image.Dither.NONE).save(path, optimize=True)
-
-
-def exr(work, key, name):
-    return dermis.read_image(os.path.join(work, key, study._filename(name) + ".exr"))
-
 
 def short(name):
     return name.replace("randomwalk:boundary=", "").replace(":walksampling=", " ")
 
 
-def table(data):
-    head, rows = report.main_rows(data, data["mask_pixels"] > 0)
-    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-    lines += ["| " + " | ".join(f"`{r[0]}`" if i == 0 else c for i, c in enumerate(r)) + " |" for r in rows]
-    return "\n".join(lines)
-
-
-def reference_line(data):
-    r = data["reference"]
-    return (f"Reference: {r['details']}; its own noise (RMSE of the reference, from its halves' difference): "
-            f"{r['noise_rmse']:.3g} whole image, {r['noise_mask_rmse']:.3g} on the object "
-            f"({data['mask_pixels']} pixels).")
-
-
 def write_docs(results, gap, total, scale, work):
+    dermis = dermis_module.load()
     os.makedirs(IMAGES, exist_ok=True)
     for key, (title, data) in results.items():
+        folder = os.path.join(work, key)
         names = [m["name"] for m in data["methods"]]
-        strip([dermis.read_image(os.path.join(work, key, "reference.exr"))] + [exr(work, key, n) for n in names],
-              ["reference"] + [short(n) for n in names], os.path.join(IMAGES, f"results-{key}.png"))
+        study.strip([study.reference_image(folder)] + [study.method_image(folder, n) for n in names],
+                    ["reference"] + [short(n) for n in names], os.path.join(IMAGES, f"results-{key}.png"))
     fin = results["fin-profile"][1]
-    ref = dermis.read_image(os.path.join(work, "fin-profile", "reference.exr"))
-    strip([dermis.error_map(exr(work, "fin-profile", m["name"]), ref)[0] for m in fin["methods"]],
-          [f"|{m['name']} - ref|" for m in fin["methods"]], os.path.join(IMAGES, "results-fin-profile-diff.png"))
-    strip([dermis.read_image(os.path.join(work, k, "reference.exr")) for k in ("bust-walk", "bust-walk-diffuse")] +
-          [gap["map"]], ["dielectric (vol. ref)", "diffuse (ref)", "|diffuse - dielectric|"],
-          os.path.join(IMAGES, "results-bust-boundary.png"))
+    fin_folder = os.path.join(work, "fin-profile")
+    ref = study.reference_image(fin_folder)
+    study.strip([dermis.error_map(study.method_image(fin_folder, m["name"]), ref)[0] for m in fin["methods"]],
+                [f"|{m['name']} - ref|" for m in fin["methods"]], os.path.join(IMAGES, "results-fin-profile-diff.png"))
+    study.strip([study.reference_image(os.path.join(work, k)) for k in ("bust-walk", "bust-walk-diffuse")] +
+                [gap["map"]], ["dielectric (vol. ref)", "diffuse (ref)", "|diffuse - dielectric|"],
+                os.path.join(IMAGES, "results-bust-boundary.png"))
 
     any_data = next(iter(results.values()))[1]
-    cmd = "/usr/bin/python3 bench/sss_methods.py" + (f" --scale {scale:g}" if scale != 1 else "")
-    commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True).stdout.strip()
+    cmd = "/usr/bin/python3 -m bench.sss_methods" + (f" --scale {scale:g}" if scale != 1 else "")
+    commit = provenance.git_commit()
     out = []
     w = out.append
     w("# Results: equal-time comparison of the subsurface methods\n")
@@ -259,8 +213,8 @@ def write_docs(results, gap, total, scale, work):
     for key in ("bust-profile", "fin-profile"):
         title, data = results[key]
         w(f"### {title}: `{data['scene']}`, {data['main_budget']:g} CPU s each\n")
-        w(table(data) + "\n")
-        w(reference_line(data) + "\n")
+        w(study.table(data) + "\n")
+        w(study.reference_line(data) + "\n")
         w(f"![{key}](../images/results-{key}.png)\n")
         if key == "fin-profile":
             w("Luminance of |method − reference| (dermis.error_map, each scaled to its own 99th percentile):\n")
@@ -272,28 +226,22 @@ def write_docs(results, gap, total, scale, work):
     for key in ("bust-walk", "sphere-walk"):
         title, data = results[key]
         w(f"### {title}, {data['main_budget']:g} CPU s each\n")
-        w(table(data) + "\n")
-        w(reference_line(data) + "\n")
+        w(study.table(data) + "\n")
+        w(study.reference_line(data) + "\n")
         w(f"![{key}](../images/results-{key}.png)\n")
     title, data = results["bust-walk-diffuse"]
     w(f"### {title}, {data['main_budget']:g} CPU s each\n")
     w("Against its own reference (`randomwalk` `diffuse` MIS).\n")
-    w(table(data) + "\n")
-    w(reference_line(data) + "\n")
+    w(study.table(data) + "\n")
+    w(study.reference_line(data) + "\n")
     w("![bust-walk-diffuse](../images/results-bust-walk-diffuse.png)\n")
     w("### How far `diffuse` is from `dielectric` (their references, same coefficients)\n")
     w(f"- Whole image: RMSE {gap['rmse']:.4g}, relMSE {gap['relmse']:.4g}.")
     w(f"- On the bust: RMSE {gap['obj_rmse']:.4g}; mean (R, G, B) diffuse {gap['obj_mean_diffuse']} vs dielectric "
       f"{gap['obj_mean_dielectric']}.\n")
     w("![boundary](../images/results-bust-boundary.png)\n")
-    w(FINDINGS_MARKER + "\n")
-    path = os.path.join(DOCS, "results", "results.md")
-    old = open(path).read() if os.path.exists(path) else ""
-    text = "\n".join(out)
-    if FINDINGS_MARKER in old:  # keep the hand-written discussion below the marker
-        text += old.split(FINDINGS_MARKER, 1)[1]
-    with open(path, "w") as f:
-        f.write(text)
+    path = os.path.join(RESULTS, "results.md")
+    docs_page.write_page(path, "\n".join(out), FINDINGS_MARKER)  # the hand-written discussion below is kept
     print(f"wrote {path}")
 
 
@@ -302,8 +250,9 @@ FINDINGS_MARKER = "<!-- findings: written by hand below this line; kept when the
 
 def boundary_gap(work):
     """The diffuse boundary's reference against the dielectric's (volumetric) one."""
-    diel = dermis.read_image(os.path.join(work, "bust-walk", "reference.exr"))
-    diff = dermis.read_image(os.path.join(work, "bust-walk-diffuse", "reference.exr"))
+    dermis = dermis_module.load()
+    diel = study.reference_image(os.path.join(work, "bust-walk"))
+    diff = study.reference_image(os.path.join(work, "bust-walk-diffuse"))
     mask = dermis.subsurface_mask(dermis.load_scene(os.path.join(SCENES, "bust-volumetric.pbrt")))
     c, obj = dermis.compare(diff, diel), dermis.compare(diff[mask][None], diel[mask][None])
     means = lambda v: "(" + ", ".join(f"{x:.4f}" for x in v) + ")"  # noqa: E731
@@ -325,7 +274,7 @@ def main():
         results[key] = (title, run_study(key, scene, methods, ref_method, geometry, args.scale, args.work))
     gap = boundary_gap(args.work)
     total = time.time() - t0
-    print(f"total wall time {total:.0f} s", flush=True)
+    progress.log(f"total wall time {total:.0f} s", sys.stdout)
     if not args.no_docs:
         write_docs(results, gap, total, args.scale, args.work)
 

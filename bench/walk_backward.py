@@ -9,8 +9,8 @@ boundary the reference is the brute-force volumetric path tracer, with the `diff
 boundary (the production default) the classical walk itself. Geometries: slabs lit from
 behind (8 and 30 mm), and the fin, sphere and bust of bench/sss_methods.py, front-lit.
 
-  /usr/bin/python3 bench/walk_backward.py                 # the full run
-  /usr/bin/python3 bench/walk_backward.py --scale 0.1     # every time x0.1, a smoke test
+  /usr/bin/python3 -m bench.walk_backward                 # the full run
+  /usr/bin/python3 -m bench.walk_backward --scale 0.1     # every time x0.1, a smoke test
 
 Writes docs/results/results-backward.md (tables; hand-written findings below the marker are kept)
 and docs/images/results-backward-*.png; the studies' HTML reports stay in --work.
@@ -18,16 +18,13 @@ and docs/images/results-backward-*.png; the studies' HTML reports stay in --work
 
 import argparse
 import datetime
-import json
 import os
-import subprocess
 import sys
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import sss_methods as sm  # noqa: E402  (the scenes, the study runner's conventions, the Markdown helpers)
-import dermis  # noqa: E402
-from dermis import study  # noqa: E402
+from bench import sss_methods as sm  # the scenes
+from bench.harness import docs_page, progress, provenance, study
+from bench.harness.paths import IMAGES, RESULTS
 
 WORK = "/tmp/dermis-walk-backward"
 
@@ -89,21 +86,10 @@ def run_study(key, scene_path, boundary, scale, work):
     """One study in this process; returns its study.json as a dict."""
     methods = [f"{label}={walk_spec(boundary, s, b)}" for label, s, b in ROWS]
     reference = "volumetric" if boundary == "dielectric" else walk_spec(boundary, "classical", False)
-    out = os.path.join(work, key)
-    argv = [os.path.relpath(scene_path, sm.ROOT), "--methods", ",".join(methods), "--time", f"{EQUAL_TIME * scale:g}",
-            "--budgets", f"{EQUAL_TIME * scale:g}", "--repeats", str(REPEATS), "--cpu-time", "--threads",
-            str(THREADS), "--reference-method", reference, "--reference-time", f"{REF_TIME * scale:g}", "--out", out]
-    print(f"[{key}] dermis study {' '.join(argv)}", flush=True)
-    cwd = os.getcwd()
-    os.chdir(sm.ROOT)
-    try:
-        rc = study.main(argv)
-    finally:
-        os.chdir(cwd)
-    if rc != 0:
-        sys.exit(f"[{key}] the study failed ({rc})")
-    with open(os.path.join(out, "study.json")) as f:
-        return json.load(f)
+    options = ["--methods", ",".join(methods), "--time", f"{EQUAL_TIME * scale:g}", "--budgets",
+               f"{EQUAL_TIME * scale:g}", "--repeats", str(REPEATS), "--cpu-time", "--threads", str(THREADS),
+               "--reference-method", reference, "--reference-time", f"{REF_TIME * scale:g}"]
+    return study.run_study(scene_path, options, os.path.join(work, key), label=key)
 
 
 def main():
@@ -124,27 +110,21 @@ def main():
             key = f"{b}-{g}"
             results[key] = (b, g, run_study(key, scene(g), b, args.scale, args.work))
     total = time.time() - t0
-    print(f"total wall time {total:.0f} s", flush=True)
+    progress.log(f"total wall time {total:.0f} s", sys.stdout)
     if not args.no_docs:
         write_docs(results, total, args, load_start)
 
 
 def write_docs(results, total, args, load_start):
-    os.makedirs(sm.IMAGES, exist_ok=True)
+    os.makedirs(IMAGES, exist_ok=True)
     for key, (b, g, data) in results.items():
+        folder = os.path.join(args.work, key)
         names = [m["name"] for m in data["methods"]]
-        sm.strip([dermis.read_image(os.path.join(args.work, key, "reference.exr"))] +
-                 [sm.exr(args.work, key, n) for n in names], ["reference"] + names,
-                 os.path.join(sm.IMAGES, f"results-backward-{key}.png"))
-    path = os.path.join(sm.DOCS, "results", "results-backward.md")
-    kept = ""
-    if os.path.exists(path):
-        text = open(path).read()
-        if MARKER in text:
-            kept = text[text.rindex(MARKER) + len(MARKER):]
-    commit = subprocess.run(["git", "-C", sm.ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True).stdout.strip()
-    cmd = "/usr/bin/python3 bench/walk_backward.py" + (f" --scale {args.scale:g}" if args.scale != 1 else "")
+        study.strip([study.reference_image(folder)] + [study.method_image(folder, n) for n in names],
+                    ["reference"] + names, os.path.join(IMAGES, f"results-backward-{key}.png"))
+    path = os.path.join(RESULTS, "results-backward.md")
+    commit = provenance.git_commit()
+    cmd = "/usr/bin/python3 -m bench.walk_backward" + (f" --scale {args.scale:g}" if args.scale != 1 else "")
     if args.geometries != "slab,thickslab,fin,sphere,bust":
         cmd += f" --geometries {args.geometries}"
     if args.boundaries != "dielectric,diffuse":
@@ -172,11 +152,10 @@ def write_docs(results, total, args, load_start):
            "tested).\n"]
     for key, (b, g, data) in results.items():
         out.append(f"## `{b}` boundary: {TITLES[g]}, {data['main_budget']:g} CPU s each\n")
-        out.append(sm.table(data) + "\n")
-        out.append(sm.reference_line(data) + "\n")
+        out.append(study.table(data) + "\n")
+        out.append(study.reference_line(data) + "\n")
         out.append(f"![{b} {g}](../images/results-backward-{key}.png)\n")
-    with open(path, "w") as f:
-        f.write("\n".join(out) + "\n" + MARKER + (kept if kept else "\n"))
+    docs_page.write_page(path, "\n".join(out), MARKER)  # the findings below the marker are kept
     print(f"wrote {path}")
 
 

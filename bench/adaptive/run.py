@@ -17,64 +17,40 @@ The scenes and settings are fixed here, before anything is measured (never per s
   medium    family configuration f13 (the index-matched medium, the volumetric path tracer)
 thresholds 0.02 and 0.01 (Cycles' default), at most 1024 samples per pixel, the default minimum (32).
 
-    /usr/bin/python3 bench/adaptive/run.py --out /tmp/adaptive [--quick]
+    /usr/bin/python3 -m bench.adaptive.run --out /tmp/adaptive [--quick]
 """
 import argparse
 import os
-import re
-import subprocess
 import sys
 import time
 
 import numpy as np
-import OpenImageIO as oiio
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(ROOT, "bench", "vs_cycles"))
-import pbrt_writer  # noqa: E402
-import scenes as vsc  # noqa: E402
-
-
-def log(msg):
-    print(f"[{time.strftime('%H:%M:%S')}] {msg}", file=sys.stderr, flush=True)
-
-
-def read_channels(path):
-    inp = oiio.ImageInput.open(path)
-    if inp is None:
-        sys.exit(f"cannot read {path}: {oiio.geterror()}")
-    spec = inp.spec()
-    px = np.asarray(inp.read_image(0, 0, 0, spec.nchannels, oiio.FLOAT), dtype=np.float64)
-    names = list(spec.channelnames)
-    inp.close()
-    px = px.reshape(spec.height, spec.width, spec.nchannels)
-    rgb = np.stack([px[:, :, names.index(c)] for c in "RGB"], axis=-1)
-    extra = {n: px[:, :, i] for i, n in enumerate(names) if n not in ("R", "G", "B")}
-    return rgb, extra
+from bench.harness import render as dermis_render
+from bench.harness.exr import read_exr
+from bench.harness.paths import DERMIS, ROOT
+from bench.harness.progress import log
+from bench.vs_cycles import pbrt_writer
+from bench.vs_cycles import scenes as vsc
 
 
 def render(args, scene, out, seed, spp, threshold=None, seconds=None, reference=False):
-    cmd = [args.dermis, "render", scene, "--no-png", "-q", "--threads", str(args.threads), "--seed", str(seed),
-           "--spp", str(spp), "-o", out]
-    if args.res.get(scene):
-        cmd += ["--res", args.res[scene]]
+    extra = []
     if threshold:
-        cmd += ["--noise-threshold", str(threshold)]
+        extra += ["--noise-threshold", str(threshold)]
     if seconds:
-        cmd += ["--time-limit", f"{seconds:.3f}"]
+        extra += ["--time-limit", f"{seconds:.3f}"]
     if not threshold:
-        cmd += ["--error-map"]
+        extra += ["--error-map"]
     if args.sampler and not reference:
-        cmd += ["--sampler", args.sampler]
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"{' '.join(cmd)} failed ({r.returncode}):\n{r.stderr}")
-    m = re.search(r"dermis: wrote .* in ([0-9.]+) s", r.stderr)
-    if not m:
-        sys.exit(f"no render time in the output of {' '.join(cmd)}:\n{r.stderr}")
-    rgb, extra = read_channels(out)
-    return rgb, extra, float(m.group(1))
+        extra += ["--sampler", args.sampler]
+    r = dermis_render.render(args.dermis, scene, out, spp=spp, res=args.res.get(scene) or None, seed=seed,
+                             threads=args.threads, extra=extra)
+    stats = dermis_render.render_stats(r.log)
+    if not stats:
+        sys.exit(f"no render time in the output of {' '.join(r.cmd)}:\n{r.log}")
+    image = read_exr(out)
+    return image.rgb, image.extra, stats.seconds
 
 
 def mse(img, ref, ref_noise):
@@ -121,7 +97,7 @@ def sample_map_png(counts, rgb, path, title):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--dermis", default=os.path.join(ROOT, "build", "dermis"))
+    ap.add_argument("--dermis", default=DERMIS)
     ap.add_argument("--out", required=True, help="work folder (renders, the report, the sample map)")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--thresholds", default="0.02,0.01")
@@ -143,18 +119,18 @@ def main():
     rows = []
     for name in args.scenes.split(","):
         scene, res = files[name]
-        log(f"{name}: {scene} at {res}")
+        log(f"{name}: {scene} at {res}", clock=True)
         halves = []
         for k in (1, 2):
             path = os.path.join(args.out, f"{name}-ref{k}-{args.reference_spp}.exr")
             if args.reuse_references and os.path.exists(path):
-                halves.append(read_channels(path)[0])
+                halves.append(read_exr(path).rgb)
             else:
                 halves.append(render(args, scene, path, 1000 + k, args.reference_spp, reference=True)[0])
         ref = (halves[0] + halves[1]) / 2
         # Each half's error variance is E|h1 - h2|^2 / 2; their mean's is a quarter of E|h1 - h2|^2.
         ref_noise = float(np.mean((halves[0] - halves[1]) ** 2)) / 4
-        log(f"  reference: {2 * args.reference_spp} spp, its own MSE {ref_noise:.3e}")
+        log(f"  reference: {2 * args.reference_spp} spp, its own MSE {ref_noise:.3e}", clock=True)
         for threshold in thresholds:
             a_mse, a_rel, a_t, a_spp, a_q, u_mse, u_rel, u_t, u_q = ([] for _ in range(9))
             for seed in range(1, args.seeds + 1):
@@ -176,7 +152,7 @@ def main():
                 u_rel.append(rel_mse(rgb, ref))
                 u_t.append(tu)
                 log(f"  threshold {threshold:g} seed {seed}: adaptive {t:.2f} s MSE {a_mse[-1]:.3e} "
-                    f"({a_spp[-1]:.0f} spp on average); uniform {tu:.2f} s MSE {u_mse[-1]:.3e}")
+                    f"({a_spp[-1]:.0f} spp on average); uniform {tu:.2f} s MSE {u_mse[-1]:.3e}", clock=True)
             A, U = np.mean(a_mse), np.mean(u_mse)
             TA, TU = np.mean(a_t), np.mean(u_t)
             # Uniform's MSE x time is its constant: the time it needs to reach the adaptive MSE.
@@ -191,7 +167,7 @@ def main():
                              q99_adaptive=np.mean(a_q), q99_uniform=np.mean(u_q), clean_speedup=t_clean / TA))
     report = os.path.join(args.out, "report.md")
     with open(report, "w") as f:
-        f.write(f"Command: `/usr/bin/python3 bench/adaptive/run.py {' '.join(sys.argv[1:])}` "
+        f.write(f"Command: `/usr/bin/python3 -m bench.adaptive.run {' '.join(sys.argv[1:])}` "
                 f"({(time.time() - started) / 60:.1f} min; {args.seeds} seed(s) each, at most {args.max_spp} spp, "
                 f"references 2 x {args.reference_spp} spp, {args.threads} threads)\n\n")
         f.write("| scene | threshold | adaptive: mean spp | time (s) | MSE | uniform at that time: MSE | "

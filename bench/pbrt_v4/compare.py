@@ -2,9 +2,9 @@
 """Same pbrt-v4 file, same picture? Renders .pbrt scenes with pbrt-v4 and with Dermis at
 equal samples per pixel and measures the difference in standard errors (issue 37).
 
-  /usr/bin/python3 bench/pbrt_v4/compare.py --pbrt /path/to/pbrt --quick     # smoke run
-  /usr/bin/python3 bench/pbrt_v4/compare.py --pbrt /path/to/pbrt             # all scenes
-  PBRT_V4=/path/to/pbrt /usr/bin/python3 bench/pbrt_v4/compare.py bench/pbrt_v4/scenes/conductor.pbrt
+  /usr/bin/python3 -m bench.pbrt_v4.compare --pbrt /path/to/pbrt --quick     # smoke run
+  /usr/bin/python3 -m bench.pbrt_v4.compare --pbrt /path/to/pbrt             # all scenes
+  PBRT_V4=/path/to/pbrt /usr/bin/python3 -m bench.pbrt_v4.compare bench/pbrt_v4/scenes/conductor.pbrt
 
 pbrt-v4 is not part of Dermis: give the path of a pbrt-v4 binary you have (`--pbrt PATH`
 or the environment variable PBRT_V4). Use EXR output and the zsobol or independent
@@ -57,16 +57,17 @@ import json
 import math
 import os
 import re
-import resource
 import shutil
-import subprocess
-import sys
 import time
 
 import numpy as np
 
+from bench.harness import pictures, render as dermis_render
+from bench.harness.exr import read_exr
+from bench.harness.paths import DERMIS, ROOT
+from bench.harness.progress import log
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
 SCENES = os.path.join(HERE, "scenes")
 
 # The order of the table; scenes not listed follow in alphabetical order.
@@ -80,39 +81,7 @@ REFERENCE_SEED = 1000
 EXACT_MAXDEPTH = 100000  # the volumetric reference's maxdepth: it counts every scattering
 
 ANSI_RE = re.compile(r"\x1b\[[0-9;]*m")
-DERMIS_TIME_RE = re.compile(r"dermis: wrote .* in ([0-9.]+) s")
 PBRT_PROGRESS_RE = re.compile(r"\(([0-9.]+)s\)\s*$")
-
-
-def log(msg):
-    print(msg, file=sys.stderr, flush=True)
-
-
-# ---------------------------------------------------------------- images
-
-def read_exr(path):
-    """(H, W, 3) float32 and the EXR's attributes."""
-    import OpenImageIO as oiio
-    buf = oiio.ImageBuf(path)
-    if buf.has_error:
-        raise RuntimeError(f"cannot read {path}: {buf.geterror()}")
-    spec = buf.spec()
-    names = list(spec.channelnames)
-    px = buf.get_pixels(oiio.FLOAT)
-    if px is None:
-        raise RuntimeError(f"cannot read pixels of {path}: {buf.geterror()}")
-    try:
-        idx = [names.index(c) for c in "RGB"]
-    except ValueError:
-        idx = [0, 1, 2]
-    attrs = {a.name: a.value for a in spec.extra_attribs}
-    return np.ascontiguousarray(px[:, :, idx], dtype=np.float64), attrs
-
-
-def srgb8(img):
-    x = np.clip(img, 0, 1)
-    x = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
-    return (x * 255 + 0.5).astype(np.uint8)
 
 
 # ---------------------------------------------------------------- rendering
@@ -167,8 +136,8 @@ class Renderer:
         if self.name == "pbrt":
             return [self.binary, "--nthreads", str(threads), "--spp", str(spp), "--seed",
                     str(seed), "--outfile", exr, scene]
-        return [self.binary, "render", scene, "--threads", str(threads), "--spp", str(spp),
-                "--seed", str(seed), "--no-png", "-q", "-o", exr] + self.extra
+        return dermis_render.command(self.binary, scene, exr, spp=spp, seed=seed, threads=threads,
+                                     extra=self.extra)
 
     def render(self, scene, sstamp, spp, seed, threads, label=None, outname=None):
         """Renders (or reuses) one image: (image, render time in s, info dict)."""
@@ -182,40 +151,33 @@ class Renderer:
         if not self.rerun and os.path.isfile(exr) and os.path.isfile(meta):
             info = json.load(open(meta))
             if info.get("key") == key:
-                img, _ = read_exr(exr)
-                return img, info["time"], info
+                return read_exr(exr).rgb, info["time"], info
         cmd = ["nice", "-n", "19"] + self.command(scene, spp, seed, threads, exr)
-        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        t0 = time.perf_counter()
-        p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                           cwd=d, text=True, errors="replace")
-        wall = time.perf_counter() - t0
-        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)  # the whole process
+        p = dermis_render.run(cmd, cwd=d, check=False, merge_output=True)  # p.cpu: the whole process
         with open(stem + ".log", "w") as f:
-            f.write(" ".join(cmd) + "\n" + p.stdout)
+            f.write(" ".join(cmd) + "\n" + p.log)
         if p.returncode != 0 or not os.path.isfile(exr):
-            tail = "\n".join(ANSI_RE.sub("", p.stdout).splitlines()[-15:])
+            tail = "\n".join(ANSI_RE.sub("", p.log).splitlines()[-15:])
             raise RuntimeError(f"{self.name} failed on {scene} (exit {p.returncode}):\n{tail}")
-        img, attrs = read_exr(exr)
+        img, _, attrs = read_exr(exr)
         t, source = None, None
         if self.name == "pbrt":
             if "renderTimeSeconds" in attrs:
                 t, source = float(attrs["renderTimeSeconds"]), "EXR renderTimeSeconds"
             else:
-                for line in reversed(ANSI_RE.sub("", p.stdout).replace("\r", "\n").splitlines()):
+                for line in reversed(ANSI_RE.sub("", p.log).replace("\r", "\n").splitlines()):
                     m = PBRT_PROGRESS_RE.search(line)
                     if m:
                         t, source = float(m.group(1)), "progress bar"
                         break
         else:
-            m = DERMIS_TIME_RE.search(p.stdout)
-            if m:
-                t, source = float(m.group(1)), "dermis: wrote ... in T s"
+            stats = dermis_render.render_stats(p.log)
+            if stats:
+                t, source = stats.seconds, "dermis: wrote ... in T s"
         if t is None:
-            t, source = wall, "wall clock (process)"
-        info = {"key": key, "time": t, "time_source": source, "wall": wall, "cpu": cpu,
-                "command": " ".join(cmd), "warnings": warnings_of(p.stdout, self.name)}
+            t, source = p.wall, "wall clock (process)"
+        info = {"key": key, "time": t, "time_source": source, "wall": p.wall, "cpu": p.cpu,
+                "command": " ".join(cmd), "warnings": warnings_of(p.log, self.name)}
         json.dump(info, open(meta, "w"), indent=1)
         return img, t, info
 
@@ -328,9 +290,9 @@ def sheet(path, name, Pref, Dref, r):
     fig, ax = plt.subplots(1, 4, figsize=(fw, fh), dpi=100,
                            gridspec_kw={"wspace": 0.32, "left": 0.01, "right": 0.96,
                                         "top": 0.86, "bottom": 0.02})
-    ax[0].imshow(srgb8(Pref), interpolation="nearest")
+    ax[0].imshow(pictures.srgb8(Pref), interpolation="nearest")
     ax[0].set_title("pbrt-v4", fontsize=8)
-    ax[1].imshow(srgb8(Dref), interpolation="nearest")
+    ax[1].imshow(pictures.srgb8(Dref), interpolation="nearest")
     ax[1].set_title("Dermis", fontsize=8)
     im = ax[2].imshow(diff, cmap="RdBu_r", vmin=-rng, vmax=rng, interpolation="nearest")
     ax[2].set_title("Dermis − pbrt (÷ mean)", fontsize=8)
@@ -512,7 +474,7 @@ def main():
     ap.add_argument("scenes", nargs="*", help="pbrt-v4 scene files (default: bench/pbrt_v4/scenes/*.pbrt)")
     ap.add_argument("--pbrt", default=os.environ.get("PBRT_V4"),
                     help="pbrt-v4 binary (default: $PBRT_V4)")
-    ap.add_argument("--dermis", default=os.path.join(ROOT, "build", "dermis"))
+    ap.add_argument("--dermis", default=DERMIS)
     ap.add_argument("--spp", type=int, default=None, help="samples per pixel of the measured renders (64)")
     ap.add_argument("--seeds", type=int, default=None, help="renders per renderer and scene (8)")
     ap.add_argument("--reference-spp", type=int, default=None, help="spp of each renderer's own reference (1024)")
@@ -555,8 +517,7 @@ def main():
     scenes.sort(key=lambda s: (rank.get(os.path.splitext(os.path.basename(s))[0], len(ORDER)), s))
     env = os.path.join(SCENES, "envmap.exr")
     if any(os.path.dirname(s) == SCENES for s in scenes) and not os.path.isfile(env):
-        sys.path.insert(0, HERE)
-        import make_envmap
+        from bench.pbrt_v4 import make_envmap
         make_envmap.make(env)
         log(f"made {env}")
 

@@ -9,7 +9,7 @@ warm "sun" (a smooth disc about 10 degrees across, bright enough to cast a shado
 the sky, and a dimmer blue-grey patch opposite it, so that a wrong orientation or a
 mirrored map shows in the comparison.
 
-  /usr/bin/python3 bench/pbrt_v4/make_envmap.py [OUT.exr]
+  /usr/bin/python3 -m bench.pbrt_v4.make_envmap [OUT.exr]
 """
 import os
 import sys

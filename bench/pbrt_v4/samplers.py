@@ -2,7 +2,7 @@
 """Is Dermis' Owen-scrambled Sobol' a sampler of pbrt-v4's quality where a file asks for
 `halton`, `pmj02bn` or `stratified` (which Dermis renders with it, warning)? (issue 37)
 
-  /usr/bin/python3 bench/pbrt_v4/samplers.py --pbrt /path/to/pbrt [--dermis build/dermis]
+  /usr/bin/python3 -m bench.pbrt_v4.samplers --pbrt /path/to/pbrt [--dermis build/dermis]
 
 For each scene, pbrt-v4 renders `--seeds` K images at each of `--spp` with each of its
 samplers, and Dermis with `sobol` (what it gives those names) and `independent`. Each
@@ -28,13 +28,12 @@ import json
 import math
 import os
 import re
-import sys
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import compare  # noqa: E402
+from bench.harness.paths import DERMIS, ROOT
+from bench.harness.progress import log
+from bench.pbrt_v4 import compare
 
 SCENES = ["diffuse", "envmap", "roughdielectric", "sss-mfp-grey"]
 PBRT_SAMPLERS = ["zsobol", "halton", "pmj02bn", "stratified", "independent"]
@@ -70,11 +69,11 @@ def gain(base, other):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--pbrt", default=os.environ.get("PBRT_V4"), help="pbrt-v4 binary (default: $PBRT_V4)")
-    ap.add_argument("--dermis", default=os.path.join(compare.ROOT, "build", "dermis"))
+    ap.add_argument("--dermis", default=DERMIS)
     ap.add_argument("--spp", default="16,64", help="comma-separated sample counts (16,64)")
     ap.add_argument("--seeds", type=int, default=8)
     ap.add_argument("--reference-spp", type=int, default=1024)
-    ap.add_argument("--out", default=os.path.join(compare.ROOT, "out", "vs-pbrt-v4-samplers"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "out", "vs-pbrt-v4-samplers"))
     ap.add_argument("scenes", nargs="*", help=f"names in bench/pbrt_v4/scenes (default: {' '.join(SCENES)})")
     args = ap.parse_args()
     if not args.pbrt:
@@ -108,7 +107,7 @@ def main():
                     g, se = gain(mses["independent"], mses[sampler])
                     rows.append({"scene": name, "renderer": renderer.name, "spp": spp, "sampler": sampler,
                                  "mse": float(mses[sampler].mean()), "gain": g, "gain_se": se})
-                    compare.log(f"{name} {renderer.name} {sampler} {spp} spp: gain over independent {g:.2f} ± {se:.2f}")
+                    log(f"{name} {renderer.name} {sampler} {spp} spp: gain over independent {g:.2f} ± {se:.2f}")
     named = PBRT_SAMPLERS[1:-1]
     rel = ["| scene | spp | " + " | ".join(f"pbrt-v4 {s}" for s in named) + " |", "|---|---:|" + "---:|" * len(named)]
     lines = ["| scene | spp | " + " | ".join(f"pbrt-v4 {s}" for s in PBRT_SAMPLERS[:-1]) +

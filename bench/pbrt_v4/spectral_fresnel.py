@@ -11,7 +11,7 @@ R is not linear in eta and k. This script evaluates both with the tables Dermis 
 uses (src/dermis/scene/named_spectra_data.cpp: CIE 1931 observer, D65, Palik's metals) at
 a few angles of incidence and as the hemispherical (cosine-weighted) albedo.
 
-  /usr/bin/python3 bench/pbrt_v4/spectral_fresnel.py [metal ...]   (default: Au Cu Ag Al CuZn)
+  /usr/bin/python3 -m bench.pbrt_v4.spectral_fresnel [metal ...]   (default: Au Cu Ag Al CuZn)
 """
 import os
 import re
@@ -19,7 +19,8 @@ import sys
 
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from bench.harness.paths import ROOT
+
 DATA = os.path.join(ROOT, "src", "dermis", "scene", "named_spectra_data.cpp")
 
 XYZ_TO_SRGB = np.array([[3.2404542, -1.5371385, -0.4985314],

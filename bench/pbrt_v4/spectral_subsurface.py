@@ -12,15 +12,11 @@ rho_eff here is the classical dipole's total diffuse reflectance (Jensen et al. 
 eq. 5-6 with Jensen & Buehler 2002, eq. 3): a stand-in of the same shape as the
 photon-beam table's, good for the sign and size only.
 
-  /usr/bin/python3 bench/pbrt_v4/spectral_subsurface.py
+  /usr/bin/python3 -m bench.pbrt_v4.spectral_subsurface
 """
-import os
-import sys
-
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import spectral_uplift as su  # noqa: E402
+from bench.pbrt_v4 import spectral_uplift as su
 
 ETA = 1.33
 # The scenes of bench/pbrt_v4/scenes given by coefficients (scale does not change rho).

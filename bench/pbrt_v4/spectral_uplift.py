@@ -14,16 +14,12 @@ Dermis uses, src/dermis/scene/named_spectra_data.cpp; pbrt-v4 interpolates a pre
 table of such fits, so its spectra differ slightly from these) and prints, for the colours
 of bench/pbrt_v4/scenes, Dermis' RGB / pbrt-v4's - 1 per channel.
 
-  /usr/bin/python3 bench/pbrt_v4/spectral_uplift.py
+  /usr/bin/python3 -m bench.pbrt_v4.spectral_uplift
 """
-import os
-import sys
-
 import numpy as np
 from scipy.optimize import least_squares
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from spectral_fresnel import XYZ_TO_SRGB, tables  # noqa: E402
+from bench.pbrt_v4.spectral_fresnel import XYZ_TO_SRGB, tables
 
 cie, arrays = tables()
 LAM = np.arange(360.0, 831.0)

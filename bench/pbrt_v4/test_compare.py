@@ -2,24 +2,21 @@
 find an offset where there is one and none where there is none (synthetic renders, fixed seed)."""
 import glob
 import os
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import compare  # noqa: E402
+from bench.harness import paths, render
+from bench.harness.exr import read_exr
+from bench.pbrt_v4 import compare
 
-DERMIS = os.environ.get("DERMIS", os.path.join(compare.ROOT, "build", "dermis"))
+DERMIS = os.environ.get("DERMIS", paths.DERMIS)
 
 
 @pytest.mark.parametrize("scene", sorted(glob.glob(os.path.join(compare.SCENES, "*.pbrt"))),
                          ids=lambda p: os.path.basename(p))
 def test_every_scene_renders_in_dermis(scene, tmp_path):
-    r = subprocess.run([DERMIS, "render", scene, "--spp", "1", "--res", "16x16", "-q", "--no-png", "-o",
-                        str(tmp_path / "o.exr")], capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
+    render.render(DERMIS, scene, str(tmp_path / "o.exr"), spp=1, res="16x16")
     assert (tmp_path / "o.exr").exists()
 
 
@@ -47,25 +44,20 @@ def test_statistics_see_an_offset_and_only_an_offset():
 def test_variants_keep_the_scene_and_change_one_thing(tmp_path):
     """--res and samplers.py write copies that render in Dermis at the size or with the
     sampler asked for, with file names (the environment map) made absolute."""
-    import samplers
+    from bench.pbrt_v4 import samplers
     scene = os.path.join(compare.SCENES, "envmap.pbrt")
     if not os.path.isfile(os.path.join(compare.SCENES, "envmap.exr")):
-        import make_envmap
+        from bench.pbrt_v4 import make_envmap
         make_envmap.make(os.path.join(compare.SCENES, "envmap.exr"))
     sized = tmp_path / "sized.pbrt"
     compare.resolution_variant(scene, str(sized), (20, 12))
-    r = subprocess.run([DERMIS, "render", str(sized), "--spp", "1", "-q", "--no-png", "-o", str(tmp_path / "a.exr")],
-                       capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
-    img, _ = compare.read_exr(str(tmp_path / "a.exr"))
-    assert img.shape[:2] == (12, 20)
+    render.render(DERMIS, str(sized), str(tmp_path / "a.exr"), spp=1)
+    assert read_exr(str(tmp_path / "a.exr")).rgb.shape[:2] == (12, 20)
     halton = tmp_path / "halton.pbrt"
     samplers.sampler_variant(scene, str(halton), "halton")
     assert 'Sampler "halton"' in halton.read_text()
-    r = subprocess.run([DERMIS, "render", str(halton), "--spp", "1", "--res", "8x8", "-q", "--no-png", "-o",
-                        str(tmp_path / "b.exr")], capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
-    assert "halton" in r.stderr  # Dermis says what it renders it with
+    r = render.render(DERMIS, str(halton), str(tmp_path / "b.exr"), spp=1, res="8x8")
+    assert "halton" in r.log  # Dermis says what it renders it with
     # A bracketed file name loses its brackets whole (pbrt-v4 refuses a lone "]").
     assert compare.absolute_filenames('"string filename" [ "a.exr" ]', "/d") == '"string filename" "/d/a.exr"'
 
@@ -73,7 +65,7 @@ def test_variants_keep_the_scene_and_change_one_thing(tmp_path):
 def test_gain_and_its_standard_error():
     """The gain's standard error (delta method) covers the truth about as often as it should:
     independent per-seed MSEs with a true ratio of 2, 400 trials, |error| < 2 se in 90-99 %."""
-    import samplers
+    from bench.pbrt_v4 import samplers
     rng = np.random.default_rng(11)
     hits = 0
     for _ in range(400):

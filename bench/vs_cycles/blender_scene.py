@@ -16,15 +16,16 @@ the two renderers' sweeps interleaved (run.py).
 import json
 import math
 import os
-import subprocess
 import sys
 import time
 
 import bpy
 from mathutils import Matrix, Vector
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import scenes  # noqa: E402  (pure Python: the ellipsoid's triangles)
+# Blender's Python runs this file by path, not as a module: the repository root, for the package.
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+from bench.harness import render  # noqa: E402  (standard library only)
+from bench.vs_cycles import scenes  # noqa: E402  (pure Python: the ellipsoid's triangles)
 
 args = sys.argv[sys.argv.index("--") + 1:]
 job = json.load(open(args[0]))
@@ -313,9 +314,8 @@ for r in job["renders"]:
     # sweeps interleaved, so that the shared machine's slow spells fall on both).
     dermis_runs = []
     for d in r.get("dermis_before", []):
-        t0 = time.perf_counter()
-        p = subprocess.run(d["cmd"], capture_output=True, text=True)
-        dermis_runs.append(dict(d, returncode=p.returncode, stderr=p.stderr, wall=time.perf_counter() - t0))
+        p = render.run(d["cmd"], check=False)
+        dermis_runs.append(dict(d, returncode=p.returncode, stderr=p.log, wall=p.wall))
     c.seed = r["seed"]
     c.time_limit = r.get("time_limit", 0.0)
     c.samples = r["spp"]

@@ -41,10 +41,10 @@ def main():
     import statistics
     import sys
 
-    import OpenImageIO as oiio
+    from bench.harness.exr import read_exr
 
     if len(sys.argv) != 2:
-        sys.exit("usage: cycles_log.py RUN_FOLDER   (run.py's --out)")
+        sys.exit("usage: python3 -m bench.vs_cycles.cycles_log RUN_FOLDER   (run.py's --out)")
     root = sys.argv[1]
     for name in sorted(os.listdir(root)):
         folder = os.path.join(root, name)
@@ -56,7 +56,7 @@ def main():
         for r, (seconds, _) in zip(renders, logged):
             if "time_limit" in r and r["time_limit"]:
                 continue  # a reference
-            stamp = oiio.ImageInput.open(r["out"]).spec().getattribute("cycles.ViewLayer.render_time")
+            stamp = read_exr(r["out"]).attrs["cycles.ViewLayer.render_time"]
             minutes, secs = stamp.split(":")[-2:]
             by_spp.setdefault(r["spp"], []).append((seconds, 60 * int(minutes) + float(secs)))
         ratios, cells = [], []

@@ -5,13 +5,13 @@ to the random walk generalises beyond the family it was measured on (issue 40): 
 builds or settings on them with bench/compare_efficiency.py. Against Cycles, with the
 disk twins too: run.py --set heldout.
 
-  /usr/bin/python3 bench/vs_cycles/heldout.py --out DIR     # writes DIR/h01-....pbrt ...
+  /usr/bin/python3 -m bench.vs_cycles.heldout --out DIR     # writes DIR/h01-....pbrt ...
 """
 import argparse
 import os
 
-import pbrt_writer
-import scenes as S
+from bench.vs_cycles import pbrt_writer
+from bench.vs_cycles import scenes as S
 
 HELDOUT_MATERIALS = S.HELDOUT_MATERIALS
 HELDOUT_CONFIGS = S.HELDOUT_CONFIGS

@@ -2,9 +2,8 @@
 
 import os
 
-import scenes
-
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from bench.harness.paths import ROOT
+from bench.vs_cycles import scenes
 
 
 def _v(xs):

@@ -7,13 +7,13 @@ reference (two independent time-limited halves) and a sweep of sample counts; ea
 image is measured against its own renderer's reference over the object's pixels (and,
 for the family, over the whole image too).
 
-  /usr/bin/python3 bench/vs_cycles/run.py --quick                 # the family, smoke test, ~3 min
-  /usr/bin/python3 bench/vs_cycles/run.py                         # the family (issue 40), ~22 min on 2 cores
-  /usr/bin/python3 bench/vs_cycles/run.py --set classic           # the seven scenes of issue 15, ~18 min
-  /usr/bin/python3 bench/vs_cycles/run.py --set heldout           # eight held-out configurations, ~11 min
-  /usr/bin/python3 bench/vs_cycles/run.py --set textured          # six with a checkerboard reflectance, ~9 min
-  /usr/bin/python3 bench/vs_cycles/run.py --set closeup           # the family's twelve framed close, ~25 min
-  /usr/bin/python3 bench/vs_cycles/run.py --scenes medium-matched,calibration --spp 16,64
+  /usr/bin/python3 -m bench.vs_cycles.run --quick                 # the family, smoke test, ~3 min
+  /usr/bin/python3 -m bench.vs_cycles.run                         # the family (issue 40), ~22 min on 2 cores
+  /usr/bin/python3 -m bench.vs_cycles.run --set classic           # the seven scenes of issue 15, ~18 min
+  /usr/bin/python3 -m bench.vs_cycles.run --set heldout           # eight held-out configurations, ~11 min
+  /usr/bin/python3 -m bench.vs_cycles.run --set textured          # six with a checkerboard reflectance, ~9 min
+  /usr/bin/python3 -m bench.vs_cycles.run --set closeup           # the family's twelve framed close, ~25 min
+  /usr/bin/python3 -m bench.vs_cycles.run --scenes medium-matched,calibration --spp 16,64
 
 Measurement (as bench/sss_methods.py): E[(A - R)^2] = Var A + bias^2 + Var R, and the
 reference's own per-pixel variance is estimated from its two halves h1, h2 as
@@ -34,49 +34,35 @@ import sys
 import time
 
 import numpy as np
-import OpenImageIO as oiio
+
+from bench.harness import docs_page, progress, provenance, render
+from bench.harness.exr import read_exr
+from bench.harness.paths import DERMIS, IMAGES as DOCS_IMAGES, RESULTS, ROOT
+from bench.harness.pictures import strip, write_png
+from bench.vs_cycles import cycles_log, pbrt_writer
+from bench.vs_cycles import scenes as S
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.dirname(HERE))
-
-import cycles_log  # noqa: E402
-import pbrt_writer  # noqa: E402
-import scenes as S  # noqa: E402
-from dermis_output import LIMIT_RE, RENDER_RE, strip, write_png  # noqa: E402
-
 HUGE_SPP = 1000000
 # The family's report, the held-out configurations' and the classic seven scenes' (issue 15)
 # beside it.
-DOC = {"family": os.path.join(ROOT, "docs", "results", "results-vs-cycles.md"),
-       "heldout": os.path.join(ROOT, "docs", "results", "results-vs-cycles-heldout.md"),
-       "textured": os.path.join(ROOT, "docs", "results", "results-vs-cycles-textured.md"),
-       "closeup": os.path.join(ROOT, "docs", "results", "results-vs-cycles-closeup.md"),
-       "classic": os.path.join(ROOT, "docs", "results", "results-vs-cycles-classic.md")}
-IMAGES = {"family": os.path.join(ROOT, "docs", "images", "vs-cycles"),
-          "heldout": os.path.join(ROOT, "docs", "images", "vs-cycles-heldout"),
-          "textured": os.path.join(ROOT, "docs", "images", "vs-cycles-textured"),
-          "closeup": os.path.join(ROOT, "docs", "images", "vs-cycles-closeup"),
-          "classic": os.path.join(ROOT, "docs", "images", "vs-cycles")}
+DOC = {"family": os.path.join(RESULTS, "results-vs-cycles.md"),
+       "heldout": os.path.join(RESULTS, "results-vs-cycles-heldout.md"),
+       "textured": os.path.join(RESULTS, "results-vs-cycles-textured.md"),
+       "closeup": os.path.join(RESULTS, "results-vs-cycles-closeup.md"),
+       "classic": os.path.join(RESULTS, "results-vs-cycles-classic.md")}
+IMAGES = {"family": os.path.join(DOCS_IMAGES, "vs-cycles"),
+          "heldout": os.path.join(DOCS_IMAGES, "vs-cycles-heldout"),
+          "textured": os.path.join(DOCS_IMAGES, "vs-cycles-textured"),
+          "closeup": os.path.join(DOCS_IMAGES, "vs-cycles-closeup"),
+          "classic": os.path.join(DOCS_IMAGES, "vs-cycles")}
 
 
 def log(msg):
-    print(msg, flush=True)
+    progress.log(msg, sys.stdout)
 
 
 # ------------------------------------------------------------------ images
-
-def read_exr(path):
-    inp = oiio.ImageInput.open(path)
-    if inp is None:
-        sys.exit(f"cannot read {path}: {oiio.geterror()}")
-    spec = inp.spec()
-    px = inp.read_image(0, 0, 0, 3, oiio.FLOAT)
-    attrs = {a.name: a.value for a in spec.extra_attribs}
-    inp.close()
-    return np.asarray(px, dtype=np.float64).reshape(spec.height, spec.width, 3), attrs
-
 
 def parse_clock(s):
     """Blender's "MM:SS.ss" or "HH:MM:SS.ss" -> seconds."""
@@ -97,27 +83,26 @@ class Run:
 
     def load(self):
         if self.img is None:
-            self.img, self.attrs = read_exr(self.exr)
+            self.img, _, self.attrs = read_exr(self.exr)
         return self.img
 
 
 def dermis_command(args, scene_file, out, spp=None, seconds=None, seed=1):
-    cmd = [args.dermis, "render", scene_file, "--threads", str(args.threads), "--seed", str(seed), "-q", "--no-png",
-           "-o", out, "--spp", str(spp if spp else HUGE_SPP)]
-    if args.dermis_sampler:
-        cmd += ["--sampler", args.dermis_sampler]
+    extra = ["--sampler", args.dermis_sampler] if args.dermis_sampler else []
     if seconds:
-        cmd += ["--time-limit", f"{seconds:g}"]
-    return cmd
+        extra += ["--time-limit", f"{seconds:g}"]
+    return render.command(args.dermis, scene_file, out, spp=spp if spp else HUGE_SPP, seed=seed, threads=args.threads,
+                          extra=extra)
 
 
-def dermis_result(args, cmd, out, returncode, stderr, wall, scene_file, res):
-    """The Run of a finished `dermis render` (its exit status, stderr and wall time)."""
-    if returncode != 0:
-        sys.exit(f"failed ({returncode}): {' '.join(cmd)}\n{stderr}")
-    m = RENDER_RE.search(stderr)
-    reported, mrays, samples = float(m.group(1)), float(m.group(2)), int(m.group(3))
-    lm = LIMIT_RE.search(stderr)
+def dermis_result(args, done, out, scene_file, res):
+    """The Run of a finished `dermis render` (a render.Finished: its exit status, log and wall time)."""
+    if done.returncode != 0:
+        raise render.DermisError(done)
+    cmd, stderr, wall = done.cmd, done.log, done.wall
+    stats = render.render_stats(stderr)
+    reported, mrays, samples = stats.seconds, stats.mrays, stats.samples
+    limit = render.time_limit_range(stderr)
     npx = res[0] * res[1]
     warnings = [l for l in stderr.splitlines() if "warning" in l]
     # `dermis render` prints the render-stage time in milliseconds. Builds before 2026-12-03
@@ -125,21 +110,18 @@ def dermis_result(args, cmd, out, returncode, stderr, wall, scene_file, res):
     # minus that of loading the same scene (a 1 x 1 pixel, 1 spp render), rough
     # and noisy: the difference of two wall times (bust-walk, 16 spp: 0.73 s in one run, 0.44 s rendering).
     secs, approx = reported, False
-    if len(m.group(1).partition(".")[2]) < 3 and reported < 2.0:
+    if len(stats.printed.partition(".")[2]) < 3 and reported < 2.0:
         secs, approx = max(wall - dermis_load_wall(args, scene_file), 1e-3), True
     log(f"    dermis {os.path.basename(out)}: render {reported:.3f} s{f' (~{secs:.2f} s)' if approx else ''} "
         f"(process {wall:.1f} s), {samples / npx:.1f} spp"
-        + (f" [{lm.group(1)}..{lm.group(2)}]" if lm else "") + (f"  {'; '.join(warnings)}" if warnings else ""))
+        + (f" [{limit[0]}..{limit[1]}]" if limit else "") + (f"  {'; '.join(warnings)}" if warnings else ""))
     return Run(out, secs, samples / npx, wall, cmd=" ".join(cmd), warnings=warnings, approx=approx, reported=reported,
                rays_per_sample=mrays * 1e6 * reported / max(samples, 1))
 
 
 def dermis_render(args, scene_file, out, spp=None, seconds=None, seed=1, res=None):
-    cmd = dermis_command(args, scene_file, out, spp, seconds, seed)
-    t0 = time.perf_counter()
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    wall = time.perf_counter() - t0
-    return dermis_result(args, cmd, out, p.returncode, p.stderr, wall, scene_file, res)
+    done = render.run(dermis_command(args, scene_file, out, spp, seconds, seed), check=False)
+    return dermis_result(args, done, out, scene_file, res)
 
 
 class Level:
@@ -172,12 +154,8 @@ def dermis_load_wall(args, scene_file):
     best of three 1 x 1 pixel, 1 spp renders."""
     if scene_file not in _load_wall:
         out = scene_file + ".load.exr"
-        best = float("inf")
-        for _ in range(3):
-            t0 = time.perf_counter()
-            subprocess.run([args.dermis, "render", scene_file, "--threads", str(args.threads), "--res", "1x1",
-                            "--spp", "1", "-q", "--no-png", "-o", out], check=True, capture_output=True)
-            best = min(best, time.perf_counter() - t0)
+        best = min(render.render(args.dermis, scene_file, out, spp=1, res="1x1", threads=args.threads).wall
+                   for _ in range(3))
         os.remove(out)
         _load_wall[scene_file] = best
     return _load_wall[scene_file]
@@ -216,7 +194,7 @@ def cycles_renders(args, sc, renders, work):
     runs = []
     for r, seg, (rt, total) in zip(res["renders"], segments, logged):
         reached = [int(n) for n in re.findall(r"Sample (\d+)/\d+", seg)]
-        img, attrs = read_exr(r["out"])
+        img, _, attrs = read_exr(r["out"])
         stamp = parse_clock(attrs["cycles.ViewLayer.render_time"])
         if not cycles_log.agrees_with_stamp(rt, stamp):
             sys.exit(f"Cycles' logged render time {rt} s does not match {r['out']}'s stamp {stamp} s")
@@ -315,9 +293,8 @@ def make_mask(args, sc, work):
     with open(path, "w") as f:
         f.write(pbrt_writer.mask_text(sc))
     out = os.path.join(work, "mask.exr")
-    subprocess.run([args.dermis, "render", path, "--spp", "16", "--threads", str(args.threads), "-q", "--no-png",
-                    "-o", out], check=True, capture_output=True)
-    cov = read_exr(out)[0][..., 0]
+    render.render(args.dermis, path, out, spp=16, threads=args.threads)
+    cov = read_exr(out).rgb[..., 0]
     return cov > 0.999  # fully covered pixels only
 
 
@@ -338,9 +315,8 @@ def make_highlights(args, sc, work, mask):
     with open(path, "w") as f:
         f.write(text)
     out = os.path.join(work, "highlights.exr")
-    subprocess.run([args.dermis, "render", path, "--threads", str(args.threads), "-q", "--no-png", "-o", out],
-                   check=True, capture_output=True)
-    seen = read_exr(out)[0][..., :3].max(axis=-1) > 0
+    render.render(args.dermis, path, out, threads=args.threads)
+    seen = read_exr(out).rgb.max(axis=-1) > 0
     wide = seen.copy()
     wide[1:] |= seen[:-1]
     wide[:-1] |= seen[1:]
@@ -407,8 +383,8 @@ def run_scene(args, name):
         sweep, at = [], 0
         mine = [r for r in dermis_runs if r["label"] == label]
         for k in args.seeds:
-            sweep.append(Level([dermis_result(args, r["cmd"], r["out"], r["returncode"], r["stderr"], r["wall"],
-                                              scene_file, sc["res"]) for r in mine[at:at + k]]))
+            sweep.append(Level([dermis_result(args, render.Finished(r["cmd"], r["returncode"], r["stderr"], r["wall"]),
+                                              r["out"], scene_file, sc["res"]) for r in mine[at:at + k]]))
             at += k
         dermis[label] = Family(label, halves, sweep, mask, highlights)
         dermis[label].scene_file = scene_file
@@ -460,7 +436,8 @@ def contact_sheet(res, spp, out):
         Image.fromarray(np.stack([g] * 3, axis=-1), "RGB").save(p)
         pngs.append(p)
     n = int(d.rows[i]["spp"])
-    strip(pngs, out, ["Dermis ref", "Cycles ref", f"|Dermis-ref| {n}spp", f"|Cycles-ref| {n}spp"])
+    strip([Image.open(p).convert("RGB") for p in pngs], out,
+          ["Dermis ref", "Cycles ref", f"|Dermis-ref| {n}spp", f"|Cycles-ref| {n}spp"])
     return n, scale
 
 
@@ -642,20 +619,14 @@ def write_family_section(w, entries, image_dir, rel_images):
 
 def write_report(args, results, info, total, path, image_dir, argv):
     os.makedirs(image_dir, exist_ok=True)
-    commit = args.dermis_commit or subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
-                                                  capture_output=True, text=True).stdout.strip()
-    dermis_version = subprocess.run([args.dermis, "--version"], capture_output=True, text=True).stdout.strip()
-    cpu = ""
-    try:
-        with open("/proc/cpuinfo") as f:
-            cpu = next(l.split(":", 1)[1].strip() for l in f if l.startswith("model name"))
-    except (OSError, StopIteration):
-        pass
+    commit = args.dermis_commit or provenance.git_commit()
+    dermis_version = provenance.dermis_version(args.dermis)
+    cpu = provenance.cpu_model()
     rel_images = os.path.relpath(image_dir, os.path.dirname(path))
     o = []
     w = o.append
     w("# Dermis vs Blender Cycles at equal error\n")
-    w(f"Produced by `/usr/bin/python3 bench/vs_cycles/run.py {shlex.join(argv)}` on {datetime.date.today().isoformat()} "
+    w(f"Produced by `/usr/bin/python3 -m bench.vs_cycles.run {shlex.join(argv)}` on {datetime.date.today().isoformat()} "
       f"in {total / 60:.1f} min. Dermis: `{args.dermis}` ({dermis_version}), code at commit `{commit}`. "
       f"Blender {info['blender']} (Debian package), Cycles on the CPU. Machine: {cpu}, {os.cpu_count()} cores, "
       f"{args.threads} render threads in both renderers.\n")
@@ -787,17 +758,11 @@ def write_report(args, results, info, total, path, image_dir, argv):
       "Standard / None / exposure 0 / gamma 1, EXR 32-bit float (scene-linear, checked by the `calibration` "
       "scene); volume materials `homogeneous_volume` on, volume sampling Multiple Importance; Glass BSDF "
       "distribution Sharp.\n")
-    w(FINDINGS_MARKER)
-    text = "\n".join(o) + "\n"
-    old = open(path).read() if os.path.exists(path) else ""
-    if FINDINGS_MARKER in old:  # keep the hand-written discussion below the marker
-        text += old.split(FINDINGS_MARKER, 1)[1].lstrip("\n")
-    with open(path, "w") as f:
-        f.write(text)
+    docs_page.write_page(path, "\n".join(o), FINDINGS_MARKER)  # the hand-written discussion below is kept
     log(f"wrote {path}")
 
 
-FINDINGS_MARKER = "<!-- findings: written by hand below this line; kept when run.py rewrites the report -->\n"
+FINDINGS_MARKER = "<!-- findings: written by hand below this line; kept when run.py rewrites the report -->"
 
 
 def main():
@@ -820,7 +785,7 @@ def main():
     ap.add_argument("--reference-time", type=float, default=0.0,
                     help="seconds per reference per renderer (two halves; default: family 16, classic 40)")
     ap.add_argument("--reference-spp", type=int, default=0, help="instead of --reference-time: spp per reference")
-    ap.add_argument("--dermis", default=os.path.join(ROOT, "build", "dermis"))
+    ap.add_argument("--dermis", default=DERMIS)
     ap.add_argument("--dermis-sampler", default="",
                     help="pass `--sampler NAME` to dermis render (binaries from ffd318d on: sobol, independent); "
                     "default: the scene files' Sampler \"zsobol\" (Owen-scrambled Sobol' from ffd318d on; "

@@ -1,11 +1,7 @@
 """Cycles' render times are read from its log, not from the truncated EXR stamp."""
-import os
-import sys
-
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import cycles_log  # noqa: E402
+from bench.vs_cycles import cycles_log
 
 # Two renders as Blender 3.4 logs them with --debug-cycles --verbose 2 (stderr, abridged).
 LOG = """I1205 06:52:40.461180 13973 path_trace.cpp:404] Rendered 15 samples in 0.021718 seconds

@@ -3,16 +3,13 @@ every configuration's Dermis file loads and renders. Run by ctest (bench.vs_cycl
 with DERMIS=<path of the dermis binary>; Blender is not needed."""
 
 import os
-import subprocess
-import sys
 
 import pytest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-
-import pbrt_writer  # noqa: E402
-import scenes as S  # noqa: E402
+from bench.harness import render
+from bench.harness.exr import read_exr
+from bench.vs_cycles import pbrt_writer
+from bench.vs_cycles import scenes as S
 
 
 def test_the_family_spans_light_scale_geometry_albedo_and_media():
@@ -67,10 +64,8 @@ def renders_without_warning(sc, tmp_path):
         path = tmp_path / f"{i}.pbrt"
         path.write_text(pbrt_writer.scene_text(sc, label, extra))
         out = tmp_path / f"{i}.exr"
-        p = subprocess.run([dermis, "render", str(path), "--res", "16x12", "--spp", "1", "--threads", "1", "-q",
-                            "--no-png", "-o", str(out)], capture_output=True, text=True, timeout=120)
-        assert p.returncode == 0, p.stderr
-        assert "warning" not in p.stderr, p.stderr
+        p = render.render(dermis, str(path), str(out), timeout=120, spp=1, res="16x12", threads=1)
+        assert "warning" not in p.log, p.log
         assert out.exists()
 
 
@@ -80,7 +75,7 @@ def test_every_configuration_renders_in_dermis(name, tmp_path):
 
 
 def test_the_held_out_configurations_are_not_in_the_family_and_render(tmp_path):
-    import heldout  # noqa: E402
+    from bench.vs_cycles import heldout
     family = {tuple(c) for c in S.FAMILY_CONFIGS}
     assert not family & {tuple(c) for c in S.HELDOUT_CONFIGS}
     assert not set(S.HELDOUT_MATERIALS) & set(S.FAMILY_MATERIALS)
@@ -152,23 +147,16 @@ def test_the_highlight_scene_shows_only_the_quad_lights_mirror_image(tmp_path):
     dermis = os.environ.get("DERMIS")
     if not dermis:
         pytest.skip("DERMIS (the dermis binary) not set")
-    import numpy as np
-    import OpenImageIO as oiio
 
-    def render(name, body, spp):
+    def brightest_channel(name, body, spp):
         path = tmp_path / f"{name}.pbrt"
         path.write_text(body)
         out = tmp_path / f"{name}.exr"
-        p = subprocess.run([dermis, "render", str(path), "--res", "64x48", "--spp", str(spp), "--threads", "1", "-q",
-                            "--no-png", "-o", str(out)], capture_output=True, text=True, timeout=120)
-        assert p.returncode == 0, p.stderr
-        inp = oiio.ImageInput.open(str(out))
-        img = inp.read_image(format="float")[:, :, :3].max(axis=2)
-        inp.close()
-        return img
+        render.render(dermis, str(path), str(out), timeout=120, spp=spp, res="64x48", threads=1)
+        return read_exr(str(out)).rgb.max(axis=2)
 
-    covered = render("mask", pbrt_writer.mask_text(sc), 16) > 0.999
-    lit = render("highlights", text, 256) > 0
+    covered = brightest_channel("mask", pbrt_writer.mask_text(sc), 16) > 0.999
+    lit = brightest_channel("highlights", text, 256) > 0
     assert covered.sum() > 500 and 0 < (lit & covered).sum() < 0.02 * covered.sum()
-    scene = render("scene", pbrt_writer.scene_text(sc, *next(iter(sc["dermis"].items()))), 64)
+    scene = brightest_channel("scene", pbrt_writer.scene_text(sc, *next(iter(sc["dermis"].items()))), 64)
     assert scene[lit & covered].max() >= scene[covered].max()  # the brightest pixel is a highlight

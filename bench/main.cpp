@@ -1,4 +1,0 @@
-// One main for every Google Benchmark file in bench/.
-#include <benchmark/benchmark.h>
-
-BENCHMARK_MAIN();
