@@ -171,13 +171,25 @@ UNBIASED_METHOD = {"dielectric": "volumetric", "diffuse": "randomwalk:boundary=d
                    "matched": "randomwalk:boundary=matched"}
 
 
+def default_walk_boundary(params):
+    """The walk's boundary when none is given (scene/subsurface_params.h,
+    default_walk_boundary): `dielectric` for a medium given by its coefficients (or a named
+    medium, or none), `diffuse` for reflectance + mfp; "entry" "lambertian" keeps `diffuse`.
+    (A scene with point, spot or distant lights keeps `diffuse` for coefficients too: give the
+    method's boundary explicitly to study such a scene.)"""
+    if "reflectance" in params or str(params.get("entry", "")) == "lambertian":
+        return "diffuse"
+    return "dielectric"
+
+
 def model_of(method, material_params):
     """(model, exact) of `method` on a material written with `material_params` (its
     parameters as the scene writes them): exact is False for a diffusion approximation."""
     if method.method == "volumetric":
         return "dielectric", True
     if method.method == "randomwalk":
-        return str(method.params.get("boundary") or material_params.get("boundary") or "diffuse"), True
+        given = method.params.get("boundary") or material_params.get("boundary")
+        return str(given or default_walk_boundary({**material_params, **method.params})), True
     return "diffuse", False
 
 

@@ -61,6 +61,8 @@ struct PathStart {
   // exit, the camera's split-off reflection): the emission it meets first counts in full,
   // as after the camera.
   bool prev_specular = false;
+  // The weight of the emission met first (SubsurfaceExit::emission_weight); 1: in full.
+  float prev_emission_weight = 1;
   int depth = 0;                                 // scattering events already taken
   uint64_t first_dimension = kCameraDimensions;  // of vertex 0's block
   // Russian roulette at the path's first vertex (its first surface hit, once that

@@ -41,6 +41,10 @@ struct EstimatorSwitches {
   // The camera's first smooth reflection, where it cannot see a bright emitter, rouletted on
   // its throughput (path/path_state.h reflection_survival); off: followed always.
   bool reflection_roulette = true;
+  // A walk behind a smooth `dielectric` boundary samples the lights through it at its
+  // scattering events (subsurface/refracted_light.h); off: found by the walks that leave
+  // toward them.
+  bool refracted_light = true;
 };
 
 struct RenderScene {

@@ -255,6 +255,51 @@ Shape make_shape(const ShapeDesc& d, const Transform& xf, int default_material) 
   return s;
 }
 
+// Whether the scene has point, spot or distant lights.
+bool has_delta_lights(const SceneDesc& desc) {
+  for (const LightDesc& l : desc.lights)
+    if (l.type != LightDesc::Type::Infinite) return true;
+  return false;
+}
+
+// The walk's boundary in this scene. A material given by its coefficients whose
+// "boundary" is not given has `dielectric` (default_walk_boundary), unless the scene has
+// delta lights: their light enters a medium behind a smooth dielectric along single
+// refracted paths that no walk samples, and the object would not see them: `diffuse`.
+SubsurfaceParams::Boundary walk_boundary_in_scene(const SubsurfaceParams& sp, bool delta_lights) {
+  if (sp.boundary_given || sp.boundary != SubsurfaceParams::Boundary::Dielectric || !delta_lights) return sp.boundary;
+  return SubsurfaceParams::Boundary::Diffuse;
+}
+
+// One line when the scene's random walks did not all get the boundary of their
+// parametrisation's default (materials given one by coefficients, one by reflectance +
+// mfp; or coefficients beside delta lights): which boundary each got and why.
+void note_default_boundaries(const SceneDesc& desc, bool delta_lights, Diagnostics& diag) {
+  std::string list;
+  bool dielectric = false, diffuse = false, for_delta_lights = false;
+  for (const MaterialDesc& md : desc.materials) {
+    const SubsurfaceParams& sp = md.subsurface;
+    if (md.type != MaterialDesc::Type::Subsurface || sp.method != SubsurfaceParams::Method::RandomWalk ||
+        sp.boundary_given)
+      continue;
+    const SubsurfaceParams::Boundary b = walk_boundary_in_scene(sp, delta_lights);
+    const bool exact = b == SubsurfaceParams::Boundary::Dielectric;
+    (exact ? dielectric : diffuse) = true;
+    for_delta_lights = for_delta_lights || b != sp.boundary;
+    list += fmt::format("{}{} {} ({}{})", list.empty() ? "" : ", ", sp.loc.str(), exact ? "dielectric" : "diffuse",
+                        sp.coefficient_given() ? "coefficients" : "reflectance + mfp",
+                        b != sp.boundary ? ", beside delta lights" : "");
+  }
+  if ((dielectric && diffuse) || for_delta_lights)
+    diag.warnings.push_back(fmt::format(
+        "note: each subsurface material's random walk got the boundary of its parametrisation (docs/materials.md, "
+        "\"Which boundary\"; \"string boundary\" chooses){}: {}",
+        for_delta_lights ? "; coefficients beside point, spot or distant lights get the diffuse one, whose exits "
+                           "sample them"
+                         : "",
+        list));
+}
+
 // Subsurface materials: the parameters now, the methods at preparation. The
 // `volumetric` method is the brute-force reference: the material becomes a smooth
 // dielectric filled with the homogeneous medium it describes, rendered by the
@@ -262,6 +307,7 @@ Shape make_shape(const ShapeDesc& d, const Transform& xf, int default_material) 
 // Returns, per material, the medium inside it (-1: none).
 std::vector<int> resolve_subsurface_materials(const SceneDesc& desc, RenderScene& sc) {
   std::vector<int> subsurface_medium(sc.materials.size(), -1);
+  const bool delta_lights = has_delta_lights(desc);
   for (std::size_t i = 0; i < desc.materials.size(); ++i) {
     const MaterialDesc& md = desc.materials[i];
     if (md.type != MaterialDesc::Type::Subsurface) continue;
@@ -271,6 +317,7 @@ std::vector<int> resolve_subsurface_materials(const SceneDesc& desc, RenderScene
       m.type = Material::Type::Subsurface;
       m.subsurface = int(sc.subsurface_params.size());
       sc.subsurface_params.push_back(sp);
+      sc.subsurface_params.back().boundary = walk_boundary_in_scene(sp, delta_lights);
       continue;
     }
     m.type = Material::Type::Dielectric;
@@ -558,6 +605,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
     sc->media.push_back(HomogeneousMedium::from_coefficients(m.sigma_a, m.sigma_s, m.scale, m.g));
   }
   const std::vector<int> subsurface_medium = resolve_subsurface_materials(desc, *sc);
+  note_default_boundaries(desc, has_delta_lights(desc), diag);
 
   const std::vector<int> top_level = add_top_level_shapes(desc, default_material, subsurface_medium, *sc);
   std::vector<ObjectShapes> objects;

@@ -72,7 +72,8 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"remaproughness", "bool", "true", "alpha = sqrt(roughness) as pbrt-v4; false: alpha = roughness"},
     {"method", "string", "randomwalk", "how light is carried from entry to exit"},
     {"profile", "string", "burley (dipole for pointcloud)", "the diffusion profile of the profile methods"},
-    {"boundary", "string", "diffuse", "random walk: how light leaves (diffuse, dielectric, matched)"},
+    {"boundary", "string", "dielectric for coefficients, diffuse for reflectance + mfp",
+     "random walk: how light leaves (diffuse, dielectric, matched)"},
     {"entry", "string", "refracted",
      "random walk with the diffuse boundary: the direction light enters along, refracted or lambertian (a cosine lobe, "
      "as Cycles 3.x)"},
@@ -207,7 +208,7 @@ GivenParameters read_each_parameter(const ParamList& pl, Diagnostics& diag, cons
     } else if (n == "method")
       s.method = lookup(kMethods, p, "subsurface method");
     else if (n == "boundary")
-      s.boundary = lookup(kBoundaries, p, "boundary");
+      s.boundary = lookup(kBoundaries, p, "boundary"), s.boundary_given = true;
     else if (n == "entry") {
       if (p.type != "string" || p.param.strings.size() != 1 ||
           (p.param.strings[0] != "refracted" && p.param.strings[0] != "lambertian"))
@@ -395,6 +396,10 @@ void read_medium(const GivenParameters& g, const SourceLoc& loc, Diagnostics& di
 
 }  // namespace
 
+SubsurfaceParams::Boundary default_walk_boundary(const SubsurfaceParams& s) {
+  return s.coefficient_given() ? SubsurfaceParams::Boundary::Dielectric : SubsurfaceParams::Boundary::Diffuse;
+}
+
 SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& loc, Diagnostics& diag,
                                         const TextureIndexOf& texture_index_of) {
   SubsurfaceParams s;
@@ -402,6 +407,8 @@ SubsurfaceParams read_subsurface_params(const ParamList& pl, const SourceLoc& lo
   const GivenParameters g = read_each_parameter(pl, diag, texture_index_of, s);
   check_across_parameters(g, loc, diag, s);
   read_medium(g, loc, diag, texture_index_of, s);
+  // "entry" "lambertian" is the diffuse boundary's: it keeps that boundary.
+  if (!s.boundary_given && !s.lambertian_entry) s.boundary = default_walk_boundary(s);
   return s;
 }
 

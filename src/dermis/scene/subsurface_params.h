@@ -49,7 +49,12 @@ struct SubsurfaceParams {
   float scale = 1;  // as written (already applied to the coefficients and lengths above)
   Method method = Method::RandomWalk;
   Profile profile = Profile::Burley;
+  // The random walk's boundary. Unless "boundary" is given, it follows the parametrisation
+  // (default_walk_boundary): a medium given by its coefficients (sigma_a + sigma_s, a
+  // named medium, or pbrt-v4's default milk) gets `dielectric`, the physical object they
+  // describe; reflectance + mfp, the artist's parametrisation, gets `diffuse`.
   Boundary boundary = Boundary::Diffuse;
+  bool boundary_given = false;
   // Random walk, `diffuse` boundary: light that enters takes a direction from a cosine
   // lobe under the surface (a diffuse transmission, Chiang, Kutz & Burley 2016, sec. 4;
   // Cycles 3.x's Random Walk) instead of its refracted direction.
@@ -103,6 +108,10 @@ struct SubsurfaceParams {
   std::string group;
   SourceLoc loc;
 
+  // The medium was given by its coefficients (sigma_a + sigma_s, a named medium, or none:
+  // pbrt-v4's milk), not by reflectance + mfp.
+  bool coefficient_given() const { return !reflectance.has_value(); }
+
   bool textured() const {
     return sigma_a_texture >= 0 || sigma_s_texture >= 0 || reflectance_texture >= 0 || mfp_texture >= 0 ||
            scale_texture >= 0;
@@ -127,6 +136,10 @@ using TextureIndexOf = std::function<int(const ParsedParam&, bool is_float)>;
 // Reads every parameter of a `subsurface` material (marking them used). Throws
 // SceneError (file:line:col) for wrong types, unknown names or invalid values; warns
 // about parameters it ignores.
+// The walk's boundary when "boundary" is not given: `dielectric` for a medium given by its
+// coefficients, `diffuse` for reflectance + mfp (docs/materials.md, "Which boundary").
+SubsurfaceParams::Boundary default_walk_boundary(const SubsurfaceParams& params);
+
 SubsurfaceParams read_subsurface_params(const ParamList& params, const SourceLoc& loc, Diagnostics& diag,
                                         const TextureIndexOf& texture_index_of);
 

@@ -134,6 +134,29 @@ TEST(SubsurfaceParams, BadInputIsAnErrorAtItsLocation) {
 
 // The walk's entry: refracted (the default) or a diffuse transmission with the `diffuse`
 // boundary; another method ignores it, with a warning.
+// The walk's boundary follows the parametrisation unless "boundary" is given: the
+// coefficients (or a named medium, or none: pbrt-v4's milk) describe a physical object,
+// rendered behind its dielectric; reflectance + mfp, the artist's, keeps `diffuse`.
+TEST(SubsurfaceParams, DefaultBoundaryFollowsTheParametrisation) {
+  using B = SubsurfaceParams::Boundary;
+  EXPECT_EQ(params_of("Material \"subsurface\" \"rgb sigma_a\" [1 2 3] \"rgb sigma_s\" [4 5 6]").boundary,
+            B::Dielectric);
+  EXPECT_EQ(params_of("Material \"subsurface\" \"string name\" \"Skin1\"").boundary, B::Dielectric);
+  EXPECT_EQ(params_of("Material \"subsurface\"").boundary, B::Dielectric);
+  EXPECT_EQ(params_of("Material \"subsurface\" \"rgb reflectance\" [0.5 0.5 0.5] \"rgb mfp\" [1 1 1]").boundary,
+            B::Diffuse);
+  // Given, it is kept either way.
+  EXPECT_EQ(params_of("Material \"subsurface\" \"string name\" \"Skin1\" \"string boundary\" \"diffuse\"").boundary,
+            B::Diffuse);
+  EXPECT_EQ(params_of("Material \"subsurface\" \"rgb reflectance\" [0.5 0.5 0.5] \"rgb mfp\" [1 1 1] "
+                      "\"string boundary\" \"dielectric\"")
+                .boundary,
+            B::Dielectric);
+  // "entry" "lambertian" is the diffuse boundary's own option: it keeps that boundary.
+  EXPECT_EQ(params_of("Material \"subsurface\" \"string name\" \"Skin1\" \"string entry\" \"lambertian\"").boundary,
+            B::Diffuse);
+}
+
 TEST(SubsurfaceParams, LambertianEntry) {
   EXPECT_FALSE(params_of("Material \"subsurface\"").lambertian_entry);
   EXPECT_FALSE(params_of("Material \"subsurface\" \"string entry\" \"refracted\"").lambertian_entry);

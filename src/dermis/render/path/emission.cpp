@@ -13,7 +13,7 @@ void add_emission_at_infinity(const PathContext& ctx, PathState& st) {
     float w = st.specular ? 1.0f
                           : power_heuristic(st.prev_pdf, sc.light_selection.pmf(li, st.prev_p, st.prev_n, st.prev_sky) *
                                                              light_pdf(light, st.prev_p, st.ray.d, {}, {}, st.prev_n));
-    st.L += st.beta * Le * w;
+    st.L += st.beta * Le * (w * st.emission_weight);
   }
 }
 
@@ -26,7 +26,7 @@ void add_area_emission(const PathContext& ctx, PathState& st, const Shape& s, co
   float w = st.specular ? 1.0f
                         : power_heuristic(st.prev_pdf, sc.light_selection.pmf(li, st.prev_p, st.prev_n, st.prev_sky) *
                                                            light_pdf(light, st.prev_p, st.ray.d, hit.p, hit.ng));
-  st.L += st.beta * Le * w;
+  st.L += st.beta * Le * (w * st.emission_weight);
 }
 
 RGB emission_seen(const RenderScene& sc, const Ray& ray, PathCounters& counters) {

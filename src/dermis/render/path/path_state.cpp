@@ -14,6 +14,7 @@ PathState::PathState(const Ray& r, int m, const PathStart& start)
       prev_p(start.from_camera ? r.o : start.prev_p),
       prev_n(start.from_camera ? Vec3(0, 0, 0) : start.prev_n),
       prev_sky(start.from_camera ? SkyRule::Sampled : start.prev_sky),
+      emission_weight(start.prev_emission_weight),
       depth(start.depth),
       camera_chain(start.from_camera && start.depth == 0),
       vertex_dimension(start.first_dimension) {}

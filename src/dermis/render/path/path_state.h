@@ -48,6 +48,9 @@ struct PathState {
   float prev_pdf;
   Vec3 prev_p, prev_n;
   SkyRule prev_sky;
+  // A factor on the emission met next, besides the MIS weight above (a subsurface exit's
+  // SubsurfaceExit::emission_weight); 1 after every other event.
+  float emission_weight = 1;
   int depth;          // scattering events taken
   int crossings = 0;  // index-matched boundaries crossed
   // Every vertex so far a smooth specular one (glass, a mirror) or none: what the camera
@@ -79,6 +82,7 @@ struct PathState {
     prev_n = n;
     prev_sky = sky;
     specular = counts_in_full;
+    emission_weight = 1;
   }
 };
 

@@ -6,6 +6,7 @@
 #include "dermis/render/path/camera_reflection.h"
 #include "dermis/render/path/direct_light.h"
 #include "dermis/render/path/emission.h"
+#include "dermis/render/path/lights_from_inside.h"
 #include "dermis/render/path/sampler_regions.h"
 #include "dermis/render/path_splitting.h"
 #include "dermis/render/russian_roulette.h"
@@ -161,6 +162,7 @@ void SubsurfaceVertex::go_on_along(const SubsurfaceExit& e, float divisor, uint6
   way_on.prev_p = weighed ? offset_ray_origin(e.hit.p, e.hit.ng, e.hit.ng) : e.hit.p;
   way_on.prev_n = e.hit.ng;
   way_on.prev_sky = SkyRule::Sampled;  // light_through's samples
+  way_on.prev_emission_weight = e.emission_weight;
   st_.L += beta_k * trace_path(ctx_.sc, Ray{offset_ray_origin(e.hit.p, e.hit.ng, e.direction), e.direction}, st_.medium,
                                ctx_.sampler, ctx_.counters, way_on);
 }
@@ -185,6 +187,15 @@ VertexOutcome SubsurfaceVertex::exit() {
     return this->light_through(p, n, b, wo_in, smp);
   };
   auto exit_light = [&](const SurfaceHit& at, Sampler& smp) { return this->exit_light(at, smp); };
+  // The lights for walks behind a smooth boundary (subsurface/refracted_light.h).
+  auto sample_light = [&](Vec3 y, float u1, float u2, Vec3& w, float& density) {
+    return sample_light_from_inside(sc, y, u1, u2, w, density);
+  };
+  auto light_density = [&](Vec3 y, Vec3 w) { return light_density_from_inside(sc, y, w); };
+  auto emission = [&](Vec3 x, Vec3 n, Vec3 w) {
+    return emission_seen(sc, Ray{offset_ray_origin(x, n, w), w}, ctx_.counters);
+  };
+  const LightsFromInside lights_inside{sample_light, light_density, emission};
   // The camera's first entry averages several exits (below): the scene's
   // subsurfacesamples through the exit lobe, or more (a walk with one colour channel per
   // exit, whatever its boundary).
@@ -200,6 +211,7 @@ VertexOutcome SubsurfaceVertex::exit() {
                         strategy_,
                         first_entry_exits > 0 ? 0 : -1,
                         exit_light_none_};
+  if (lights_offered_inside(sc, st_.medium)) entry.lights_from_inside = &lights_inside;
   if (first_entry_ && ctx_.start.subsurface_record && ctx_.start.subsurface_record->material < 0)
     ctx_.start.subsurface_record->material = mat_.subsurface;
   // The probes' exits at the camera's first entry are one stratified sequence of the
@@ -247,6 +259,7 @@ VertexOutcome SubsurfaceVertex::exit() {
     st_.after_scatter(Ray{offset_ray_origin(ex.hit.p, ex.hit.ng, ex.direction), ex.direction}, ex.direction_pdf,
                       weighed ? offset_ray_origin(ex.hit.p, ex.hit.ng, ex.hit.ng) : ex.hit.p, ex.hit.ng,
                       SkyRule::Sampled /* light_through's samples */, !weighed);
+    st_.emission_weight = ex.emission_weight;
     return VertexOutcome::kContinue;
   }
   return leave_through_lobe(ex);

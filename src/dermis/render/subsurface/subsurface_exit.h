@@ -11,6 +11,7 @@
 #include "dermis/geometry/ray.h"
 #include "dermis/materials/bsdf.h"
 #include "dermis/render/subsurface/object_tracer.h"
+#include "dermis/render/subsurface/refracted_light.h"
 #include "dermis/sss/walk/boundary_hit.h"
 
 namespace dermis {
@@ -30,6 +31,10 @@ struct SubsurfaceExit {
   // found along it is weighed against those samples. 0: a delta direction (smooth or
   // matched boundary), whose light counts in full.
   float direction_pdf = 0;
+  // Along: the weight of the emission met first along `direction` (a walk that left right
+  // after a scattering event whose light was sampled through the smooth boundary:
+  // refracted_light.h); 1: in full.
+  float emission_weight = 1;
   RGB radiance{0};  // Emitted: radiance toward the viewer, per unit transmitted throughput
   // Direct light the method gathered on its way (light sampled through a rough boundary
   // wherever the path met it), per unit transmitted throughput: counts whether or not
@@ -89,6 +94,9 @@ struct SubsurfaceEntry {
   // traced by the entry's first walk that asks and kept for its other exits, which would
   // trace the same ray (three per entry with one colour channel per walk).
   mutable std::optional<sss::BoundaryHit> far_side = {};
+  // The lights as seen from inside, for light sampled through a smooth boundary
+  // (refracted_light.h); null where the integrator does not offer it.
+  const LightsFromInside* lights_from_inside = nullptr;
 };
 
 }  // namespace dermis

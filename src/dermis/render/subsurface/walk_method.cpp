@@ -1,10 +1,12 @@
 #include "dermis/render/subsurface/walk_method.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <optional>
 
 #include "dermis/core/frame.h"
+#include "dermis/core/henyey_greenstein.h"
 #include "dermis/core/microfacet.h"
 #include "dermis/core/warp.h"
 #include "dermis/geometry/shading_normal.h"
@@ -28,6 +30,34 @@ sss::WalkSampling walk_sampling(SubsurfaceParams::WalkSampling s) {
 }
 
 constexpr int kMaxInternalReflections = 256;
+// Light sampled through the smooth boundary (WalkMethod::refracted_light_at): always taken
+// where the flight's transmittance to the entry plane is above this, less often below.
+constexpr float kRefractedLightFullTransmittance = 0.2f;
+constexpr float kRefractedLightLeastChance = 0.05f;
+
+// The chance that light is sampled through the boundary at the scattering event y: the
+// flight's transmittance to the entry plane (`plane`: the entry point, its outward
+// normal) in the most transmissive channel, over kRefractedLightFullTransmittance, at
+// least kRefractedLightLeastChance. A function of y alone; deep in the medium few samples
+// would reach the boundary. Russian roulette: the sample, when taken, is weighed by its
+// inverse (unbiased for any chance above zero).
+float refracted_light_chance(const sss::MixtureWalkStep<3>& step, const SurfaceHit& plane, Vec3 y) {
+  const double depth = std::max(0.0f, dot(plane.p - y, plane.ng));
+  double transmittance = 0;
+  for (std::size_t c = 0; c < 3; ++c) transmittance = std::max(transmittance, std::exp(-step.sigma_t()[c] * depth));
+  return std::clamp(float(transmittance) / kRefractedLightFullTransmittance, kRefractedLightLeastChance, 1.0f);
+}
+
+// The plane light is refracted through at the scattering event y: the boundary's outward
+// normal where a ray from y along the entry normal leaves the object (the boundary above
+// y, which on a curved object turns away from the entry's), else the entry normal.
+Vec3 refracted_light_normal(const SubsurfaceEntry& entry, Vec3 y) {
+  SurfaceHit above;
+  if (entry.tracer.first_boundary(Ray{y, entry.hit.ng}, above) && entry.tracer.contains(above) &&
+      dot(above.ng, entry.hit.ng) > 0)
+    return normalize(above.ng);
+  return entry.hit.ng;
+}
 // A walk leaving the surface at a smaller cosine to its normal starts off the surface
 // (WalkMethod::walk): along its line, the surface offset's depth lies up to ten offsets on.
 constexpr float kGrazingCos = 0.1f;
@@ -166,6 +196,43 @@ bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Sub
   return exited;
 }
 
+bool WalkMethod::samples_refracted_light(const SubsurfaceEntry& entry) const {
+  return entry.lights_from_inside && boundary_ == SubsurfaceParams::Boundary::Dielectric && !roughness_.textured() &&
+         !roughness_.constant().rough();
+}
+
+RGB WalkMethod::refracted_light_at(const SubsurfaceEntry& entry, const RefractedLight& light,
+                                   const sss::MixtureWalkStep<3>& step, const SurfaceHit& plane, Vec3 y, Vec3 incoming,
+                                   const std::array<double, 3>& throughput, Sampler& sampler) const {
+  const float chance = refracted_light_chance(step, plane, y);
+  if (chance < 1 && !(sampler.uniform() < chance)) return RGB(0);
+  const float u1 = sampler.uniform(), u2 = sampler.uniform();
+  const Vec3 n_ref = refracted_light_normal(entry, y);
+  Vec3 v;
+  float p_light = 0;
+  if (!light.sample(y, n_ref, u1, u2, v, p_light)) return RGB(0);
+  // The flight along v to the boundary, and out through it as the walk leaves
+  // (WalkMethod::walk): Fresnel's transmission about the shading normal there.
+  SurfaceHit x;
+  if (!entry.tracer.first_boundary(Ray{y, v}, x) || !entry.tracer.contains(x)) return RGB(0);
+  const Vec3 ns = shading_normal_seen_from(x, -v);
+  const auto out = refract(-v, ns, eta_);
+  if (!out || !shading_side_agrees(x.ng, ns, *out)) return RGB(0);
+  const RGB Le = light.lights().emission(x.p, x.ng, *out);
+  if (Le.is_black()) return RGB(0);
+  const float transmitted = 1 - fresnel_dielectric(dot(-v, ns), eta_);
+  const float phase = henyey_greenstein(dot(incoming, v), float(step.g()));
+  const float p = p_light * chance;                 // the technique's density, taken or not
+  const float w = p * p / (p * p + phase * phase);  // Veach 1997, eq. 9.13
+  const double t = length(x.p - y);
+  RGB sum;
+  // The scattering event's albedo (the walk applies it with the flight that follows:
+  // walk_step.h, F_k) and the flight's transmittance, exp(-sigma_t t), per channel.
+  for (std::size_t c = 0; c < 3; ++c)
+    sum[int(c)] = float(throughput[c] * step.albedo()[c] * std::exp(-step.sigma_t()[c] * t));
+  return sum * Le * (phase * transmitted * w / p);
+}
+
 // Entry and exit 1/eta^2 radiance factors cancel and are omitted.
 bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& settings,
                       const sss::MixtureWalkStep<3>& step, const RGB& initial, Sampler& sampler,
@@ -222,6 +289,15 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
     return *entry.far_side;
   };
   const sss::WalkGuide guide = sss::make_walk_guide(settings, in.p, in.ng, far_side_tracer);
+  // Light sampled through the smooth boundary at every scattering event (refracted_light.h),
+  // about the plane of the entry point.
+  const bool refracted_light = samples_refracted_light(entry);
+  std::optional<RefractedLight> light;
+  if (refracted_light) light.emplace(*entry.lights_from_inside, eta_);
+  auto at_collision = [&](const Vec3d& y, const Vec3d& incoming, const std::array<double, 3>& throughput) {
+    if (refracted_light)
+      out.gathered += refracted_light_at(entry, *light, step, in, Vec3(y), Vec3(incoming), throughput, sampler);
+  };
   RGB weight = initial;  // a channel that starts at 0 stays 0 (random_walk.h: its flights are never drawn)
   for (int reflections = 0; reflections < kMaxInternalReflections; ++reflections) {
     sss::WalkResult res;
@@ -232,7 +308,7 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
     // depth over the mean free path for the few walks that graze).
     const bool grazing = std::abs(dot(dir, start_n)) < kGrazingCos;
     const Vec3 walk_start = grazing ? offset_ray_origin(start, start_n, dir) : start;
-    if (!sss::random_walk(step, settings, guide, walk_start, dir, sampler, tracer, res, weight)) {
+    if (!sss::random_walk(step, settings, guide, walk_start, dir, sampler, tracer, res, weight, at_collision)) {
       out.truncated = res.truncated;
       return false;
     }
@@ -305,6 +381,12 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
       if (!t) return false;  // F = 1 under total internal reflection: not reached
       if (!shading_side_agrees(res.exit_n, ns, *t)) return false;
       out.direction = *t;
+      // Right after a scattering event whose light was sampled through the boundary: the
+      // emission met next is weighed against that sample.
+      if (refracted_light && res.from_collision)
+        out.emission_weight = light->walk_weight(res.last_collision, refracted_light_normal(entry, res.last_collision),
+                                                 d, henyey_greenstein(dot(res.last_incoming, d), float(step.g())),
+                                                 refracted_light_chance(step, in, res.last_collision));
       return true;
     }
     // Internal reflection: the walk goes on from the boundary.

@@ -144,6 +144,16 @@ class WalkMethod {
   // initial: the throughput the walk starts with (1, or one channel's).
   bool walk(const SubsurfaceEntry& entry, const sss::WalkSettings& settings, const sss::MixtureWalkStep<3>& step,
             const RGB& initial, Sampler& sampler, SubsurfaceExit& out) const;
+  // Whether the walks of this entry sample light through the smooth `dielectric` boundary
+  // at their scattering events (refracted_light.h): the boundary is smooth everywhere and
+  // the integrator offers the lights.
+  bool samples_refracted_light(const SubsurfaceEntry& entry) const;
+  // Light sampled through the boundary at the walk's scattering event y (the flight
+  // arrived along `incoming`), with the walk's throughput there; `plane` is the entry
+  // point's (refracted_light.h).
+  RGB refracted_light_at(const SubsurfaceEntry& entry, const RefractedLight& light, const sss::MixtureWalkStep<3>& step,
+                         const SurfaceHit& plane, Vec3 y, Vec3 incoming, const std::array<double, 3>& throughput,
+                         Sampler& sampler) const;
 
   SubsurfaceParams params_;
   const std::vector<Texture>* textures_;

@@ -58,6 +58,17 @@ struct WalkResult {
   RGB weight;               // path throughput per channel; the caller applies Fresnel / the exit lobe
   int steps = 0;            // scattering events
   bool truncated = false;   // stopped at max_steps (the caller counts and reports these)
+  // The last flight started at a scattering event of this walk (not where it started):
+  // that event's position and the propagation direction it scattered from.
+  bool from_collision = false;
+  Vec3 last_collision, last_incoming;
+};
+
+// A walk's caller may act at every scattering event (after its weights and the roulette,
+// before the next direction is drawn): on_collision(position, incoming propagation
+// direction, throughput per channel). This one does nothing.
+struct NoCollisionHook {
+  void operator()(const Vec3d&, const Vec3d&, const std::array<double, 3>&) const {}
 };
 
 // Validated per-step sampler for a medium and settings; build it once per material
@@ -114,9 +125,10 @@ WalkGuide make_walk_guide(const WalkSettings& settings, Vec3 entry_p, Vec3 entry
 // `guide` (make_walk_guide) is made once per path at its entry point and kept for the
 // walks that continue it; start_p is where this walk starts (the entry point, or the
 // boundary point of an internal reflection).
-template <class Random, class Tracer>
+// on_collision: called at every scattering event (NoCollisionHook).
+template <class Random, class Tracer, class OnCollision>
 bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, const WalkGuide& guide, Vec3 start_p,
-                 Vec3 dir_in, Random& rng, Tracer&& tracer, WalkResult& out, RGB initial = RGB(1.0f)) {
+                 Vec3 dir_in, Random& rng, Tracer&& tracer, WalkResult& out, RGB initial, OnCollision&& on_collision) {
   out = WalkResult{};
   GuideAxes<3> axes{Framed(guide.entry_n)};
   if (guide.has_far) axes.back = Framed(guide.far_n), axes.has_back = true;
@@ -132,6 +144,7 @@ bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, c
   std::array<double, 3> q = step.channel_probabilities(throughput);
   update_back_shares(position, q);
   FlightProposal flight = step.propose_flight(normalize(Vec3d(dir_in)), axes, q, rng);
+  Vec3d incoming;  // the direction of the flight that ended at `position` (after a collision)
   for (int steps = 0;;) {
     const BoundaryHit hit = tracer(Vec3(position), Vec3(flight.direction), flight.distance);
     if (hit.hit && flight.distance >= double(hit.t)) {
@@ -139,6 +152,8 @@ bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, c
       for (int c = 0; c < 3; ++c) out.weight[c] = float(throughput[c] * w[c]);
       out.exit_p = hit.p, out.exit_n = hit.n, out.exit_dir_in_medium = Vec3(flight.direction);
       out.steps = steps;
+      out.from_collision = steps > 0;
+      if (out.from_collision) out.last_collision = Vec3(position), out.last_incoming = Vec3(incoming);
       return true;
     }
     if (!std::isfinite(flight.distance)) break;  // no boundary ahead of an endless flight: lost
@@ -158,11 +173,20 @@ bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, c
       if (rng.uniform_double() * roulette >= m) break;
       for (double& t : throughput) t *= roulette / m;
     }
+    on_collision(position, flight.direction, throughput);
+    incoming = flight.direction;
     q = step.channel_probabilities(throughput);
     update_back_shares(position, q);
     flight = step.propose_scatter(flight.direction, axes, q, rng);
   }
   return false;
+}
+
+template <class Random, class Tracer>
+bool random_walk(const MixtureWalkStep<3>& step, const WalkSettings& settings, const WalkGuide& guide, Vec3 start_p,
+                 Vec3 dir_in, Random& rng, Tracer&& tracer, WalkResult& out, RGB initial = RGB(1.0f)) {
+  return random_walk(step, settings, guide, start_p, dir_in, rng, std::forward<Tracer>(tracer), out, initial,
+                     NoCollisionHook{});
 }
 
 // A walk from the entry point: makes its guide (make_walk_guide) first.

@@ -127,6 +127,9 @@ class MixtureWalkStep {
   // sigma_t > 0 and albedo in [0, 1] per channel, g in (-1, 1), p_guided in [0, 1]
   // (the probability of the guided strategy), channel_preference >= 0 (the exponent k of
   // channel_probabilities); throws std::invalid_argument otherwise.
+  const Channels& sigma_t() const { return sigma_t_; }
+  const Channels& albedo() const { return albedo_; }
+  double g() const { return g_; }
   MixtureWalkStep(const Channels& sigma_t, const Channels& albedo, double g, double p_guided,
                   double channel_preference = 0)
       : sigma_t_(sigma_t), albedo_(albedo), g_(g), any_guided_(p_guided > 0) {
