@@ -8,7 +8,7 @@ std::optional<Vec3> refracted_out(Vec3 v, Vec3 n, float eta, float* jacobian) {
   const float cos_v = dot(v, n);
   if (!(cos_v > 0)) return std::nullopt;
   const float sin2_w = eta * eta * std::max(0.0f, 1 - cos_v * cos_v);  // Snell: sin w = eta sin v
-  if (sin2_w >= 1) return std::nullopt;                                 // total internal reflection
+  if (sin2_w >= 1) return std::nullopt;                                // total internal reflection
   const float cos_w = std::sqrt(1 - sin2_w);
   if (jacobian) *jacobian = eta * eta * cos_v / cos_w;
   return normalize((v - n * cos_v) * eta + n * cos_w);
