@@ -92,4 +92,21 @@ float light_density_from_inside(const RenderScene& sc, Vec3 y, Vec3 w) {
   return density;
 }
 
+bool key_light_direction(const RenderScene& sc, Vec3 y, Vec3& toward) {
+  Vec3 sum(0, 0, 0);
+  double weight = 0;
+  for (const Light& l : sc.lights) {
+    if (l.type != Light::Type::Triangle && l.type != Light::Type::Sphere) continue;
+    const double power = light_power(l, 1);
+    const Vec3 centre = l.type == Light::Type::Sphere ? l.center : (l.p0 + l.p1 + l.p2) / 3.0f;
+    sum += centre * float(power);
+    weight += power;
+  }
+  if (!(weight > 0)) return false;
+  const Vec3 d = sum / float(weight) - y;
+  if (!(length(d) > 0)) return false;
+  toward = normalize(d);
+  return true;
+}
+
 }  // namespace dermis

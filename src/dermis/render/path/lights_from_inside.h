@@ -28,4 +28,8 @@ bool sample_light_from_inside(const RenderScene& sc, Vec3 y, float u1, float u2,
 // times its density.
 float light_density_from_inside(const RenderScene& sc, Vec3 y, Vec3 w);
 
+// The unit direction from y toward the centre of the finite lights the walks sample
+// (weighted by their power); false where there are none.
+bool key_light_direction(const RenderScene& sc, Vec3 y, Vec3& toward);
+
 }  // namespace dermis

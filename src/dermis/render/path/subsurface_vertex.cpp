@@ -195,7 +195,8 @@ VertexOutcome SubsurfaceVertex::exit() {
   auto emission = [&](Vec3 x, Vec3 n, Vec3 w) {
     return emission_seen(sc, Ray{offset_ray_origin(x, n, w), w}, ctx_.counters);
   };
-  const LightsFromInside lights_inside{sample_light, light_density, emission};
+  auto key_direction = [&](Vec3 y, Vec3& toward) { return key_light_direction(sc, y, toward); };
+  const LightsFromInside lights_inside{sample_light, light_density, emission, key_direction};
   // The camera's first entry averages several exits (below): the scene's
   // subsurfacesamples through the exit lobe, or more (a walk with one colour channel per
   // exit, whatever its boundary).

@@ -33,6 +33,9 @@ struct LightsFromInside {
   // The emission reaching the boundary point x (outward normal n) from direction w
   // outside: the first surface along w if it emits, or the lights at infinity.
   FunctionRef<RGB(Vec3 x, Vec3 n, Vec3 w)> emission;
+  // The unit direction from y toward the finite lights sampled (their centre, weighted by
+  // power); false where there are none (environment maps alone).
+  FunctionRef<bool(Vec3 y, Vec3& toward)> key_direction;
 };
 
 // Refraction through a plane of unit normal n pointing out of the medium (index eta) into

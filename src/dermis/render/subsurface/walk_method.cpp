@@ -49,13 +49,15 @@ float refracted_light_chance(const sss::MixtureWalkStep<3>& step, const SurfaceH
 }
 
 // The plane light is refracted through at the scattering event y: the boundary's outward
-// normal where a ray from y along the entry normal leaves the object (the boundary above
-// y, which on a curved object turns away from the entry's), else the entry normal.
+// normal where a ray from y toward the finite lights leaves the object (the part of the
+// boundary that faces them, which on a curved object turns away from the entry's), or
+// along the entry normal where there are none; else the entry normal.
 Vec3 refracted_light_normal(const SubsurfaceEntry& entry, Vec3 y) {
-  SurfaceHit above;
-  if (entry.tracer.first_boundary(Ray{y, entry.hit.ng}, above) && entry.tracer.contains(above) &&
-      dot(above.ng, entry.hit.ng) > 0)
-    return normalize(above.ng);
+  Vec3 toward = entry.hit.ng;
+  entry.lights_from_inside->key_direction(y, toward);
+  SurfaceHit exit;
+  if (entry.tracer.first_boundary(Ray{y, toward}, exit) && entry.tracer.contains(exit) && dot(exit.ng, toward) > 0)
+    return normalize(exit.ng);
   return entry.hit.ng;
 }
 // A walk leaving the surface at a smaller cosine to its normal starts off the surface
