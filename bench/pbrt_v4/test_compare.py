@@ -74,3 +74,20 @@ def test_gain_and_its_standard_error():
         g, se = samplers.gain(base, other)
         hits += abs(g - 2.0) < 2 * se
     assert 0.90 * 400 <= hits <= 0.99 * 400
+
+
+@pytest.mark.parametrize("integrator,expected", [
+    ('Integrator "volpath" "integer maxdepth" 8\n', 1),  # raised
+    ('Integrator "volpath"\n', 1),  # given
+    ("", 1),  # none: pbrt-v4's default volpath (maxdepth 5) would cut the walk's scattering
+])
+def test_the_exact_variant_never_cuts_the_scattering(tmp_path, integrator, expected):
+    scene = tmp_path / "s.pbrt"
+    scene.write_text('Film "rgb"\n' + integrator + 'WorldBegin\nMaterial "subsurface" "string name" "Skin1"\n'
+                     'Shape "sphere"\n')
+    out = tmp_path / "exact.pbrt"
+    assert compare.exact_variant(str(scene), str(out)) == 1
+    text = out.read_text()
+    assert text.count(f'"integer maxdepth" {compare.EXACT_MAXDEPTH}') == expected
+    assert '"string method" "volumetric"' in text
+    assert text.index("Integrator") < text.index("WorldBegin")
