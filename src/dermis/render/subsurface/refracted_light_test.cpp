@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
+#include "dermis/core/frame.h"
 #include "dermis/core/warp.h"
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
@@ -54,6 +56,50 @@ TEST(RefractedLight, TheJacobianIsTheRatioOfSolidAngles) {
     const float area_v = length(cross(vx - v, vy - v)), area_w = length(cross(wx - *w, wy - *w));
     EXPECT_NEAR(area_w / area_v, j, 2e-2f * j) << theta;
   }
+}
+
+// The technique's density over the directions inside: a light of uniform density over a
+// cone of directions (half-angle 25 degrees, tilted 30 degrees from the plane's normal, all
+// above the plane). The density integrates to one (the mean of 4 pi p(v) over uniform
+// directions), and the sampler draws by it (the mean of 1 / p(v) over its samples is the
+// solid angle where p > 0, measured by uniform directions): each within 4 standard errors.
+TEST(RefractedLight, TheDensityIntegratesToOneAndTheSamplerDrawsByIt) {
+  const Vec3 n(0, 0, 1), axis = normalize(Vec3(std::sin(0.52f), 0, std::cos(0.52f)));
+  const float cos_max = std::cos(0.436f), eta = 1.33f;
+  const Frame frame(axis);
+  auto sample = [&](Vec3, float u1, float u2, Vec3& w, float& density) {
+    w = frame.to_world(sample_uniform_cone({u1, u2}, cos_max));
+    density = uniform_cone_pdf(cos_max);
+    return true;
+  };
+  auto light_density = [&](Vec3, Vec3 w) { return dot(w, axis) >= cos_max ? uniform_cone_pdf(cos_max) : 0.0f; };
+  auto emission = [](Vec3, Vec3, Vec3) { return RGB(0); };
+  auto key = [](Vec3, Vec3&) { return false; };
+  const LightsFromInside lights{sample, light_density, emission, key};
+  const RefractedLight technique(lights, eta);
+  const Vec3 y(0, 0, -1);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<float> u01(0, 1);
+  const int N = 400000;
+  double sum = 0, sum2 = 0, support = 0, support2 = 0;
+  for (int i = 0; i < N; ++i) {
+    const Vec3 v = sample_uniform_sphere({u01(rng), u01(rng)});
+    const double x = 4 * kPiD * technique.density(y, n, v), in = x > 0 ? 4 * kPiD : 0.0;
+    sum += x, sum2 += x * x, support += in, support2 += in * in;
+  }
+  const double mean = sum / N, se = std::sqrt((sum2 / N - mean * mean) / N);
+  EXPECT_NEAR(mean, 1.0, 4 * se) << "the density's integral";
+  const double solid_angle = support / N, solid_angle_se = std::sqrt((support2 / N - solid_angle * solid_angle) / N);
+  double inv = 0, inv2 = 0;
+  for (int i = 0; i < N; ++i) {
+    Vec3 v;
+    float p = 0;
+    ASSERT_TRUE(technique.sample(y, n, u01(rng), u01(rng), v, p));
+    EXPECT_NEAR(p, technique.density(y, n, v), 1e-3f * p);
+    inv += 1 / double(p), inv2 += 1 / (double(p) * p);
+  }
+  const double mean_inv = inv / N, inv_se = std::sqrt((inv2 / N - mean_inv * mean_inv) / N);
+  EXPECT_NEAR(mean_inv, solid_angle, 4 * std::hypot(inv_se, solid_angle_se)) << "the support's solid angle";
 }
 
 // The walk behind a smooth dielectric with light sampled through it and without: the same
