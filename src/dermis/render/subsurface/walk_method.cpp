@@ -235,13 +235,8 @@ RGB WalkMethod::refracted_light_at(const SubsurfaceEntry& entry, const Refracted
   return sum * Le * (phase * transmitted * w / p);
 }
 
-// Entry and exit 1/eta^2 radiance factors cancel and are omitted.
-bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& settings,
-                      const sss::MixtureWalkStep<3>& step, const RGB& initial, Sampler& sampler,
-                      SubsurfaceExit& out) const {
-  using Boundary = SubsurfaceParams::Boundary;
+bool WalkMethod::entry_direction(const SubsurfaceEntry& entry, Sampler& sampler, Vec3& dir) const {
   const SurfaceHit& in = entry.hit;
-  Vec3 dir;
   if (lambertian_entry_) {
     // A diffuse transmission (Chiang, Kutz & Burley 2016, sec. 4): a cosine lobe under
     // the surface, whatever the boundary's refraction; the entry's weight is the
@@ -249,18 +244,61 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
     // surface is no light (geometry/shading_normal.h).
     const float u1 = sampler.uniform(), u2 = sampler.uniform();
     dir = Frame(-in.ns).to_world(sample_cosine_hemisphere({u1, u2}));
-    if (dot(dir, in.ng) >= 0) return false;
-  } else if (entry.refracted) {
-    dir = *entry.refracted;  // through a rough entry
-  } else if (boundary_ == Boundary::Matched) {
-    dir = -entry.wo;
-  } else {
-    // About the shading normal; a refraction that would leave the surface again is no
-    // light (geometry/shading_normal.h).
-    auto t = refract(entry.wo, in.ns, eta_);
-    if (!t || !shading_side_agrees(in, *t)) return false;
-    dir = *t;
+    return dot(dir, in.ng) < 0;
   }
+  if (entry.refracted) {
+    dir = *entry.refracted;  // through a rough entry
+    return true;
+  }
+  if (boundary_ == SubsurfaceParams::Boundary::Matched) {
+    dir = -entry.wo;
+    return true;
+  }
+  // About the shading normal; a refraction that would leave the surface again is no
+  // light (geometry/shading_normal.h).
+  const auto t = refract(entry.wo, in.ns, eta_);
+  if (!t || !shading_side_agrees(in, *t)) return false;
+  dir = *t;
+  return true;
+}
+
+// A rough boundary: the rough dielectric seen from inside. The lights outside are sampled
+// through it here (at every crossing, internal reflections included), and it is sampled
+// for the way on: out, weighed against those light samples (direction_pdf), or back in.
+// Its 1/eta^2 radiance factor is omitted as at the entry: a transmission from inside
+// carries eta^2 (Veach 1997, sec. 5.2), times eta_scale = 1/eta^2.
+WalkMethod::RoughCrossing WalkMethod::cross_rough_boundary(const SubsurfaceEntry& entry, const sss::WalkResult& res,
+                                                           Vec3 ns, BoundaryAlphas alpha, RGB& weight, Sampler& sampler,
+                                                           SubsurfaceExit& out) const {
+  const Vec3 d = res.exit_dir_in_medium;
+  BSDF b;
+  b.type = BSDF::Type::Dielectric;
+  b.n = ns;
+  b.eta = eta_;
+  b.alpha_x = alpha.x;
+  b.alpha_y = alpha.y;
+  out.gathered += weight * entry.light_through(res.exit_p, res.exit_n, b, -d, sampler) / (eta_ * eta_);
+  const float u_lobe = sampler.uniform(), u1 = sampler.uniform(), u2 = sampler.uniform();
+  const auto bs = bsdf_sample(b, -d, u_lobe, {u1, u2});
+  if (!bs) return RoughCrossing::Lost;  // a microfacet sample lost below the surface
+  if (!shading_side_agrees(res.exit_n, ns, bs->wi)) return RoughCrossing::Lost;
+  weight *= bs->weight * bs->eta_scale;
+  if (!weight.is_finite() || weight.is_black()) return RoughCrossing::Lost;
+  out.direction = bs->wi;
+  if (!bs->transmission) return RoughCrossing::Back;
+  out.weight = weight;
+  out.direction_pdf = bs->pdf;
+  return RoughCrossing::Out;
+}
+
+// Entry and exit 1/eta^2 radiance factors cancel and are omitted.
+bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& settings,
+                      const sss::MixtureWalkStep<3>& step, const RGB& initial, Sampler& sampler,
+                      SubsurfaceExit& out) const {
+  using Boundary = SubsurfaceParams::Boundary;
+  const SurfaceHit& in = entry.hit;
+  Vec3 dir;
+  if (!entry_direction(entry, sampler, dir)) return false;
   Vec3 start = in.p, start_n = in.ng;
   SurfaceHit last;  // the boundary the latest flight was traced to: where a walk ends
   auto tracer = [&](Vec3 o, Vec3 d, double max_t) {
@@ -347,32 +385,9 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
       return true;
     }
     if (const BoundaryAlphas alpha = roughness_.at(last); boundary_ == Boundary::Dielectric && alpha.rough()) {
-      // A rough boundary: the rough dielectric seen from inside. The lights outside are
-      // sampled through it here (at every crossing, internal reflections included), and
-      // it is sampled for the way on: out, weighed against those light samples
-      // (direction_pdf), or back in. Its 1/eta^2 radiance factor is omitted as at the
-      // entry: a transmission from inside carries eta^2 (Veach 1997, sec. 5.2), times
-      // eta_scale = 1/eta^2.
-      BSDF b;
-      b.type = BSDF::Type::Dielectric;
-      b.n = ns;
-      b.eta = eta_;
-      b.alpha_x = alpha.x;
-      b.alpha_y = alpha.y;
-      out.gathered += weight * entry.light_through(res.exit_p, res.exit_n, b, -d, sampler) / (eta_ * eta_);
-      const float u_lobe = sampler.uniform(), u1 = sampler.uniform(), u2 = sampler.uniform();
-      const auto bs = bsdf_sample(b, -d, u_lobe, {u1, u2});
-      if (!bs) return false;  // a microfacet sample lost below the surface
-      if (!shading_side_agrees(res.exit_n, ns, bs->wi)) return false;
-      weight *= bs->weight * bs->eta_scale;
-      if (!weight.is_finite() || weight.is_black()) return false;
-      if (bs->transmission) {
-        out.weight = weight;
-        out.direction = bs->wi;
-        out.direction_pdf = bs->pdf;
-        return true;
-      }
-      dir = bs->wi;
+      const RoughCrossing crossing = cross_rough_boundary(entry, res, ns, alpha, weight, sampler, out);
+      if (crossing != RoughCrossing::Back) return crossing == RoughCrossing::Out;
+      dir = out.direction;
       start = res.exit_p;
       start_n = res.exit_n;
       continue;

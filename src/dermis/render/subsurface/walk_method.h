@@ -144,6 +144,14 @@ class WalkMethod {
   // initial: the throughput the walk starts with (1, or one channel's).
   bool walk(const SubsurfaceEntry& entry, const sss::WalkSettings& settings, const sss::MixtureWalkStep<3>& step,
             const RGB& initial, Sampler& sampler, SubsurfaceExit& out) const;
+  // The walk's first direction into the medium; false: none (no light).
+  bool entry_direction(const SubsurfaceEntry& entry, Sampler& sampler, Vec3& dir) const;
+  // A walk that met a rough `dielectric` boundary (res): it left (out: direction, weight,
+  // direction_pdf), reflected back in (out.direction: the way on), or was lost; `weight`
+  // is the walk's, updated.
+  enum class RoughCrossing { Out, Back, Lost };
+  RoughCrossing cross_rough_boundary(const SubsurfaceEntry& entry, const sss::WalkResult& res, Vec3 ns,
+                                     BoundaryAlphas alpha, RGB& weight, Sampler& sampler, SubsurfaceExit& out) const;
   // Whether the walks of this entry sample light through the smooth `dielectric` boundary
   // at their scattering events (refracted_light.h): the boundary is smooth everywhere and
   // the integrator offers the lights.
