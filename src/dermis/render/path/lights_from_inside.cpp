@@ -92,7 +92,7 @@ float light_density_from_inside(const RenderScene& sc, Vec3 y, Vec3 w) {
   return density;
 }
 
-bool key_light_direction(const RenderScene& sc, Vec3 y, Vec3& toward) {
+std::optional<Vec3> key_light_centre(const RenderScene& sc) {
   Vec3 sum(0, 0, 0);
   double weight = 0;
   for (const Light& l : sc.lights) {
@@ -102,8 +102,13 @@ bool key_light_direction(const RenderScene& sc, Vec3 y, Vec3& toward) {
     sum += centre * float(power);
     weight += power;
   }
-  if (!(weight > 0)) return false;
-  const Vec3 d = sum / float(weight) - y;
+  if (!(weight > 0)) return std::nullopt;
+  return sum / float(weight);
+}
+
+bool key_light_direction(const std::optional<Vec3>& centre, Vec3 y, Vec3& toward) {
+  if (!centre) return false;
+  const Vec3 d = *centre - y;
   if (!(length(d) > 0)) return false;
   toward = normalize(d);
   return true;

@@ -5,6 +5,8 @@
 // drawing, and the emission met along a direction from the boundary.
 #pragma once
 
+#include <optional>
+
 #include "dermis/core/rgb.h"
 #include "dermis/core/vec.h"
 #include "dermis/render/path_counters.h"
@@ -28,8 +30,10 @@ bool sample_light_from_inside(const RenderScene& sc, Vec3 y, float u1, float u2,
 // times its density.
 float light_density_from_inside(const RenderScene& sc, Vec3 y, Vec3 w);
 
-// The unit direction from y toward the centre of the finite lights the walks sample
-// (weighted by their power); false where there are none.
-bool key_light_direction(const RenderScene& sc, Vec3 y, Vec3& toward);
+// The centre of the finite lights the walks sample, weighted by their power (once per
+// scene state); none where there are none.
+std::optional<Vec3> key_light_centre(const RenderScene& sc);
+// The unit direction from y toward that centre; false where there is none.
+bool key_light_direction(const std::optional<Vec3>& centre, Vec3 y, Vec3& toward);
 
 }  // namespace dermis

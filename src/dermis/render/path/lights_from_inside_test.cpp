@@ -5,12 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <random>
-
-#include "dermis/core/warp.h"
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
+#include "support/direction_density.h"
 
 namespace dermis {
 namespace {
@@ -36,30 +33,10 @@ Shape "sphere"
   auto sc = build_render_scene(parse_scene_string(scene), diag);
   ASSERT_TRUE(lights_offered_inside(*sc, -1));
   const Vec3 y(0.1f, 0.2f, 0.3f);
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<float> u01(0, 1);
-  const int N = 400000;
-  double sum = 0, sum2 = 0, support = 0, support2 = 0;
-  for (int i = 0; i < N; ++i) {
-    const Vec3 w = sample_uniform_sphere({u01(rng), u01(rng)});
-    const double x = 4 * kPiD * light_density_from_inside(*sc, y, w), in = x > 0 ? 4 * kPiD : 0.0;
-    sum += x, sum2 += x * x, support += in, support2 += in * in;
-  }
-  const double mean = sum / N, se = std::sqrt((sum2 / N - mean * mean) / N);
-  EXPECT_NEAR(mean, 1.0, 4 * se) << "the density's integral";
-  const double solid_angle = support / N, solid_angle_se = std::sqrt((support2 / N - solid_angle * solid_angle) / N);
-  double inv = 0, inv2 = 0;
-  int drawn = 0;
-  for (int i = 0; i < N; ++i) {
-    Vec3 w;
-    float p = 0;
-    if (!sample_light_from_inside(*sc, y, u01(rng), u01(rng), w, p)) continue;
-    ++drawn;
-    inv += 1 / double(p), inv2 += 1 / (double(p) * p);
-  }
-  EXPECT_EQ(drawn, N);  // no light here that the walks do not sample
-  const double mean_inv = inv / N, inv_se = std::sqrt((inv2 / N - mean_inv * mean_inv) / N);
-  EXPECT_NEAR(mean_inv, solid_angle, 4 * std::hypot(inv_se, solid_angle_se)) << "the lights' solid angle";
+  // Every draw succeeds: no light here that the walks do not sample.
+  testing::expect_density_and_its_sampler(
+      [&](Vec3 w) { return light_density_from_inside(*sc, y, w); },
+      [&](float u1, float u2, Vec3& w, float& p) { return sample_light_from_inside(*sc, y, u1, u2, w, p); }, 11);
 }
 
 }  // namespace

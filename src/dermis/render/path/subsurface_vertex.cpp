@@ -195,7 +195,9 @@ VertexOutcome SubsurfaceVertex::exit() {
   auto emission = [&](Vec3 x, Vec3 n, Vec3 w) {
     return emission_seen(sc, Ray{offset_ray_origin(x, n, w), w}, ctx_.counters);
   };
-  auto key_direction = [&](Vec3 y, Vec3& toward) { return key_light_direction(sc, y, toward); };
+  const bool offered_inside = lights_offered_inside(sc, st_.medium);
+  const std::optional<Vec3> key_centre = offered_inside ? key_light_centre(sc) : std::nullopt;
+  auto key_direction = [&](Vec3 y, Vec3& toward) { return key_light_direction(key_centre, y, toward); };
   const LightsFromInside lights_inside{sample_light, light_density, emission, key_direction};
   // The camera's first entry averages several exits (below): the scene's
   // subsurfacesamples through the exit lobe, or more (a walk with one colour channel per
@@ -212,7 +214,7 @@ VertexOutcome SubsurfaceVertex::exit() {
                         strategy_,
                         first_entry_exits > 0 ? 0 : -1,
                         exit_light_none_};
-  if (lights_offered_inside(sc, st_.medium)) entry.lights_from_inside = &lights_inside;
+  if (offered_inside) entry.lights_from_inside = &lights_inside;
   if (first_entry_ && ctx_.start.subsurface_record && ctx_.start.subsurface_record->material < 0)
     ctx_.start.subsurface_record->material = mat_.subsurface;
   // The probes' exits at the camera's first entry are one stratified sequence of the

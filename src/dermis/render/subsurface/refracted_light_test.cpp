@@ -6,12 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 
 #include "dermis/core/frame.h"
 #include "dermis/core/warp.h"
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
+#include "support/direction_density.h"
 #include "support/lit_sphere_scene.h"
 #include "support/pixel_statistics.h"
 
@@ -78,28 +78,9 @@ TEST(RefractedLight, TheDensityIntegratesToOneAndTheSamplerDrawsByIt) {
   const LightsFromInside lights{sample, light_density, emission, key};
   const RefractedLight technique(lights, eta);
   const Vec3 y(0, 0, -1);
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<float> u01(0, 1);
-  const int N = 400000;
-  double sum = 0, sum2 = 0, support = 0, support2 = 0;
-  for (int i = 0; i < N; ++i) {
-    const Vec3 v = sample_uniform_sphere({u01(rng), u01(rng)});
-    const double x = 4 * kPiD * technique.density(y, n, v), in = x > 0 ? 4 * kPiD : 0.0;
-    sum += x, sum2 += x * x, support += in, support2 += in * in;
-  }
-  const double mean = sum / N, se = std::sqrt((sum2 / N - mean * mean) / N);
-  EXPECT_NEAR(mean, 1.0, 4 * se) << "the density's integral";
-  const double solid_angle = support / N, solid_angle_se = std::sqrt((support2 / N - solid_angle * solid_angle) / N);
-  double inv = 0, inv2 = 0;
-  for (int i = 0; i < N; ++i) {
-    Vec3 v;
-    float p = 0;
-    ASSERT_TRUE(technique.sample(y, n, u01(rng), u01(rng), v, p));
-    EXPECT_NEAR(p, technique.density(y, n, v), 1e-3f * p);
-    inv += 1 / double(p), inv2 += 1 / (double(p) * p);
-  }
-  const double mean_inv = inv / N, inv_se = std::sqrt((inv2 / N - mean_inv * mean_inv) / N);
-  EXPECT_NEAR(mean_inv, solid_angle, 4 * std::hypot(inv_se, solid_angle_se)) << "the support's solid angle";
+  testing::expect_density_and_its_sampler(
+      [&](Vec3 v) { return technique.density(y, n, v); },
+      [&](float u1, float u2, Vec3& v, float& p) { return technique.sample(y, n, u1, u2, v, p); }, 7);
 }
 
 // The walk behind a smooth dielectric with light sampled through it and without: the same
