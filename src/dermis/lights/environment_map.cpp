@@ -51,6 +51,7 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<float> pixels,
         width, height));
   std::vector<float> weight(std::size_t(width) * height);
   double sum = 0, solid_angle = 0;
+  Vec3 arrival(0, 0, 0);
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       const Vec2 uv{(float(x) + 0.5f) / float(width), (float(y) + 0.5f) / float(height)};
@@ -65,9 +66,11 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<float> pixels,
       weight[std::size_t(y) * width + x] = lum * da;
       sum += double(lum) * da;
       solid_angle += da;
+      arrival += uv_to_direction(uv) * (lum * da);
     }
   }
   average_ = solid_angle > 0 ? float(sum / solid_angle) : 0.0f;
+  mean_arrival_ = sum > 0 ? arrival / float(sum) : Vec3(0, 0, 0);
   distribution_ = Distribution2D(weight, std::size_t(width), std::size_t(height));
 }
 

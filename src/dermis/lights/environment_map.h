@@ -36,6 +36,10 @@ class EnvironmentMap {
   float pdf(Vec3 w) const;
   // Mean radiance over the sphere of directions (for light selection).
   float average_luminance() const { return average_; }
+  // The mean direction light arrives from: the integral of luminance x w over the sphere
+  // over the integral of luminance (world space; its length, 0 to 1, says how concentrated
+  // the light is: 0 for a uniform map, near 1 for a sun alone).
+  Vec3 mean_arrival() const { return mean_arrival_; }
   // Illuminance at a surface facing light-space +z: the integral of luminance x cos
   // over the upper hemisphere (pbrt-v4's "illuminance" normalises it).
   // Computed when asked (16 points per pixel).
@@ -56,6 +60,7 @@ class EnvironmentMap {
   float scale_;
   Distribution2D distribution_;
   float average_ = 0;
+  Vec3 mean_arrival_{0, 0, 0};
 };
 
 // Clarberg 2008: the equal-area map of the unit square onto the unit sphere and back.

@@ -92,23 +92,34 @@ float light_density_from_inside(const RenderScene& sc, Vec3 y, Vec3 w) {
   return density;
 }
 
-std::optional<Vec3> key_light_centre(const RenderScene& sc) {
-  Vec3 sum(0, 0, 0);
-  double weight = 0;
+std::optional<KeyLight> key_light(const RenderScene& sc) {
+  Vec3 sum(0, 0, 0), arrival(0, 0, 0);
+  double weight = 0, env_power = 0;
   for (const Light& l : sc.lights) {
+    if (l.type == Light::Type::Infinite && l.environment) {
+      const double power = l.environment->average_luminance();  // per steradian, the same 4 pi for all
+      arrival += l.environment->mean_arrival() * float(power);
+      env_power += power;
+    }
     if (l.type != Light::Type::Triangle && l.type != Light::Type::Sphere) continue;
     const double power = light_power(l, 1);
     const Vec3 centre = l.type == Light::Type::Sphere ? l.center : (l.p0 + l.p1 + l.p2) / 3.0f;
     sum += centre * float(power);
     weight += power;
   }
-  if (!(weight > 0)) return std::nullopt;
-  return sum / float(weight);
+  if (weight > 0) return KeyLight{sum / float(weight), false};
+  if (env_power > 0 && length(arrival) >= kConcentratedArrival * float(env_power))
+    return KeyLight{normalize(arrival), true};
+  return std::nullopt;
 }
 
-bool key_light_direction(const std::optional<Vec3>& centre, Vec3 y, Vec3& toward) {
-  if (!centre) return false;
-  const Vec3 d = *centre - y;
+bool key_light_direction(const std::optional<KeyLight>& key, Vec3 y, Vec3& toward) {
+  if (!key) return false;
+  if (key->at_infinity) {
+    toward = key->at;
+    return true;
+  }
+  const Vec3 d = key->at - y;
   if (!(length(d) > 0)) return false;
   toward = normalize(d);
   return true;

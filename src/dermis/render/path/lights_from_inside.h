@@ -30,10 +30,19 @@ bool sample_light_from_inside(const RenderScene& sc, Vec3 y, float u1, float u2,
 // times its density.
 float light_density_from_inside(const RenderScene& sc, Vec3 y, Vec3 w);
 
-// The centre of the finite lights the walks sample, weighted by their power (once per
-// scene state); none where there are none.
-std::optional<Vec3> key_light_centre(const RenderScene& sc);
-// The unit direction from y toward that centre; false where there is none.
-bool key_light_direction(const std::optional<Vec3>& centre, Vec3 y, Vec3& toward);
+// What a walk aims the plane of refraction at (refracted_light.h, the boundary facing it):
+// the centre of the finite lights the walks sample, weighted by their power; where there
+// are none, the mean direction of arrival of the environment maps' light when it comes
+// mostly from one side (a sun, a bright window: kConcentratedArrival). Once per scene state.
+struct KeyLight {
+  Vec3 at;  // a point, or a unit direction toward the light when at_infinity
+  bool at_infinity = false;
+};
+// The environment maps' mean direction of arrival is used from this length on (0 for light
+// arriving evenly from every side, 1 for a single direction).
+constexpr float kConcentratedArrival = 0.1f;
+std::optional<KeyLight> key_light(const RenderScene& sc);
+// The unit direction from y toward the key light; false where there is none.
+bool key_light_direction(const std::optional<KeyLight>& key, Vec3 y, Vec3& toward);
 
 }  // namespace dermis

@@ -196,8 +196,8 @@ VertexOutcome SubsurfaceVertex::exit() {
     return emission_seen(sc, Ray{offset_ray_origin(x, n, w), w}, ctx_.counters);
   };
   const bool offered_inside = lights_offered_inside(sc, st_.medium);
-  const std::optional<Vec3> key_centre = offered_inside ? key_light_centre(sc) : std::nullopt;
-  auto key_direction = [&](Vec3 y, Vec3& toward) { return key_light_direction(key_centre, y, toward); };
+  const std::optional<KeyLight> key = offered_inside ? key_light(sc) : std::nullopt;
+  auto key_direction = [&](Vec3 y, Vec3& toward) { return key_light_direction(key, y, toward); };
   const LightsFromInside lights_inside{sample_light, light_density, emission, key_direction};
   // The camera's first entry averages several exits (below): the scene's
   // subsurfacesamples through the exit lobe, or more (a walk with one colour channel per

@@ -33,8 +33,9 @@ struct LightsFromInside {
   // The emission reaching the boundary point x (outward normal n) from direction w
   // outside: the first surface along w if it emits, or the lights at infinity.
   FunctionRef<RGB(Vec3 x, Vec3 n, Vec3 w)> emission;
-  // The unit direction from y toward the finite lights sampled (their centre, weighted by
-  // power); false where there are none (environment maps alone).
+  // The unit direction from y toward the lights sampled, to aim the plane of refraction
+  // (the finite lights' centre weighted by power, or an environment map's sun:
+  // lights_from_inside.h, KeyLight); false where there is none.
   FunctionRef<bool(Vec3 y, Vec3& toward)> key_direction;
 };
 

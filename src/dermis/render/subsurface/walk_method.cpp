@@ -48,17 +48,28 @@ float refracted_light_chance(const sss::MixtureWalkStep<3>& step, const SurfaceH
   return std::clamp(float(transmittance) / kRefractedLightFullTransmittance, kRefractedLightLeastChance, 1.0f);
 }
 
-// The plane light is refracted through at the scattering event y: the boundary's outward
-// normal where a ray from y toward the finite lights leaves the object (the part of the
-// boundary that faces them, which on a curved object turns away from the entry's), or
-// along the entry normal where there are none; else the entry normal.
-Vec3 refracted_light_normal(const SubsurfaceEntry& entry, Vec3 y) {
+// The plane light is refracted through at the scattering event y, a function of y alone:
+// - toward the key light (lights_from_inside.h, KeyLight): a ray from y toward it finds the
+//   boundary that faces it (normal n0); the flight that refracts toward it through that
+//   plane finds where it really leaves, whose normal is taken: one step of the search for
+//   the point where the path from y refracts toward the light (Walter et al. 2009, sec. 4,
+//   which solves it by Newton's method); on a curved object it turns the plane toward the
+//   part of the boundary the light comes through;
+// - without a key light: the boundary's normal where a ray along the entry normal leaves;
+// - else (no such boundary ahead) the entry normal.
+Vec3 refracted_light_normal(const SubsurfaceEntry& entry, Vec3 y, float eta) {
   Vec3 toward = entry.hit.ng;
-  entry.lights_from_inside->key_direction(y, toward);
+  const bool key = entry.lights_from_inside->key_direction(y, toward);
   SurfaceHit exit;
-  if (entry.tracer.first_boundary(Ray{y, toward}, exit) && entry.tracer.contains(exit) && dot(exit.ng, toward) > 0)
+  if (!entry.tracer.first_boundary(Ray{y, toward}, exit) || !entry.tracer.contains(exit) || !(dot(exit.ng, toward) > 0))
+    return entry.hit.ng;
+  const Vec3 n0 = normalize(exit.ng);
+  if (!key) return n0;
+  const std::optional<Vec3> flight = refracted_in(toward, n0, eta);
+  if (flight && entry.tracer.first_boundary(Ray{y, *flight}, exit) && entry.tracer.contains(exit) &&
+      dot(exit.ng, *flight) > 0 && dot(exit.ng, toward) > 0)
     return normalize(exit.ng);
-  return entry.hit.ng;
+  return n0;
 }
 // A walk leaving the surface at a smaller cosine to its normal starts off the surface
 // (WalkMethod::walk): along its line, the surface offset's depth lies up to ten offsets on.
@@ -209,7 +220,7 @@ RGB WalkMethod::refracted_light_at(const SubsurfaceEntry& entry, const Refracted
   const float chance = refracted_light_chance(step, plane, y);
   if (chance < 1 && !(sampler.uniform() < chance)) return RGB(0);
   const float u1 = sampler.uniform(), u2 = sampler.uniform();
-  const Vec3 n_ref = refracted_light_normal(entry, y);
+  const Vec3 n_ref = refracted_light_normal(entry, y, eta_);
   Vec3 v;
   float p_light = 0;
   if (!light.sample(y, n_ref, u1, u2, v, p_light)) return RGB(0);
@@ -401,9 +412,10 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
       // Right after a scattering event whose light was sampled through the boundary: the
       // emission met next is weighed against that sample.
       if (refracted_light && res.from_collision)
-        out.emission_weight = light->walk_weight(res.last_collision, refracted_light_normal(entry, res.last_collision),
-                                                 d, henyey_greenstein(dot(res.last_incoming, d), float(step.g())),
-                                                 refracted_light_chance(step, in, res.last_collision));
+        out.emission_weight =
+            light->walk_weight(res.last_collision, refracted_light_normal(entry, res.last_collision, eta_), d,
+                               henyey_greenstein(dot(res.last_incoming, d), float(step.g())),
+                               refracted_light_chance(step, in, res.last_collision));
       return true;
     }
     // Internal reflection: the walk goes on from the boundary.
