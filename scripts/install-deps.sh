@@ -14,6 +14,7 @@ packages=(
   python3-numpy python3-matplotlib python3-pil python3-openimageio
   python3-dev pybind11-dev python3-pytest
   libopenmpi-dev openmpi-bin
+  libcpp-httplib-dev
 )
 
 missing=()

@@ -8,10 +8,14 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
+#include <thread>
 
 #include "cli_checks.h"
+#include "dermis/preview/live_image.h"
+#include "dermis/preview/preview_server.h"
 #include "dermis/render/checkpoint.h"
 #include "dermis/render/film.h"
 #include "dermis/render/image.h"
@@ -20,6 +24,7 @@
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/gzip_file.h"
 #include "dermis/scene/parser.h"
+#include "scene_watcher.h"
 
 namespace dermis::app {
 
@@ -135,6 +140,18 @@ void add_render_options(CLI::App& cmd, RenderArgs& args) {
                  "with --confine (implied), also allow files under this directory (repeatable)")
       ->allow_extra_args(false)
       ->check(CLI::ExistingDirectory);
+  cmd.add_option("--preview", args.preview_port,
+                 "serve a live preview of the render at http://127.0.0.1:PORT/ (no PORT or 0: a free port, printed "
+                 "as 'preview: URL'); after the render it shows the image until Ctrl-C (docs/preview.md)")
+      ->expected(0, 1)
+      ->default_str("0")
+      ->check(CLI::Range(0, 65535));
+  cmd.add_option("--preview-bind", args.preview_bind,
+                 "the address the preview listens on (default 127.0.0.1, this machine only; another address lets "
+                 "other machines see the picture, with a warning)");
+  cmd.add_flag("--watch", args.watch,
+               "render again when the scene file, a file it includes or a mesh or image it names changes "
+               "(until Ctrl-C); a scene that no longer loads keeps the last image");
 }
 
 namespace {
@@ -275,9 +292,26 @@ void print_render_header(const RenderArgs& a, const RenderScene& scene, const Re
       scene.shapes.size(), scene.lights.size(), group.size() > 1 ? fmt::format(", {} processes", group.size()) : "");
 }
 
-}  // namespace
+// What a live render (--preview, --watch) adds to one render of the scene.
+struct LiveRender {
+  LiveImage* image = nullptr;                 // the preview's picture, if any
+  const std::atomic<bool>* cancel = nullptr;  // stops the render (else the stop signals do)
+  // Told the files the scene read (the main file first), whether or not it loaded.
+  std::function<void(const std::vector<std::string>&)> scene_read;
+  // The render was stopped to begin again: nothing is written.
+  std::function<bool()> restarting;
+};
+// render_once's status when it was stopped to begin again.
+constexpr int kRestarting = -1;
 
-int run_render(const RenderArgs& a, const RenderJob& job) {
+// Loads, prepares, renders and writes the scene once; returns the exit status (or kRestarting).
+int render_once(const RenderArgs& args, const RenderJob& job, const LiveRender& live) {
+  RenderArgs a = args;
+  std::vector<std::string> named_files;
+  if (live.scene_read) {
+    named_files.push_back(std::filesystem::absolute(a.scene).string());
+    a.file_access.named_files = &named_files;
+  }
   ProcessGroup& group = job.group ? *job.group : single_process();
   const bool root = group.is_root();
   const bool quiet = a.quiet || !root;  // one progress bar and summary: rank 0's
@@ -302,7 +336,13 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
                         const std::string& stage, double fraction) { (*display)(stage, fraction); };
   std::optional<std::string> error = load_scene(a, program, root, load, desc, scene);
   load.progress = nullptr;  // its display is not drawn to after this point
-  if (failed_somewhere(group, error)) return g_interrupted ? 130 : 2;
+  if (live.scene_read) live.scene_read(named_files);
+  // A step's failure: shown on the preview's page too.
+  auto failed = [&](const std::optional<std::string>& e) {
+    if (e && live.image) live.image->fail(*e);
+    return failed_somewhere(group, e);
+  };
+  if (failed(error)) return g_interrupted ? 130 : 2;
 
   // Preparing: together (the group shares the tables and the point clouds).
   PreparationReport preparation;
@@ -333,19 +373,19 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
   // one of the preparation's exchanges (table or point-cloud shares), not in the agreement
   // below, and would wait for ever. With more than one process the job stops here.
   if (error && group.size() > 1) throw RankCannotContinue(*error);
-  if (failed_somewhere(group, error)) return 2;
+  if (failed(error)) return 2;
 
   // The output: rank 0 writes it.
   const std::string out = a.output.empty() ? desc.film.filename : a.output;
   std::string ext = std::filesystem::path(out).extension().string();
   for (char& c : ext) c = char(std::tolower(c));
   if (root) error = check_output(a, program, out, ext);
-  if (failed_somewhere(group, error)) return 2;
+  if (failed(error)) return 2;
 
   std::optional<Film> resumed;
   CheckpointKey key;
   error = open_checkpoints(a, program, group, desc, *scene, key, resumed);
-  if (failed_somewhere(group, error)) return 2;
+  if (failed(error)) return 2;
 
   RenderOptions opt = render_options(a, job, desc, group);
   const PixelBounds pixels = film_pixel_bounds(scene->film);
@@ -375,15 +415,106 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
     };
   }
 
+  if (live.image) {
+    live.image->begin_render(pixels.width(), pixels.height(), opt.spp, total, scene->film.exposure_scale);
+    opt.tile_rendered = [&live](const Film& film, int x0, int y0, int x1, int y1) {
+      live.image->copy_tile(film, x0, y0, x1, y1);
+    };
+    opt.progress = [&progress, &live](int64_t n) {
+      progress.advance(n);
+      live.image->add_samples(n);
+    };
+    if (opt.adaptive.enabled())
+      opt.adaptive_progress = [&progress, &live](int64_t converged, int64_t pixels) {
+        progress.set_note(fmt::format("{:.1f}% of pixels converged", 100.0 * double(converged) / double(pixels)));
+        live.image->set_converged(double(converged) / double(pixels));
+      };
+  }
+  if (live.cancel) opt.cancel = live.cancel;
+
   if (!quiet) print_render_header(a, *scene, opt, group);
   RenderResult r = render_image(*scene, opt);  // stops at once if a stop signal came during preparation
   for (int s : stop_signals) std::signal(s, SIG_DFL);
   progress.finish();
+  if (live.image) live.image->finish(r.interrupted);
+  if (live.restarting && live.restarting()) return kRestarting;
   // Rank 0 holds the image. The others wait until it is written (mpirun ends the job
   // as soon as one rank exits with a non-zero status) and exit with its status.
   int64_t status = root ? write_and_report(a, job, group, out, ext, r, preparation, opt) : 0;
   group.sum_all(std::span<int64_t>(&status, 1));
   return int(status);
+}
+
+bool is_loopback(const std::string& address) {
+  return address == "localhost" || address == "::1" || address.rfind("127.", 0) == 0;
+}
+
+// Until a stop signal, or the watcher saw a change.
+void wait_for_stop_or_change(const std::vector<int>& stop_signals, const SceneWatcher* watcher) {
+  for (int s : stop_signals) std::signal(s, on_stop_signal);
+  while (!g_interrupted && !(watcher && watcher->changed())) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  for (int s : stop_signals) std::signal(s, SIG_DFL);
+}
+
+}  // namespace
+
+int run_render(const RenderArgs& a, const RenderJob& job) {
+  if (a.preview_port < 0 && !a.watch) return render_once(a, job, {});
+  const std::string& program = job.program;
+  if (job.group && job.group->size() > 1) {
+    if (job.group->is_root()) fmt::print(stderr, "{}: --preview and --watch work with one process only\n", program);
+    return 2;
+  }
+  const std::vector<int> stop_signals = job.stop_signals.empty() ? std::vector<int>{SIGINT} : job.stop_signals;
+  std::optional<LiveImage> image;
+  std::unique_ptr<PreviewServer> server;
+  if (a.preview_port >= 0) {
+    image.emplace(a.scene);
+    try {
+      server = std::make_unique<PreviewServer>(*image, a.preview_bind, a.preview_port);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "{}: {}\n", program, e.what());
+      return 2;
+    }
+    std::signal(SIGPIPE, SIG_IGN);  // a client gone mid-answer is the server's error to handle, not the end
+    if (!is_loopback(a.preview_bind))
+      fmt::print(stderr,
+                 "{}: warning: the preview listens on {}: anyone who can reach this machine there can see the "
+                 "picture (the default, 127.0.0.1, is this machine only)\n",
+                 program, a.preview_bind);
+    fmt::print(stderr, "preview: {}\n", server->url());
+    std::fflush(stderr);
+  }
+  std::atomic<bool> cancel{false};
+  std::optional<SceneWatcher> watcher;
+  if (a.watch) watcher.emplace(g_interrupted, cancel);
+  LiveRender live;
+  live.image = image ? &*image : nullptr;
+  if (watcher) {
+    live.cancel = &cancel;
+    live.scene_read = [&watcher](const std::vector<std::string>& files) { watcher->watch(files); };
+    live.restarting = [&watcher] { return watcher->changed(); };
+  }
+  for (;;) {
+    if (image) image->begin_loading();
+    const int status = render_once(a, job, live);
+    if (status == kRestarting || (watcher && watcher->changed() && !g_interrupted)) {
+      if (!a.quiet) fmt::print(stderr, "dermis: {} changed: rendering it again\n", a.scene);
+      continue;
+    }
+    if (status == 130 || g_interrupted) return status;
+    // The last picture stays on the page: without --watch until a stop signal (a scene that
+    // did not load ends at once), with it until a stop signal or a change.
+    if (!watcher && (status != 0 || !server)) return status;
+    if (!a.quiet)
+      fmt::print(
+          stderr, "dermis: {}; Ctrl-C ends{}\n",
+          watcher ? "watching the scene's files" : fmt::format("the preview shows the image at {}", server->url()),
+          server && watcher ? " (the preview follows)" : "");
+    wait_for_stop_or_change(stop_signals, watcher ? &*watcher : nullptr);
+    if (g_interrupted) return status;
+    if (!a.quiet) fmt::print(stderr, "dermis: {} changed: rendering it again\n", a.scene);
+  }
 }
 
 namespace {
@@ -420,9 +551,10 @@ int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& gr
   }
 
   double mrays = r.seconds > 0 ? double(r.rays) / r.seconds * 1e-6 : 0;
-  fmt::print(stderr, "dermis: wrote {}{}{} in {:.3f} s ({:.2f} Mrays/s, {} samples)\n", out,
-             ext == ".exr" && !a.no_png ? " and its .png" : "", maps_path.empty() ? "" : " and " + maps_path, r.seconds,
-             mrays, r.samples);
+  if (!(a.quiet && a.preview_port >= 0))  // with the preview, -q leaves the URL and the errors alone
+    fmt::print(stderr, "dermis: wrote {}{}{} in {:.3f} s ({:.2f} Mrays/s, {} samples)\n", out,
+               ext == ".exr" && !a.no_png ? " and its .png" : "", maps_path.empty() ? "" : " and " + maps_path,
+               r.seconds, mrays, r.samples);
   if (!r.subsurface_choices.empty() && !a.quiet) {
     fmt::print(
         stderr,

@@ -35,6 +35,11 @@ struct RenderArgs {
   std::string checkpoint, resume;  // film state files (render/checkpoint.h)
   double checkpoint_interval = 60;
   FileAccessOptions file_access;  // --confine, --allow-path (scene/file_access.h)
+  // The live preview (preview/preview_server.h): its port (0: a free one; negative: none)
+  // and address; --watch: render again when a file the scene read changes.
+  int preview_port = -1;
+  std::string preview_bind = "127.0.0.1";
+  bool watch = false;
 };
 
 // `--subsurface pbrt-v4`: the model pbrt-v4 renders a `subsurface` material with, its

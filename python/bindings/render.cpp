@@ -8,6 +8,8 @@
 #include <optional>
 
 #include "bindings.h"
+#include "dermis/preview/live_image.h"
+#include "dermis/preview/preview_server.h"
 #include "dermis/render/film.h"
 #include "dermis/render/point_cloud_prepass.h"
 #include "dermis/render/renderer.h"
@@ -82,9 +84,18 @@ std::shared_ptr<RenderScene> prepared_scene(Scene& s, uint64_t seed, SamplerKind
   return built;
 }
 
+// preview=: False or None (none), True (a free port) or a port number.
+std::optional<int> preview_port(const py::object& preview) {
+  if (preview.is_none()) return std::nullopt;
+  if (py::isinstance<py::bool_>(preview)) return preview.cast<bool>() ? std::optional<int>(0) : std::nullopt;
+  const int port = preview.cast<int>();
+  if (port < 0 || port > 65535) throw py::value_error(fmt::format("preview: a port is 0 to 65535, got {}", port));
+  return port;
+}
+
 py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed, int threads, double time_limit,
                   std::optional<std::string> sampler, const py::object& progress, bool stats,
-                  std::optional<double> noise_threshold, std::optional<int> min_spp) {
+                  std::optional<double> noise_threshold, std::optional<int> min_spp, const py::object& preview) {
   BusyGuard busy(s);
   RenderOptions opt;
   opt.spp = spp.value_or(s.desc.settings.spp);
@@ -112,6 +123,26 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
   std::atomic<int64_t> done{0};
   int64_t reported = -1;
   opt.progress = [&done](int64_t n) { done += n; };
+  // The live preview (preview/preview_server.h) while this render runs, on loopback.
+  std::optional<LiveImage> live;
+  std::unique_ptr<PreviewServer> server;
+  if (const std::optional<int> port = preview_port(preview)) {
+    live.emplace("dermis.render");
+    server = std::make_unique<PreviewServer>(*live, "127.0.0.1", *port);
+    py::module_::import("sys").attr("stderr").attr("write")(fmt::format("preview: {}\n", server->url()));
+    live->begin_render(px.width(), px.height(), opt.spp, total, scene->film.exposure_scale);
+    opt.tile_rendered = [&live](const Film& film, int x0, int y0, int x1, int y1) {
+      live->copy_tile(film, x0, y0, x1, y1);
+    };
+    opt.progress = [&done, &live](int64_t n) {
+      done += n;
+      live->add_samples(n);
+    };
+    if (opt.adaptive.enabled())
+      opt.adaptive_progress = [&live](int64_t converged, int64_t pixels) {
+        live->set_converged(double(converged) / double(pixels));
+      };
+  }
   std::atomic<bool> cancel{false};
   opt.cancel = &cancel;
   RenderResult r;
@@ -125,6 +156,7 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
   };
   auto error = run_interruptible([&] { r = render_image(*scene, opt); }, cancel, poll);
   const double cpu_seconds = process_cpu_seconds() - cpu0;
+  if (live) live->finish(bool(error) || r.interrupted);
   if (!error && !progress.is_none() && reported != std::min(done.load(), total))
     progress(std::min(done.load(), total), total);
 
@@ -167,6 +199,7 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
     choices.append(d);
   }
   st["subsurface_choices"] = choices;
+  if (server) st["preview_url"] = server->url();
   if (error) {
     if (!error->matches(PyExc_KeyboardInterrupt)) throw *error;
     py::object e = py::reinterpret_borrow<py::object>(g_render_interrupted)(
@@ -193,7 +226,7 @@ void bind_render(py::module_& m) {
   m.def("render", &render, py::arg("scene"), py::kw_only(), py::arg("spp") = py::none(), py::arg("seed") = py::none(),
         py::arg("threads") = 0, py::arg("time_limit") = 0.0, py::arg("sampler") = py::none(),
         py::arg("progress") = py::none(), py::arg("stats") = false, py::arg("noise_threshold") = py::none(),
-        py::arg("min_spp") = py::none(),
+        py::arg("min_spp") = py::none(), py::arg("preview") = py::none(),
         R"(Renders a scene; returns a float32 NumPy array (height, width, 3) of linear RGB.
 
 spp: samples per pixel (default: scene.spp, the scene's Sampler).
@@ -221,6 +254,10 @@ noise_threshold: adaptive sampling (default: the scene's Sampler "noisethreshold
   spp is then the most a pixel takes.
 min_spp: with noise_threshold, the samples every pixel takes first (default: the
   scene's "minpixelsamples", else max(16, sqrt(spp)) rounded up to a multiple of 16).
+preview: True (a free port) or a port number: while the render runs, a page at
+  http://127.0.0.1:PORT/ shows the image as it converges (the URL is written to
+  sys.stderr as "preview: URL", and given in stats as preview_url); it stops when render()
+  returns. From a notebook: open the URL, or call render() in a thread (docs/preview.md).
 The GIL is released while rendering. Ctrl-C raises dermis.RenderInterrupted (a
 KeyboardInterrupt) whose .image is the partial image. The scene's assembly and
 preparation (BVH, albedo tables, point clouds) are kept for the next render until the

@@ -83,12 +83,16 @@ void write_exr(const std::string& path, const Image& img) {
   file.writePixels(img.height);
 }
 
-// libpng's part of write_png: false when libpng failed (its errors longjmp back here, so
-// this frame holds no C++ object: setjmp's rule).
-bool png_write_rgb8(png_structp png, png_infop info, std::FILE* f, int width, int height, const float* data,
-                    png_byte* row) {
+// libpng's part of write_png and encode_png: false when libpng failed (its errors longjmp
+// back here, so this frame holds no C++ object: setjmp's rule). Written to the file `f`,
+// else through `write` (with `sink` as libpng's io pointer).
+bool png_write_rgb8(png_structp png, png_infop info, std::FILE* f, png_rw_ptr write, void* sink, int width, int height,
+                    const float* data, png_byte* row) {
   if (setjmp(png_jmpbuf(png))) return false;
-  png_init_io(png, f);
+  if (f)
+    png_init_io(png, f);
+  else
+    png_set_write_fn(png, sink, write, nullptr);
   png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
@@ -110,13 +114,31 @@ void write_png(const std::string& path, int width, int height, const std::vector
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   std::vector<png_byte> row(3 * std::size_t(width));
-  const bool ok = info && png_write_rgb8(png, info, f.get(), width, height, data.data(), row.data());
+  const bool ok = info && png_write_rgb8(png, info, f.get(), nullptr, nullptr, width, height, data.data(), row.data());
   png_destroy_write_struct(&png, info ? &info : nullptr);
   if (!ok) throw std::runtime_error("libpng failed to write it");
   if (std::fclose(f.release()) != 0) throw std::runtime_error(std::strerror(errno));  // a full disk shows here
 }
 
+void append_png_bytes(png_structp png, png_bytep bytes, png_size_t n) {
+  static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(bytes), n);
+}
+
 }  // namespace
+
+std::string encode_png(int width, int height, const std::vector<float>& data) {
+  if (width <= 0 || height <= 0 || data.size() != 3 * std::size_t(width) * std::size_t(height))
+    throw std::invalid_argument(fmt::format("encode_png: {} values for {}x{} RGB pixels", data.size(), width, height));
+  std::string out;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  std::vector<png_byte> row(3 * std::size_t(width));
+  const bool ok =
+      info && png_write_rgb8(png, info, nullptr, append_png_bytes, &out, width, height, data.data(), row.data());
+  png_destroy_write_struct(&png, info ? &info : nullptr);
+  if (!ok) throw std::runtime_error("encode_png: libpng failed");
+  return out;
+}
 
 Image::Image(int w, int h, RGB fill) : width(w), height(h) {
   if (w < 0 || h < 0) throw std::invalid_argument(fmt::format("Image: negative size {}x{}", w, h));

@@ -53,4 +53,8 @@ Image read_image(const std::string& path);
 // (leaving no file behind).
 void write_image(const std::string& path, const Image& img);
 
+// A PNG in memory (8-bit RGB with an sRGB chunk) from sRGB-encoded values in [0, 1],
+// width x height x 3, row-major: what the preview serves (preview/).
+std::string encode_png(int width, int height, const std::vector<float>& data);
+
 }  // namespace dermis

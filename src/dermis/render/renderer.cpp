@@ -149,6 +149,7 @@ class ImageRender {
     rays_ += counters.rays;
     truncated_ += counters.truncated;
     pass_samples_ += taken;
+    if (opt_.tile_rendered && taken > 0) opt_.tile_rendered(film_, t.x0, t.y0, t.x1, t.y1);
     if (opt_.progress && taken > 0) opt_.progress(taken);
   }
 

@@ -55,6 +55,10 @@ struct RenderOptions {
   // checkpoint_interval seconds passed since the last call, and once at the end.
   std::function<void(const Film&)> checkpoint;
   double checkpoint_interval = 60;
+  // Called on the worker thread that has just rendered the tile [x0, x1) x [y0, y1) of
+  // the film (film pixels) in a pass, its pixels consistent and written by no other
+  // thread until the call returns: a live preview copies them (preview/live_image.h).
+  std::function<void(const Film&, int x0, int y0, int x1, int y1)> tile_rendered;
 };
 
 struct RenderResult {

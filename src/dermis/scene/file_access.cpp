@@ -21,7 +21,7 @@ fs::path resolved(const std::string& p) {
 }  // namespace
 
 FileAccess::FileAccess(const FileAccessOptions& options, const std::string& scene_dir)
-    : confined_(options.confined || !options.allowed_dirs.empty()) {
+    : confined_(options.confined || !options.allowed_dirs.empty()), named_files_(options.named_files) {
   if (!confined_) return;
   roots_.push_back(resolved(scene_dir).string());
   for (const std::string& d : options.allowed_dirs) roots_.push_back(resolved(d).string());
@@ -45,6 +45,7 @@ std::string FileAccess::roots_text(const std::vector<std::string>& roots) const 
 
 void FileAccess::check_read(const std::string& path, const std::string& as_written, const SourceLoc& at,
                             const std::string& what) const {
+  if (named_files_) named_files_->push_back(path);
   if (!confined_ || inside(path, roots_)) return;
   throw SceneError(at,
                    fmt::format("{} '{}' is outside the directories this scene may read ({}; --confine), at '{}' "

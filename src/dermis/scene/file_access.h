@@ -17,6 +17,9 @@ namespace dermis {
 struct FileAccessOptions {
   bool confined = false;
   std::vector<std::string> allowed_dirs;  // besides the scene's directory; implies confined
+  // Where set, every file the scene names to be read (resolved) is appended to it, before it
+  // is read and whether or not reading it succeeds: what `dermis render --watch` watches.
+  std::vector<std::string>* named_files = nullptr;
 };
 
 class FileAccess {
@@ -42,6 +45,7 @@ class FileAccess {
   std::string roots_text(const std::vector<std::string>& roots) const;
   bool confined_ = false;
   std::vector<std::string> roots_;  // canonical
+  std::vector<std::string>* named_files_ = nullptr;
 };
 
 }  // namespace dermis
