@@ -2,10 +2,12 @@
 """What the live preview costs the render: the same render (scene, samples, seed, threads)
 without and with `--preview`, while a client asks for the status and the image four times a
 second (as the page does), the two interleaved; the render stage's seconds ("wrote ... in X
-s") of each, and their ratio per pair (the machine is shared: pairs, not totals).
+s") of each and the process's CPU seconds (the server's included), and their ratios per
+pair (the machine is shared: pairs, not totals).
 
-Usage: python3 -m bench.preview_overhead BINARY SCENE [--reps 5] [--spp 64] [--threads 2]"""
+Usage: python3 -m bench.preview_overhead BINARY SCENE [--reps 5] [--spp 64] [--threads 2] [--res WxH]"""
 import argparse
+import os
 import re
 import statistics
 import subprocess
@@ -15,8 +17,10 @@ import time
 import urllib.request
 
 
-def render(binary, scene, out, spp, threads, preview):
+def render(binary, scene, out, spp, threads, preview, res=None):
     args = [binary, "render", scene, "--spp", str(spp), "--threads", str(threads), "-o", out, "--seed", "1"]
+    if res:
+        args += ["--res", res]
     if preview:
         args += ["--preview", "0"]
     proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
@@ -46,12 +50,13 @@ def render(binary, scene, out, spp, threads, preview):
 
     reader = threading.Thread(target=watch)
     reader.start()
-    proc.wait(timeout=3600)
+    _, _, usage = os.wait4(proc.pid, 0)  # the process's CPU time: the render's and the server's
+    proc.returncode = 0
     reader.join()
     m = next((re.search(r"wrote .* in ([0-9.]+) s", line) for line in lines if "wrote" in line), None)
     if not m:
         raise SystemExit("no 'wrote ... in X s' line:\n" + "".join(lines))
-    return float(m[1])
+    return float(m[1]), usage.ru_utime + usage.ru_stime
 
 
 def main():
@@ -61,18 +66,21 @@ def main():
     ap.add_argument("--reps", type=int, default=5)
     ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--res", help="WIDTHxHEIGHT, overriding the scene's")
     a = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         out = f"{tmp}/out.exr"
-        ratios, plain, live = [], [], []
+        ratios, cpu_ratios = [], []
         for i in range(a.reps):
             order = (False, True) if i % 2 == 0 else (True, False)
-            t = {p: render(a.binary, a.scene, out, a.spp, a.threads, p) for p in order}
-            plain.append(t[False]), live.append(t[True]), ratios.append(t[True] / t[False])
-            print(f"rep {i}: without {t[False]:.3f} s, with the preview watched {t[True]:.3f} s, "
-                  f"ratio {ratios[-1]:.4f}", flush=True)
-    print(f"median ratio {statistics.median(ratios):.4f} (min {min(ratios):.4f}, max {max(ratios):.4f}); "
-          f"median seconds {statistics.median(plain):.3f} without, {statistics.median(live):.3f} with")
+            t = {p: render(a.binary, a.scene, out, a.spp, a.threads, p, a.res) for p in order}
+            ratios.append(t[True][0] / t[False][0])
+            cpu_ratios.append(t[True][1] / t[False][1])
+            print(f"rep {i}: render seconds without {t[False][0]:.3f}, with the preview watched {t[True][0]:.3f} "
+                  f"(ratio {ratios[-1]:.4f}); process CPU seconds {t[False][1]:.2f}, {t[True][1]:.2f} "
+                  f"(ratio {cpu_ratios[-1]:.4f})", flush=True)
+    for name, r in (("render seconds", ratios), ("process CPU seconds", cpu_ratios)):
+        print(f"{name}: median ratio with/without {statistics.median(r):.4f} (min {min(r):.4f}, max {max(r):.4f})")
 
 
 if __name__ == "__main__":

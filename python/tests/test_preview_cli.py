@@ -103,3 +103,17 @@ def test_a_scene_that_does_not_load_ends_the_preview_without_watch(dermis_binary
     with PreviewProcess(dermis_binary, [str(scene), "-q"]) as p:
         assert p.proc.wait(timeout=30) == 2
     assert "scene.pbrt:1:" in p.stderr()
+
+
+def test_watch_follows_a_file_the_scene_includes(dermis_binary, tmp_path):
+    scene, material = tmp_path / "scene.pbrt", tmp_path / "material.pbrt"
+    material.write_text('Material "diffuse" "rgb reflectance" [0.7 0.3 0.2]\n')
+    scene.write_text(small_scene(0.7).replace('Material "diffuse" "rgb reflectance" [0.7 0.3 0.2]\n',
+                                              'Include "material.pbrt"\n'))
+    with PreviewProcess(dermis_binary, [str(scene), "--watch", "-q", "-o", str(tmp_path / "out.exr")]) as p:
+        p.wait_for(lambda s: s["state"] == "done" and s["render"] == 1, "the first render done")
+        red = centre_mean(p.get("image.png"))
+        material.write_text('Material "diffuse" "rgb reflectance" [0 0.3 0.2]\n')
+        p.wait_for(lambda s: s["state"] == "done" and s["render"] == 2, "rendered again")
+        assert centre_mean(p.get("image.png"))[0] < 0.5 * red[0]
+        assert p.interrupt() == 0

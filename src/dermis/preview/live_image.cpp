@@ -45,6 +45,7 @@ void LiveImage::begin_render(int width, int height, int spp, int64_t total_sampl
     ++pixels_.frame;
   }
   std::fill(pixels_.samples.begin(), pixels_.samples.end(), 0u);
+  taken_ = 0;
 }
 
 void LiveImage::copy_tile(const Film& film, int x0, int y0, int x1, int y1) {
@@ -70,6 +71,7 @@ void LiveImage::copy_tile(const Film& film, int x0, int y0, int x1, int y1) {
   if (film.width != pixels_.width || film.height != pixels_.height) return;  // not this render's film
   for (int y = y0; y < y1; ++y) {
     const std::size_t row = std::size_t(y) * pixels_.width, t = std::size_t(y - y0) * w;
+    for (int x = 0; x < w; ++x) taken_ += int64_t(samples[t + x]) - int64_t(pixels_.samples[row + x0 + x]);
     std::copy_n(&rgb[3 * t], 3 * w, &pixels_.rgb[3 * (row + x0)]);
     std::copy_n(&samples[t], w, &pixels_.samples[row + x0]);
     std::copy_n(&error[t], w, &pixels_.error[row + x0]);
@@ -109,10 +111,8 @@ LiveImage::Status LiveImage::status() const {
   s.elapsed = std::chrono::duration<double>((running ? Clock::now() : finished_) - started_).count();
   if (status_.state == State::Error || status_.state == State::Loading) s.elapsed = 0;
   const std::size_t pixels = pixels_.samples.size();
-  double taken = 0;
-  for (uint32_t n : pixels_.samples) taken += n;
-  s.samples_per_pixel = pixels > 0 ? taken / double(pixels) : 0;
   const int64_t done = std::min(done_, total_);
+  s.samples_per_pixel = pixels > 0 ? double(taken_) / double(pixels) : 0;
   s.progress = s.state == State::Done ? 1.0 : double(done) / double(total_);
   if (running && done > 0) s.eta = s.elapsed * double(total_ - done) / double(done);
   if (s.state == State::Done) s.eta = 0.0;

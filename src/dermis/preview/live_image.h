@@ -69,7 +69,9 @@ class LiveImage {
   mutable std::mutex mutex_;
   Status status_;
   Frame pixels_;
-  int64_t total_ = 0, done_ = 0;
+  int64_t total_ = 0, done_ = 0;  // the progress's pixel samples (skipped ones included)
+  int64_t taken_ = 0;              // the samples of pixels_
+
   double exposure_scale_ = 1;
   Clock::time_point started_{}, finished_{};
 };

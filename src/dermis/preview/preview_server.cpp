@@ -6,6 +6,7 @@
 #include <sys/socket.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -18,15 +19,44 @@
 
 namespace dermis {
 
+namespace {
+
+// Linear values to 8-bit sRGB codes: lround(255 linear_to_srgb(v)) without a power per
+// channel. A code's lower edge is the linear value of code - 1/2 (sRGB's curve inverted); a
+// table over 4096 bins of [0, 1] gives the code at a bin's start, and at most one edge
+// lies inside a bin (sRGB's steepest slope, 12.92, is 0.8 codes per bin).
+class Srgb8 {
+ public:
+  Srgb8() {
+    for (int i = 0; i < 255; ++i) edges_[i] = srgb_to_linear((float(i) + 0.5f) / 255.0f);
+    edges_[255] = INFINITY;
+    for (int b = 0; b <= kBins; ++b)
+      start_[b] = uint8_t(std::upper_bound(edges_.begin(), edges_.end() - 1, float(b) / kBins) - edges_.begin());
+  }
+  uint8_t operator()(float linear) const {
+    if (!(linear > 0)) return 0;  // and NaN
+    if (linear >= 1) return 255;
+    uint8_t code = start_[int(linear * kBins)];
+    if (linear >= edges_[code]) ++code;
+    return code;
+  }
+
+ private:
+  static constexpr int kBins = 4096;
+  std::array<float, 256> edges_{};
+  std::array<uint8_t, kBins + 1> start_{};
+};
+
+}  // namespace
+
 std::string preview_png(const LiveImage::Frame& frame, PreviewView view, float exposure_ev) {
   const std::size_t n = std::size_t(frame.width) * std::size_t(frame.height);
-  std::vector<float> encoded(3 * n);
+  if (n == 0) return encode_png(1, 1, {0, 0, 0}, kPreviewZlibLevel);
+  static const Srgb8 srgb8;
+  std::vector<uint8_t> encoded(3 * n);
   if (view == PreviewView::Image) {
     const float scale = std::exp2(std::clamp(exposure_ev, -20.0f, 20.0f));
-    for (std::size_t i = 0; i < 3 * n; ++i) {
-      const float v = frame.rgb[i] * scale;
-      encoded[i] = linear_to_srgb(std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f);
-    }
+    for (std::size_t i = 0; i < 3 * n; ++i) encoded[i] = srgb8(frame.rgb[i] * scale);
   } else {
     // A map as grey, 0 to its scale: the most samples, or the error's 99th percentile
     // (one firefly pixel would turn the rest black). Unknown error (fewer than 2 samples): black.
@@ -36,19 +66,18 @@ std::string preview_png(const LiveImage::Frame& frame, PreviewView view, float e
     float top = 0;
     if (view == PreviewView::Samples) {
       for (float v : value) top = std::max(top, v);
-    } else if (n > 0) {
+    } else {
       std::vector<float> sorted = value;
       auto at = sorted.begin() + std::ptrdiff_t(std::min(n - 1, std::size_t(0.99 * double(n))));
       std::nth_element(sorted.begin(), at, sorted.end());
       top = *at;
     }
     for (std::size_t i = 0; i < n; ++i) {
-      const float g = top > 0 ? linear_to_srgb(std::min(value[i] / top, 1.0f)) : 0.0f;
+      const uint8_t g = top > 0 ? srgb8(std::min(value[i] / top, 1.0f)) : 0;
       encoded[3 * i] = encoded[3 * i + 1] = encoded[3 * i + 2] = g;
     }
   }
-  if (n == 0) return encode_png(1, 1, {0, 0, 0});
-  return encode_png(frame.width, frame.height, encoded);
+  return encode_png(frame.width, frame.height, encoded, kPreviewZlibLevel);
 }
 
 namespace {
@@ -96,6 +125,7 @@ struct PreviewServer::Impl {
     uint64_t frame = ~uint64_t(0);
     float exposure = 0;
     std::chrono::steady_clock::time_point at{};
+    double seconds = 0;  // the encoding took
   };
   std::mutex encode_mutex;
   LiveImage::Frame frame;
@@ -109,14 +139,18 @@ struct PreviewServer::Impl {
     const auto now = std::chrono::steady_clock::now();
     const bool same_request = !e.png.empty() && e.exposure == exposure;
     // Asked again soon: the last PNG, though the image may have changed since (encoding
-    // at every request of every client would take the render's time).
-    if (same_request && std::chrono::duration<double>(now - e.at).count() < kPreviewEncodeInterval) return e.png;
+    // at every request of every client would take the render's time). Soon: within
+    // kPreviewEncodeInterval, or as long as it takes for the last encoding to be
+    // kPreviewEncodeShare of the time (a large image is refreshed less often).
+    const double interval = std::max(kPreviewEncodeInterval, e.seconds / kPreviewEncodeShare);
+    if (same_request && std::chrono::duration<double>(now - e.at).count() < interval) return e.png;
     image.frame_since(frame.frame, frame);
     if (same_request && e.frame == frame.frame) return e.png;  // nothing new
     e.png = preview_png(frame, view, exposure);
     e.frame = frame.frame;
     e.exposure = exposure;
     e.at = now;
+    e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - now).count();
     return e.png;
   }
 

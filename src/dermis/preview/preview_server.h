@@ -7,8 +7,9 @@
 //   /error.png    the estimated error per pixel (adaptive_sampling.h), over its 99th percentile
 //   /status.json  the progress facts (LiveImage::Status)
 // Anything else is 404. The PNGs are encoded on the server's threads, only when asked,
-// at most every kPreviewEncodeInterval for a changing image: the render's threads only
-// copy their tiles (LiveImage::copy_tile). cpp-httplib (Debian's libcpp-httplib-dev).
+// at most every kPreviewEncodeInterval for a changing image, and less often where encoding
+// would take more than kPreviewEncodeShare of a core: the render's threads only copy their
+// tiles (LiveImage::copy_tile). cpp-httplib (Debian's libcpp-httplib-dev).
 #pragma once
 
 #include <memory>
@@ -19,6 +20,11 @@
 namespace dermis {
 
 inline constexpr double kPreviewEncodeInterval = 0.25;  // seconds
+// At most this share of one core's time goes to encoding a view, however large the image.
+inline constexpr double kPreviewEncodeShare = 0.02;
+// zlib's level for the PNGs: 0, stored (loopback needs no small files; Huffman coding
+// alone took twice the time of the rest of the encoding at 1280 x 720).
+inline constexpr int kPreviewZlibLevel = 0;
 
 class PreviewServer {
  public:

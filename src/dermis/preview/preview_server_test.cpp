@@ -4,6 +4,7 @@
 #include <httplib.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <thread>
 
@@ -50,6 +51,28 @@ TEST(PreviewPng, TheImageIsToneMappedAtItsExposureAndTheMapsOverTheirScale) {
   const Image error = decode(preview_png(f, PreviewView::Error, 0), dir);
   EXPECT_NEAR(error.at(0, 0)[0], 1.0f, 1e-6f);  // the largest known error
   EXPECT_NEAR(error.at(1, 0)[0], 0.0f, 1e-6f);  // unknown: black
+}
+
+// The image's 8-bit codes (a table, not a power per channel) are sRGB's curve rounded, at
+// every value from 0 to beyond 1 (4000 of them, denser near 0 where the codes are closest).
+TEST(PreviewPng, TheCodesAreTheSrgbCurveRounded) {
+  test::TempDir dir;
+  LiveImage::Frame f;
+  f.width = 4000, f.height = 1;
+  for (int i = 0; i < f.width; ++i) {
+    const float v = 1.1f * std::pow(float(i) / float(f.width - 1), 2.5f);
+    f.rgb.insert(f.rgb.end(), {v, v, v});
+  }
+  f.samples.assign(f.width, 1), f.error.assign(f.width, 0.0f);
+  const Image img = decode(preview_png(f, PreviewView::Image, 0), dir);
+  int wrong = 0;
+  for (int i = 0; i < f.width; ++i) {
+    const float v = f.rgb[3 * i];
+    const long code = std::lround(255 * linear_to_srgb(std::min(v, 1.0f)));
+    const long read = std::lround(255 * linear_to_srgb(img.at(i, 0)[1]));  // the decoder linearizes
+    if (read != code && wrong++ < 5) ADD_FAILURE() << "value " << v << ": code " << read << ", not " << code;
+  }
+  EXPECT_EQ(wrong, 0);
 }
 
 TEST(PreviewStatus, IsJsonWithTheErrorEscaped) {

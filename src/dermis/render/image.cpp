@@ -7,6 +7,7 @@
 #include <ImfStringAttribute.h>
 #include <fmt/format.h>
 #include <png.h>
+#include <zlib.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -85,21 +86,31 @@ void write_exr(const std::string& path, const Image& img) {
 
 // libpng's part of write_png and encode_png: false when libpng failed (its errors longjmp
 // back here, so this frame holds no C++ object: setjmp's rule). Written to the file `f`,
-// else through `write` (with `sink` as libpng's io pointer).
+// else through `write` (with `sink` as libpng's io pointer); the rows from 8-bit `bytes`,
+// else from sRGB-encoded `floats` in [0, 1], rounded (through `row`). zlib_level < 0: zlib's default.
 bool png_write_rgb8(png_structp png, png_infop info, std::FILE* f, png_rw_ptr write, void* sink, int width, int height,
-                    const float* data, png_byte* row) {
+                    const float* floats, const png_byte* bytes, png_byte* row, int zlib_level) {
   if (setjmp(png_jmpbuf(png))) return false;
   if (f)
     png_init_io(png, f);
   else
     png_set_write_fn(png, sink, write, nullptr);
+  if (zlib_level >= 0) {  // speed over size: one cheap filter, Huffman codes without matching
+    png_set_compression_level(png, zlib_level);
+    png_set_compression_strategy(png, Z_HUFFMAN_ONLY);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
+  }
   png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
   png_write_info(png, info);
   const std::size_t n = 3 * std::size_t(width);
   for (int y = 0; y < height; ++y) {
-    const float* src = data + n * std::size_t(y);
+    if (bytes) {
+      png_write_row(png, bytes + n * std::size_t(y));
+      continue;
+    }
+    const float* src = floats + n * std::size_t(y);
     for (std::size_t i = 0; i < n; ++i) row[i] = png_byte(std::lround(src[i] * 255.0f));
     png_write_row(png, row);
   }
@@ -114,7 +125,8 @@ void write_png(const std::string& path, int width, int height, const std::vector
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   std::vector<png_byte> row(3 * std::size_t(width));
-  const bool ok = info && png_write_rgb8(png, info, f.get(), nullptr, nullptr, width, height, data.data(), row.data());
+  const bool ok = info && png_write_rgb8(png, info, f.get(), nullptr, nullptr, width, height, data.data(), nullptr,
+                                         row.data(), -1);
   png_destroy_write_struct(&png, info ? &info : nullptr);
   if (!ok) throw std::runtime_error("libpng failed to write it");
   if (std::fclose(f.release()) != 0) throw std::runtime_error(std::strerror(errno));  // a full disk shows here
@@ -126,15 +138,14 @@ void append_png_bytes(png_structp png, png_bytep bytes, png_size_t n) {
 
 }  // namespace
 
-std::string encode_png(int width, int height, const std::vector<float>& data) {
-  if (width <= 0 || height <= 0 || data.size() != 3 * std::size_t(width) * std::size_t(height))
-    throw std::invalid_argument(fmt::format("encode_png: {} values for {}x{} RGB pixels", data.size(), width, height));
+std::string encode_png(int width, int height, const std::vector<uint8_t>& rgb8, int zlib_level) {
+  if (width <= 0 || height <= 0 || rgb8.size() != 3 * std::size_t(width) * std::size_t(height))
+    throw std::invalid_argument(fmt::format("encode_png: {} values for {}x{} RGB pixels", rgb8.size(), width, height));
   std::string out;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
-  std::vector<png_byte> row(3 * std::size_t(width));
-  const bool ok =
-      info && png_write_rgb8(png, info, nullptr, append_png_bytes, &out, width, height, data.data(), row.data());
+  const bool ok = info && png_write_rgb8(png, info, nullptr, append_png_bytes, &out, width, height, nullptr,
+                                         rgb8.data(), nullptr, zlib_level);
   png_destroy_write_struct(&png, info ? &info : nullptr);
   if (!ok) throw std::runtime_error("encode_png: libpng failed");
   return out;

@@ -2,6 +2,7 @@
 // OpenEXR and libpng, everything else through the OpenImageIO plugin (image_plugin.h).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -53,8 +54,9 @@ Image read_image(const std::string& path);
 // (leaving no file behind).
 void write_image(const std::string& path, const Image& img);
 
-// A PNG in memory (8-bit RGB with an sRGB chunk) from sRGB-encoded values in [0, 1],
-// width x height x 3, row-major: what the preview serves (preview/).
-std::string encode_png(int width, int height, const std::vector<float>& data);
+// A PNG in memory (8-bit RGB with an sRGB chunk) from 8-bit sRGB values, width x height
+// x 3, row-major, fast (a zlib level, 0 to 9, with Huffman coding alone: what the preview
+// serves, preview/).
+std::string encode_png(int width, int height, const std::vector<uint8_t>& rgb8, int zlib_level);
 
 }  // namespace dermis
