@@ -49,7 +49,7 @@ void SceneWatcher::run() {
   using Clock = std::chrono::steady_clock;
   bool in_burst = false;
   Clock::time_point last_change{};  // in the burst under way
-  std::vector<Stamp> seen;                       // the files as the burst left them so far
+  std::vector<Stamp> seen;          // the files as the burst left them so far
   uint64_t generation = 0;
   while (!stop_) {
     std::this_thread::sleep_for(kPoll);

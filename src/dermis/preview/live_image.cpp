@@ -9,11 +9,16 @@ namespace dermis {
 
 const char* live_image_state_name(LiveImage::State s) {
   switch (s) {
-    case LiveImage::State::Loading: return "loading";
-    case LiveImage::State::Rendering: return "rendering";
-    case LiveImage::State::Done: return "done";
-    case LiveImage::State::Interrupted: return "interrupted";
-    case LiveImage::State::Error: return "error";
+    case LiveImage::State::Loading:
+      return "loading";
+    case LiveImage::State::Rendering:
+      return "rendering";
+    case LiveImage::State::Done:
+      return "done";
+    case LiveImage::State::Interrupted:
+      return "interrupted";
+    case LiveImage::State::Error:
+      return "error";
   }
   return "unknown";
 }

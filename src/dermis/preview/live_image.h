@@ -26,9 +26,9 @@ class LiveImage {
     State state = State::Loading;
     uint64_t frame = 0;  // changes whenever pixels do
     int width = 0, height = 0;
-    int spp = 0;                   // the most a pixel takes
-    double samples_per_pixel = 0;  // taken so far, on average
-    double progress = 0;           // 0 to 1
+    int spp = 0;                      // the most a pixel takes
+    double samples_per_pixel = 0;     // taken so far, on average
+    double progress = 0;              // 0 to 1
     std::optional<double> converged;  // adaptive sampling: the share of pixels converged
     double elapsed = 0;               // seconds since the render began
     std::optional<double> eta;        // seconds left, from the rate so far
@@ -70,7 +70,7 @@ class LiveImage {
   Status status_;
   Frame pixels_;
   int64_t total_ = 0, done_ = 0;  // the progress's pixel samples (skipped ones included)
-  int64_t taken_ = 0;              // the samples of pixels_
+  int64_t taken_ = 0;             // the samples of pixels_
 
   double exposure_scale_ = 1;
   Clock::time_point started_{}, finished_{};

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 #include <httplib.h>
-
 #include <sys/socket.h>
 
 #include <algorithm>
@@ -185,8 +184,11 @@ struct PreviewServer::Impl {
     server.Get(R"(/samples\.png)", serve_png(PreviewView::Samples));
     server.Get(R"(/error\.png)", serve_png(PreviewView::Error));
     server.set_error_handler([](const httplib::Request&, httplib::Response& res) {
-      if (res.status == 404) res.set_content("not found: the preview serves /, /image.png, /samples.png, "
-                                             "/error.png and /status.json\n", "text/plain");
+      if (res.status == 404)
+        res.set_content(
+            "not found: the preview serves /, /image.png, /samples.png, "
+            "/error.png and /status.json\n",
+            "text/plain");
     });
     server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
       res.status = 500;
@@ -215,9 +217,10 @@ PreviewServer::PreviewServer(LiveImage& image, const std::string& address, int p
   const bool bound = port == 0 ? (impl_->port = impl_->server.bind_to_any_port(address)) > 0
                                : impl_->server.bind_to_port(address, port) && (impl_->port = port) > 0;
   if (!bound)
-    throw std::runtime_error(fmt::format("the preview cannot listen on {}:{} ({}): another program may use the port, "
-                                         "or the address is not this machine's",
-                                         address, port, port == 0 ? "any free port" : "this port"));
+    throw std::runtime_error(
+        fmt::format("the preview cannot listen on {}:{} ({}): another program may use the port, "
+                    "or the address is not this machine's",
+                    address, port, port == 0 ? "any free port" : "this port"));
   impl_->thread = std::thread([this] {
     impl_->server.listen_after_bind();
     impl_->listen_ended = true;

@@ -7,8 +7,8 @@
 #include <ImfStringAttribute.h>
 #include <fmt/format.h>
 #include <png.h>
-#include <zlib.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
@@ -125,8 +125,8 @@ void write_png(const std::string& path, int width, int height, const std::vector
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   std::vector<png_byte> row(3 * std::size_t(width));
-  const bool ok = info && png_write_rgb8(png, info, f.get(), nullptr, nullptr, width, height, data.data(), nullptr,
-                                         row.data(), -1);
+  const bool ok =
+      info && png_write_rgb8(png, info, f.get(), nullptr, nullptr, width, height, data.data(), nullptr, row.data(), -1);
   png_destroy_write_struct(&png, info ? &info : nullptr);
   if (!ok) throw std::runtime_error("libpng failed to write it");
   if (std::fclose(f.release()) != 0) throw std::runtime_error(std::strerror(errno));  // a full disk shows here
