@@ -12,6 +12,20 @@ import urllib.request
 import pytest
 
 
+def long_scene(width, height):
+    """A subsurface sphere under a sky with a million samples per pixel: a render to watch
+    converge, stopped by Ctrl-C long before its samples are done, on any machine."""
+    return f"""LookAt 0 -4 1  0 0 0  0 0 1
+Camera "perspective" "float fov" 40
+Sampler "independent" "integer pixelsamples" 1000000
+Film "rgb" "integer xresolution" {width} "integer yresolution" {height}
+WorldBegin
+LightSource "infinite" "rgb L" [0.5 0.5 0.5]
+Material "subsurface" "rgb sigma_a" [0.2 0.5 1.0] "rgb sigma_s" [3 4 5] "float eta" 1.4
+Shape "sphere"
+"""
+
+
 class PreviewProcess:
     """`dermis render ARGS --preview 0`; a thread keeps reading its stderr (`lines`)."""
 

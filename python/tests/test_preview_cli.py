@@ -7,19 +7,7 @@ import time
 import numpy as np
 from PIL import Image
 
-from preview_process import PreviewProcess
-
-# A subsurface sphere under a sky, one thread: a render long enough to watch converge
-# (stopped by Ctrl-C long before its samples are done, on any machine).
-LONG_SCENE = """LookAt 0 -4 1  0 0 0  0 0 1
-Camera "perspective" "float fov" 40
-Sampler "independent" "integer pixelsamples" 1000000
-Film "rgb" "integer xresolution" 64 "integer yresolution" 48
-WorldBegin
-LightSource "infinite" "rgb L" [0.5 0.5 0.5]
-Material "subsurface" "rgb sigma_a" [0.2 0.5 1.0] "rgb sigma_s" [3 4 5] "float eta" 1.4
-Shape "sphere"
-"""
+from preview_process import PreviewProcess, long_scene
 
 
 def small_scene(reflectance):
@@ -44,12 +32,14 @@ def centre_mean(body):
 
 def test_the_status_and_the_image_follow_the_render(dermis_binary, tmp_path):
     scene = tmp_path / "scene.pbrt"
-    scene.write_text(LONG_SCENE)
+    scene.write_text(long_scene(64, 48))
     with PreviewProcess(dermis_binary, [str(scene), "--threads", "1", "-o", str(tmp_path / "out.exr")]) as p:
-        first = p.wait_for(lambda s: s["state"] == "rendering" and s["frame"] > 0, "rendering")
+        p.wait_for(lambda s: s["state"] == "rendering" and s["frame"] > 0, "rendering")
         image = p.get("image.png")
+        first = p.status()  # its frame is at least the image's
         assert p.get("/").startswith(b"<!DOCTYPE html>")
-        # Later: more samples, a new frame, another image (a new PNG at most every 0.25 s).
+        # Later: more samples, a frame newer than the image's, another image (a new PNG at most
+        # every 0.25 s for an image this small).
         later = p.wait_for(lambda s: s["frame"] > first["frame"] and s["samples_per_pixel"] > first["samples_per_pixel"],
                            "a new frame")
         time.sleep(0.3)

@@ -12,17 +12,7 @@ import pytest
 
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python", "tests"))
-from preview_process import PreviewProcess  # noqa: E402
-
-SCENE = """LookAt 0 -4 1  0 0 0  0 0 1
-Camera "perspective" "float fov" 40
-Sampler "independent" "integer pixelsamples" 1000000
-Film "rgb" "integer xresolution" 96 "integer yresolution" 72
-WorldBegin
-LightSource "infinite" "rgb L" [0.5 0.5 0.5]
-Material "subsurface" "rgb sigma_a" [0.2 0.5 1.0] "rgb sigma_s" [3 4 5] "float eta" 1.4
-Shape "sphere"
-"""
+from preview_process import PreviewProcess, long_scene  # noqa: E402
 
 
 @pytest.fixture
@@ -57,7 +47,7 @@ def send(port, data, read=True, timeout=5):
 
 def test_hostile_requests_neither_crash_nor_stall_the_render(dermis_binary, tmp_path):
     scene = tmp_path / "scene.pbrt"
-    scene.write_text(SCENE)
+    scene.write_text(long_scene(96, 72))
     with PreviewProcess(dermis_binary, [str(scene), "--threads", "1", "-q", "-o", str(tmp_path / "out.exr")]) as p:
         port = port_of(p.url)
         before = p.wait_for(lambda s: s["frame"] > 0, "a first frame")

@@ -85,6 +85,23 @@ TEST(RefractedLight, TheDensityIntegratesToOneAndTheSamplerDrawsByIt) {
       [&](float u1, float u2, Vec3& v, float& p) { return technique.sample(y, n, u1, u2, v, p); }, 7);
 }
 
+// The scene rendered with light sampled through the boundary and without (512 samples per
+// pixel, seeds seed and seed + 1): the same means over the whole 16 x 16 image, where the
+// comparison must be able to see a bias of `detectable_bias`, and in 16 regions.
+void expect_the_walk_keeps_its_mean(const std::string& scene, uint64_t seed, double detectable_bias) {
+  Diagnostics diag;
+  auto with = build_render_scene(parse_scene_string(scene), diag);
+  auto without = build_render_scene(parse_scene_string(scene), diag);
+  without->switches.refracted_light = false;
+  const auto a = testing::pixel_statistics(*with, 512, seed), b = testing::pixel_statistics(*without, 512, seed + 1);
+  {
+    SCOPED_TRACE("the whole image");
+    testing::expect_same_region_means(a, b, 16, 16, detectable_bias);
+  }
+  SCOPED_TRACE("16 regions");
+  testing::expect_same_region_means(a, b, 4, 4);
+}
+
 // The walk behind a smooth dielectric with light sampled through it and without: the same
 // picture (the image's mean, then 16 regions, within 4 standard errors), under a sky and a
 // small light, in a medium that absorbs (a scattering event's albedo left out of the light
@@ -94,17 +111,7 @@ TEST(RefractedLight, TheWalkKeepsItsMean) {
       testing::lit_sphere_header(16) +
       "Material \"subsurface\" \"rgb sigma_a\" [0.3 0.6 1.0] \"rgb sigma_s\" [2 3 4] \"float eta\" 1.33 "
       "\"float g\" 0.3 \"string boundary\" \"dielectric\"\nShape \"sphere\"\n";
-  Diagnostics diag;
-  auto with = build_render_scene(parse_scene_string(scene), diag);
-  auto without = build_render_scene(parse_scene_string(scene), diag);
-  without->switches.refracted_light = false;
-  const auto a = testing::pixel_statistics(*with, 512, 51), b = testing::pixel_statistics(*without, 512, 52);
-  {
-    SCOPED_TRACE("the whole image");
-    testing::expect_same_region_means(a, b, 16, 16, 0.02);
-  }
-  SCOPED_TRACE("16 regions");
-  testing::expect_same_region_means(a, b, 4, 4);
+  expect_the_walk_keeps_its_mean(scene, 51, 0.02);
 }
 
 // The same under an environment map alone, a sky with a sun (the walks aim the plane of
@@ -127,17 +134,7 @@ LightSource "infinite" "string filename" ")" +
 Material "subsurface" "rgb sigma_a" [0.2 0.5 1.0] "rgb sigma_s" [3 4 5] "float eta" 1.4
 Shape "sphere"
 )";
-  Diagnostics diag;
-  auto with = build_render_scene(parse_scene_string(scene), diag);
-  auto without = build_render_scene(parse_scene_string(scene), diag);
-  without->switches.refracted_light = false;
-  const auto a = testing::pixel_statistics(*with, 512, 71), b = testing::pixel_statistics(*without, 512, 72);
-  {
-    SCOPED_TRACE("the whole image");
-    testing::expect_same_region_means(a, b, 16, 16, 0.03);
-  }
-  SCOPED_TRACE("16 regions");
-  testing::expect_same_region_means(a, b, 4, 4);
+  expect_the_walk_keeps_its_mean(scene, 71, 0.03);
 }
 
 // Under a small light alone, behind the sphere's side (no highlight in view), in a dense
