@@ -434,7 +434,10 @@ int render_once(const RenderArgs& args, const RenderJob& job, const LiveRender& 
 
   if (!quiet) print_render_header(a, *scene, opt, group);
   RenderResult r = render_image(*scene, opt);  // stops at once if a stop signal came during preparation
-  for (int s : stop_signals) std::signal(s, SIG_DFL);
+  // A live render keeps its stop handler: Ctrl-C right after the render (the page showing
+  // it done) ends the preview, not the program in the middle of writing (run_render).
+  if (!live.image && !live.cancel)
+    for (int s : stop_signals) std::signal(s, SIG_DFL);
   progress.finish();
   if (live.image) live.image->finish(r.interrupted);
   if (live.restarting && live.restarting()) return kRestarting;
