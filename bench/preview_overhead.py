@@ -5,7 +5,8 @@ second (as the page does), the two interleaved; the render stage's seconds ("wro
 s") of each and the process's CPU seconds (the server's included), and their ratios per
 pair (the machine is shared: pairs, not totals).
 
-Usage: python3 -m bench.preview_overhead BINARY SCENE [--reps 5] [--spp 64] [--threads 2] [--res WxH]"""
+Usage: python3 -m bench.preview_overhead BINARY SCENE [--reps 5] [--spp 64] [--threads 2] [--res WxH]
+       [--no-client]"""
 import argparse
 import os
 import re
@@ -17,7 +18,7 @@ import time
 import urllib.request
 
 
-def render(binary, scene, out, spp, threads, preview, res=None):
+def render(binary, scene, out, spp, threads, preview, res=None, client=True):
     args = [binary, "render", scene, "--spp", str(spp), "--threads", str(threads), "-o", out, "--seed", "1"]
     if res:
         args += ["--res", res]
@@ -33,7 +34,8 @@ def render(binary, scene, out, spp, threads, preview, res=None):
             m = re.search(r"preview: (\S+)", line)
             if m and url is None:
                 url = m[1]
-                threading.Thread(target=poll, args=(url,), daemon=True).start()
+                if client:
+                    threading.Thread(target=poll, args=(url,), daemon=True).start()
             if "wrote" in line:
                 stop.set()
                 if preview:
@@ -67,13 +69,14 @@ def main():
     ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--res", help="WIDTHxHEIGHT, overriding the scene's")
+    ap.add_argument("--no-client", action="store_true", help="the preview served, nobody asking (its cost alone)")
     a = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         out = f"{tmp}/out.exr"
         ratios, cpu_ratios = [], []
         for i in range(a.reps):
             order = (False, True) if i % 2 == 0 else (True, False)
-            t = {p: render(a.binary, a.scene, out, a.spp, a.threads, p, a.res) for p in order}
+            t = {p: render(a.binary, a.scene, out, a.spp, a.threads, p, a.res, not a.no_client) for p in order}
             ratios.append(t[True][0] / t[False][0])
             cpu_ratios.append(t[True][1] / t[False][1])
             print(f"rep {i}: render seconds without {t[False][0]:.3f}, with the preview watched {t[True][0]:.3f} "
