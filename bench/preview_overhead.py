@@ -3,12 +3,20 @@
 without and with `--preview`, while a client asks for the status and the image four times a
 second (as the page does), the two interleaved; the render stage's seconds ("wrote ... in X
 s") of each and the process's CPU seconds (the server's included), and their ratios per
-pair (the machine is shared: pairs, not totals).
+pair (the machine is shared: pairs, not totals), with the median's 95 % interval
+(bootstrap over the pairs).
+
+Then the preview's direct cost, measured on the threads that pay it (the render prints
+it: the server's threads' CPU seconds, and the render threads' in LiveImage::copy_tile),
+as a share of the render's capacity (its seconds x its threads). A shared machine's noise
+scales the cost and the capacity alike, so this share is steady where the ratios are not;
+what it leaves out (caches, the client's own CPU) the ratios bound.
 
 Usage: python3 -m bench.preview_overhead BINARY SCENE [--reps 5] [--spp 64] [--threads 2] [--res WxH]
        [--no-client]"""
 import argparse
 import os
+import random
 import re
 import statistics
 import subprocess
@@ -58,7 +66,21 @@ def render(binary, scene, out, spp, threads, preview, res=None, client=True):
     m = next((re.search(r"wrote .* in ([0-9.]+) s", line) for line in lines if "wrote" in line), None)
     if not m:
         raise SystemExit("no 'wrote ... in X s' line:\n" + "".join(lines))
-    return float(m[1]), usage.ru_utime + usage.ru_stime
+    cost = None
+    if preview:
+        c = next((re.search(r"preview so far: (\d+) requests answered in ([0-9.]+) CPU s; ([0-9.]+) CPU s copying", line)
+                  for line in lines if "preview so far" in line), None)
+        if not c:
+            raise SystemExit("no 'the preview so far' line:\n" + "".join(lines))
+        cost = (int(c[1]), float(c[2]), float(c[3]))
+    return float(m[1]), usage.ru_utime + usage.ru_stime, cost
+
+
+def median_interval(values, draws=2000, seed=1):
+    """The median's 95 % bootstrap interval."""
+    rng = random.Random(seed)
+    medians = sorted(statistics.median(rng.choices(values, k=len(values))) for _ in range(draws))
+    return medians[int(0.025 * draws)], medians[int(0.975 * draws) - 1]
 
 
 def main():
@@ -73,17 +95,24 @@ def main():
     a = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         out = f"{tmp}/out.exr"
-        ratios, cpu_ratios = [], []
+        ratios, cpu_ratios, shares = [], [], []
         for i in range(a.reps):
             order = (False, True) if i % 2 == 0 else (True, False)
             t = {p: render(a.binary, a.scene, out, a.spp, a.threads, p, a.res, not a.no_client) for p in order}
             ratios.append(t[True][0] / t[False][0])
             cpu_ratios.append(t[True][1] / t[False][1])
+            requests, server_cpu, copy_cpu = t[True][2]
+            shares.append((server_cpu + copy_cpu) / (t[True][0] * a.threads))
             print(f"rep {i}: render seconds without {t[False][0]:.3f}, with the preview watched {t[True][0]:.3f} "
                   f"(ratio {ratios[-1]:.4f}); process CPU seconds {t[False][1]:.2f}, {t[True][1]:.2f} "
-                  f"(ratio {cpu_ratios[-1]:.4f})", flush=True)
+                  f"(ratio {cpu_ratios[-1]:.4f}); the preview: {requests} requests, {server_cpu:.3f} CPU s serving, "
+                  f"{copy_cpu:.3f} CPU s copying tiles: {100 * shares[-1]:.2f} % of the render's capacity", flush=True)
     for name, r in (("render seconds", ratios), ("process CPU seconds", cpu_ratios)):
-        print(f"{name}: median ratio with/without {statistics.median(r):.4f} (min {min(r):.4f}, max {max(r):.4f})")
+        lo, hi = median_interval(r)
+        print(f"{name}: median ratio with/without {statistics.median(r):.4f} (95 % interval {lo:.4f} - {hi:.4f}; "
+              f"min {min(r):.4f}, max {max(r):.4f})")
+    print(f"the preview's direct cost: median {100 * statistics.median(shares):.2f} % of the render's capacity "
+          f"(min {100 * min(shares):.2f} %, max {100 * max(shares):.2f} %)")
 
 
 if __name__ == "__main__":

@@ -505,6 +505,13 @@ int run_render(const RenderArgs& a, const RenderJob& job) {
       if (!a.quiet) fmt::print(stderr, "dermis: {} changed: rendering it again\n", a.scene);
       continue;
     }
+    if (status == 0 && server && !a.quiet) {
+      // Measured on the threads that pay it (bench/preview_overhead.py divides it by the render's).
+      const PreviewServer::Cost cost = server->cost();
+      fmt::print(stderr,
+                 "dermis: the preview so far: {} requests answered in {:.3f} CPU s; {:.3f} CPU s copying tiles\n",
+                 cost.requests, cost.cpu_seconds, image->copy_cpu_seconds());
+    }
     if (status == 130 || g_interrupted) return status;
     // The last picture stays on the page: without --watch until a stop signal (a scene that
     // did not load ends at once), with it until a stop signal or a change.

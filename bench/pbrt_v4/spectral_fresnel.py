@@ -8,7 +8,7 @@ run on the three channels. pbrt-v4 evaluates the Fresnel equations at each sampl
 wavelength; under a white light (D65, what `"rgb L" [1 1 1]` is in pbrt-v4) the film
 records the colour under D65 of the reflectance spectrum R(lambda). The two differ because
 R is not linear in eta and k. This script evaluates both with the tables Dermis itself
-uses (src/dermis/scene/named_spectra_data.cpp: CIE 1931 observer, D65, Palik's metals) at
+uses (src/dermis/spectral/named_spectra_data.cpp: CIE 1931 observer, D65, Palik's metals) at
 a few angles of incidence and as the hemispherical (cosine-weighted) albedo.
 
   /usr/bin/python3 -m bench.pbrt_v4.spectral_fresnel [metal ...]   (default: Au Cu Ag Al CuZn)

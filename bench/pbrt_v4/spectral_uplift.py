@@ -10,7 +10,7 @@ the film then records the colour of the product. Dermis multiplies the RGB tripl
 colour of a product of spectra is not the product of their colours, so light that has met a
 coloured surface or medium differs by a little, and more after each bounce. This script
 fits the sigmoid spectra itself (an exact solve of colour(sigmoid) = rgb with the tables
-Dermis uses, src/dermis/scene/named_spectra_data.cpp; pbrt-v4 interpolates a precomputed
+Dermis uses, src/dermis/spectral/named_spectra_data.cpp; pbrt-v4 interpolates a precomputed
 table of such fits, so its spectra differ slightly from these) and prints, for the colours
 of bench/pbrt_v4/scenes, Dermis' RGB / pbrt-v4's - 1 per channel.
 

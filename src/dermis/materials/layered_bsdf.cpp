@@ -36,8 +36,10 @@ BSDF base_bsdf(const CoatedLayer& c) {
     b.albedo = c.base_reflectance;
   } else {
     b.type = BSDF::Type::Conductor;
-    b.cond_eta = c.conductor_eta;
-    b.cond_k = c.conductor_k;
+    // The conductor meets the coating, not vacuum: its complex index relative to the
+    // coating's, (eta + i k) / eta_coat (Fresnel's equations take the ratio of the indices; pbrt-v4 does the same).
+    b.cond_eta = c.conductor_eta / c.eta;
+    b.cond_k = c.conductor_k / c.eta;
     b.alpha_x = c.base_alpha_x;
     b.alpha_y = c.base_alpha_y;
   }

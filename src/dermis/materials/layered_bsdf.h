@@ -42,7 +42,7 @@ struct CoatedLayer {
   float interface_alpha_x = 0, interface_alpha_y = 0;  // Trowbridge-Reitz; 0: smooth
   Base base = Base::Diffuse;
   RGB base_reflectance{0.5f, 0.5f, 0.5f};            // Diffuse
-  RGB conductor_eta{1, 1, 1}, conductor_k{0, 0, 0};  // Conductor
+  RGB conductor_eta{1, 1, 1}, conductor_k{0, 0, 0};  // Conductor: its own index (over vacuum)
   float base_alpha_x = 0, base_alpha_y = 0;
   float thickness = 0.01f;  // optical thickness of the slab (extinction 1 per unit)
   RGB albedo{0, 0, 0};      // single-scattering albedo of the slab

@@ -35,6 +35,13 @@ class LiveImage {
     std::string error;                // why the scene did not load (file:line:col: ...); empty if it did
   };
 
+  // A film's sums as the render left them (Film): the means and errors are computed by
+  // the reader, so that the render's threads only copy.
+  struct Sums {
+    std::vector<double> sum, sum_sq;  // 3 per pixel
+    std::vector<uint32_t> samples;
+  };
+
   // The pixels: linear RGB (the Film's exposure applied), samples, estimated error
   // (adaptive_sampling.h, pixel_noise_error; negative where unknown).
   struct Frame {
@@ -43,6 +50,7 @@ class LiveImage {
     std::vector<float> rgb;
     std::vector<uint32_t> samples;
     std::vector<float> error;
+    Sums sums;  // what frame_since copied (kept to reuse its memory)
   };
 
   explicit LiveImage(std::string scene);
@@ -61,18 +69,26 @@ class LiveImage {
   void fail(std::string message);
 
   Status status() const;
+  // The render threads' CPU seconds spent in copy_tile so far (the preview's cost to them).
+  double copy_cpu_seconds() const;
   // The pixels, copied, where they changed since `since` (a Frame::frame); else false.
+  // The copy takes the lock a band of rows at a time: a tile finished meanwhile waits for
+  // one band, not the whole image (a frame may then show some tiles a pass newer).
   bool frame_since(uint64_t since, Frame& out) const;
 
  private:
   using Clock = std::chrono::steady_clock;
   mutable std::mutex mutex_;
   Status status_;
-  Frame pixels_;
-  int64_t total_ = 0, done_ = 0;  // the progress's pixel samples (skipped ones included)
-  int64_t taken_ = 0;             // the samples of pixels_
+  int width_ = 0, height_ = 0;
+  uint64_t frame_ = 0;  // changes whenever sums_ do
+  Sums sums_;
+  int64_t total_ = 0, done_ = 0;    // the progress's pixel samples (skipped ones included)
+  std::vector<uint32_t> rendered_;  // the samples of this render per pixel
+  int64_t taken_ = 0;               // their sum
 
   double exposure_scale_ = 1;
+  int64_t copy_cpu_ns_ = 0;
   Clock::time_point started_{}, finished_{};
 };
 

@@ -12,8 +12,10 @@
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <vector>
 
 #include "dermis/preview/page_html.h"  // generated from page.html (CMakeLists.txt)
+#include "dermis/preview/thread_cpu_time.h"
 #include "dermis/render/image.h"
 
 namespace dermis {
@@ -117,6 +119,21 @@ struct PreviewServer::Impl {
   std::atomic<bool> listen_ended{false};
   int port = 0;
 
+  // The CPU clocks of the threads that have served (PreviewServer::cost).
+  mutable std::mutex cost_mutex;
+  std::vector<clockid_t> serving_clocks;
+  std::atomic<int64_t> requests{0};
+
+  void count_this_thread() {
+    thread_local const Impl* counted = nullptr;  // a pool thread serves one server
+    if (counted == this) return;
+    counted = this;
+    if (const auto clock = this_thread_cpu_clock()) {
+      std::lock_guard lock(cost_mutex);
+      serving_clocks.push_back(*clock);
+    }
+  }
+
   // The last PNG sent of each view, kept while the image changes faster than
   // kPreviewEncodeInterval: one encoding at a time, whatever the number of clients.
   struct Encoded {
@@ -149,7 +166,7 @@ struct PreviewServer::Impl {
     e.frame = frame.frame;
     e.exposure = exposure;
     e.at = now;
-    e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - now).count();
+    e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - now).count();  // the frame's copy too
     return e.png;
   }
 
@@ -183,6 +200,11 @@ struct PreviewServer::Impl {
     server.Get(R"(/image\.png)", serve_png(PreviewView::Image));
     server.Get(R"(/samples\.png)", serve_png(PreviewView::Samples));
     server.Get(R"(/error\.png)", serve_png(PreviewView::Error));
+    server.set_pre_routing_handler([this](const httplib::Request&, httplib::Response&) {
+      ++requests;
+      count_this_thread();
+      return httplib::Server::HandlerResponse::Unhandled;
+    });
     server.set_error_handler([](const httplib::Request&, httplib::Response& res) {
       if (res.status == 404)
         res.set_content(
@@ -222,6 +244,7 @@ PreviewServer::PreviewServer(LiveImage& image, const std::string& address, int p
                     "or the address is not this machine's",
                     address, port, port == 0 ? "any free port" : "this port"));
   impl_->thread = std::thread([this] {
+    impl_->count_this_thread();
     impl_->server.listen_after_bind();
     impl_->listen_ended = true;
   });
@@ -236,6 +259,14 @@ PreviewServer::~PreviewServer() {
 }
 
 int PreviewServer::port() const { return impl_->port; }
+
+PreviewServer::Cost PreviewServer::cost() const {
+  Cost cost{impl_->requests.load(), 0};
+  std::lock_guard lock(impl_->cost_mutex);
+  for (clockid_t clock : impl_->serving_clocks)
+    if (const int64_t ns = cpu_clock_ns(clock); ns > 0) cost.cpu_seconds += double(ns) * 1e-9;
+  return cost;
+}
 
 std::string PreviewServer::url() const {
   const bool v6 = impl_->address.find(':') != std::string::npos;

@@ -12,6 +12,7 @@
 // tiles (LiveImage::copy_tile). cpp-httplib (Debian's libcpp-httplib-dev).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -38,6 +39,13 @@ class PreviewServer {
   int port() const;
   // http://ADDRESS:PORT/ (IPv6 addresses in brackets).
   std::string url() const;
+  // What serving has cost so far: the requests answered, and the CPU seconds of the
+  // server's threads (the one listening and those that answered, encoding and sending included).
+  struct Cost {
+    int64_t requests = 0;
+    double cpu_seconds = 0;
+  };
+  Cost cost() const;
 
  private:
   struct Impl;

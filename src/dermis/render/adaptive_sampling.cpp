@@ -14,13 +14,16 @@ int default_min_spp(int spp) {
 }
 
 float pixel_noise_error(const Film& film, std::size_t pixel, double output_scale) {
-  const uint32_t n = film.samples[pixel];
+  return pixel_noise_error(&film.sum[3 * pixel], &film.sum_sq[3 * pixel], film.samples[pixel], output_scale);
+}
+
+float pixel_noise_error(const double* sum, const double* sum_sq, uint32_t n, double output_scale) {
   if (n < 2) return std::numeric_limits<float>::infinity();
   double mean_sum = 0, se2_sum = 0;
   for (int c = 0; c < 3; ++c) {
-    const double mean = film.sum[3 * pixel + c] / n;
+    const double mean = sum[c] / n;
     // Sample variance: (sum of squares - n mean^2) / (n - 1); its mean's: that over n.
-    const double variance = std::max(0.0, (film.sum_sq[3 * pixel + c] - mean * film.sum[3 * pixel + c]) / (n - 1));
+    const double variance = std::max(0.0, (sum_sq[c] - mean * sum[c]) / (n - 1));
     mean_sum += mean;
     se2_sum += variance / n;
   }

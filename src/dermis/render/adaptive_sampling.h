@@ -49,6 +49,8 @@ int default_min_spp(int spp);
 // Zero for a pixel whose samples are all equal (a background); +infinity with fewer than
 // 2 samples.
 float pixel_noise_error(const Film& film, std::size_t pixel, double output_scale);
+// The same from a pixel's sums (RGB) and sums of squares over its n samples.
+float pixel_noise_error(const double* sum, const double* sum_sq, uint32_t n, double output_scale);
 
 // The error of every pixel of the film (width x height, row-major).
 void noise_error_map(const Film& film, double output_scale, std::span<float> error);

@@ -96,7 +96,9 @@ TEST(CoatedDiffuseRender, MatchesGlassSlabOverDiffusePlane) {
 
 // (b, d) coatedconductor against geometry: a smooth glass slab over a rough gold-like
 // conductor plane, rendered by the ordinary path tracer (the rough conductor, refraction
-// and total internal reflection), against the material.
+// and total internal reflection), against the material. A conductor's eta and k are its
+// index over what surrounds it (Fresnel's equations take the ratio): inside the glass the
+// plane's are the metal's divided by 1.5, as the material's base faces its coating.
 TEST(CoatedConductorRender, MatchesGlassSlabOverRoughConductorPlane) {
   const float t = 0.002f;
   const std::string metal = "\"rgb conductor.eta\" [0.2 0.5 1.4] \"rgb conductor.k\" [3.6 2.4 1.8]";
@@ -104,11 +106,12 @@ TEST(CoatedConductorRender, MatchesGlassSlabOverRoughConductorPlane) {
                                " \"float conductor.roughness\" 0.05 \"float interface.eta\" 1.5 "
                                "\"float thickness\" 0 \"integer maxdepth\" 1000\n" +
                                quad(t, 30);
-  const std::string geometry = lit_plane_header(1000) + "AttributeBegin\nMaterial \"dielectric\" \"float eta\" 1.5\n" +
-                               box(30, 0, t) + "AttributeEnd\n" +
-                               "Material \"conductor\" \"rgb eta\" [0.2 0.5 1.4] \"rgb k\" [3.6 2.4 1.8] "
-                               "\"float roughness\" 0.05\n" +
-                               quad(t / 2, 30);
+  const std::string geometry =
+      lit_plane_header(1000) + "AttributeBegin\nMaterial \"dielectric\" \"float eta\" 1.5\n" + box(30, 0, t) +
+      "AttributeEnd\n" +
+      "Material \"conductor\" \"rgb eta\" [0.133333 0.333333 0.933333] \"rgb k\" [2.4 1.6 1.2] "
+      "\"float roughness\" 0.05\n" +
+      quad(t / 2, 30);
   const auto a = testing::pixel_statistics(*scene_from(material), 3000, 11);
   const auto b = testing::pixel_statistics(*scene_from(geometry), 3000, 12);
   expect_images_equal(a, b);

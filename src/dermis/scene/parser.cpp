@@ -9,9 +9,9 @@
 #include <stdexcept>
 
 #include "dermis/scene/gzip_file.h"
-#include "dermis/scene/named_spectra_data.h"
 #include "dermis/scene/pbrt_v4_types.h"
 #include "dermis/scene/scene_parser.h"
+#include "dermis/spectral/named_spectra_data.h"
 
 namespace dermis {
 

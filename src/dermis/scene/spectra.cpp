@@ -8,39 +8,19 @@
 #include <filesystem>
 #include <vector>
 
-#include "dermis/scene/named_spectra_data.h"
 #include "dermis/scene/scene_parser.h"
 #include "dermis/scene/spectrum_file.h"
+#include "dermis/spectral/cie_observer.h"
+#include "dermis/spectral/named_spectra_data.h"
+#include "dermis/spectral/piecewise_linear.h"
 
 namespace dermis {
 
 namespace {
 
 // Spectra are integrated at 1 nm over the range of the CIE 1931 observer table.
-constexpr int kLambdaMin = 360, kLambdaMax = 830;
-constexpr int kSamples = kLambdaMax - kLambdaMin + 1;
-
-// The piecewise-linear function through (lambda[i], value[i]), read at increasing x.
-class PiecewiseLinear {
- public:
-  PiecewiseLinear(std::span<const double> lambda, std::span<const double> value, SpectrumEnds ends)
-      : lambda_(lambda), value_(value), ends_(ends) {}
-  // x must not decrease from one call to the next.
-  double at(double x) {
-    if (lambda_.empty()) return 0;
-    if (x < lambda_.front()) return ends_ == SpectrumEnds::Extend ? value_.front() : 0;
-    if (x > lambda_.back()) return ends_ == SpectrumEnds::Extend ? value_.back() : 0;
-    while (i_ + 1 < lambda_.size() && lambda_[i_ + 1] < x) ++i_;
-    if (i_ + 1 == lambda_.size()) return value_[i_];
-    const double t = (x - lambda_[i_]) / (lambda_[i_ + 1] - lambda_[i_]);
-    return value_[i_] + t * (value_[i_ + 1] - value_[i_]);
-  }
-
- private:
-  std::span<const double> lambda_, value_;
-  SpectrumEnds ends_;
-  size_t i_ = 0;
-};
+constexpr int kLambdaMin = CieTables::kLambdaMin;
+constexpr int kSamples = CieTables::kSamples;
 
 struct Pairs {
   std::vector<double> lambda, value;
@@ -60,50 +40,16 @@ const NamedSpectrumTable* find_table(const std::string& name) {
   return nullptr;
 }
 
-// The CIE 1931 observer and illuminant D65 at 1 nm.
-struct Observer {
-  std::array<double, kSamples> x, y, z, d65;
-  double d65_y = 0;  // sum of d65 * y
-};
-const Observer& observer() {
-  static const Observer o = [] {
-    Observer o;
-    std::vector<double> l, x, y, z;
-    for (const CieObserverSample& s : cie_1931_observer()) {
-      l.push_back(s.lambda);
-      x.push_back(s.x);
-      y.push_back(s.y);
-      z.push_back(s.z);
-    }
-    PiecewiseLinear fx(l, x, SpectrumEnds::Zero), fy(l, y, SpectrumEnds::Zero), fz(l, z, SpectrumEnds::Zero);
-    const Pairs d65 = split(find_table("stdillum-D65")->pairs);
-    PiecewiseLinear fd(d65.lambda, d65.value, SpectrumEnds::Extend);
-    for (int i = 0; i < kSamples; ++i) {
-      const double lambda = kLambdaMin + i;
-      o.x[i] = fx.at(lambda);
-      o.y[i] = fy.at(lambda);
-      o.z[i] = fz.at(lambda);
-      o.d65[i] = fd.at(lambda);
-      o.d65_y += o.d65[i] * o.y[i];
-    }
-    return o;
-  }();
-  return o;
-}
-
-// CIE XYZ to linear sRGB: IEC 61966-2-1:1999, eq. (F.7) (D65 white); out-of-gamut
-// components clamped to zero.
+// CIE XYZ to linear sRGB, out-of-gamut components clamped to zero.
 RGB xyz_to_srgb(double X, double Y, double Z) {
-  const double r = 3.2404542 * X - 1.5371385 * Y - 0.4985314 * Z;
-  const double g = -0.9692660 * X + 1.8760108 * Y + 0.0415560 * Z;
-  const double b = 0.0556434 * X - 0.2040259 * Y + 1.0572252 * Z;
-  return RGB(float(std::max(0.0, r)), float(std::max(0.0, g)), float(std::max(0.0, b)));
+  const auto rgb = xyz_to_linear_srgb(X, Y, Z);
+  return RGB(float(std::max(0.0, rgb[0])), float(std::max(0.0, rgb[1])), float(std::max(0.0, rgb[2])));
 }
 
 // Sum over 1 nm steps of s(lambda) * y-bar(lambda) / sum of y-bar: a spectrum's luminance
 // relative to the equal-energy spectrum, the normalization pbrt-v4 gives named illuminants.
 double relative_luminance(std::span<const double> lambda, std::span<const double> value, SpectrumEnds ends) {
-  const Observer& o = observer();
+  const CieTables& o = cie_tables();
   PiecewiseLinear f(lambda, value, ends);
   double sy = 0, y = 0;
   for (int i = 0; i < kSamples; ++i) {
@@ -133,7 +79,7 @@ double mean_over(std::span<const double> lambda, std::span<const double> value, 
 }  // namespace
 
 RGB spectrum_rgb(std::span<const double> lambda, std::span<const double> value, SpectrumType type, SpectrumEnds ends) {
-  const Observer& o = observer();
+  const CieTables& o = cie_tables();
   PiecewiseLinear f(lambda, value, ends);
   double X = 0, Y = 0, Z = 0;
   for (int i = 0; i < kSamples; ++i) {

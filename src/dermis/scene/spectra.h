@@ -10,6 +10,7 @@
 #include "dermis/core/rgb.h"
 #include "dermis/scene/diagnostics.h"
 #include "dermis/scene/params.h"
+#include "dermis/spectral/piecewise_linear.h"
 
 namespace dermis {
 
@@ -23,10 +24,6 @@ enum class SpectrumType {
   // spectrum by its photometric power (the light's "scale" then sets its brightness).
   Illuminant,
 };
-
-// Beyond the tabulated wavelengths a spectrum is zero (pbrt-v4's sampled spectra and files)
-// or keeps its end values (pbrt-v4's named spectra).
-enum class SpectrumEnds { Zero, Extend };
 
 // Linear sRGB of the piecewise-linear spectrum through (lambda[i], value[i]) (nm,
 // increasing), integrated against the CIE 1931 observer over 360-830 nm. Negative components

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "dermis/scene/named_spectra_data.h"
 #include "dermis/scene/parser.h"
 #include "dermis/scene/scene_test_util.h"
+#include "dermis/spectral/named_spectra_data.h"
 
 namespace dermis {
 namespace {

@@ -3,7 +3,7 @@
 // (wavelength in nm, value) pairs. Transcribed measurement data; each table names the
 // measurement it comes from. pbrt-v4 (src/pbrt/util/spectrum.cpp) ships the same tables,
 // which is where the names and the choice of tables come from.
-#include "dermis/scene/named_spectra_data.h"
+#include "dermis/spectral/named_spectra_data.h"
 
 namespace dermis {
 

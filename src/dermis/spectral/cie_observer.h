@@ -1,0 +1,23 @@
+// The CIE 1931 2-degree observer and illuminant D65 at every nanometre of 360-830 nm
+// (interpolated linearly from the 5 nm tables of named_spectra_data.cpp), and CIE XYZ to
+// linear sRGB: what turns a spectrum into the colour a film records.
+#pragma once
+
+#include <array>
+
+namespace dermis {
+
+struct CieTables {
+  static constexpr int kLambdaMin = 360, kLambdaMax = 830;
+  static constexpr int kSamples = kLambdaMax - kLambdaMin + 1;
+  std::array<double, kSamples> x, y, z;  // colour matching functions at kLambdaMin + i nm
+  std::array<double, kSamples> d65;      // illuminant D65, relative spectral power
+  double y_sum = 0;                      // sum of y: the equal-energy spectrum's Y
+  double d65_y = 0;                      // sum of d65 * y: D65's Y
+};
+const CieTables& cie_tables();
+
+// CIE XYZ to linear sRGB (IEC 61966-2-1:1999, eq. F.7; D65 white), unclamped.
+std::array<double, 3> xyz_to_linear_srgb(double X, double Y, double Z);
+
+}  // namespace dermis
