@@ -124,6 +124,9 @@ void add_render_options(CLI::App& cmd, RenderArgs& args) {
   cmd.add_option("--load-pointcloud", args.load_pointcloud, "load the point cloud(s) instead of computing them")
       ->excludes("--save-pointcloud");
   cmd.add_flag("--no-png", args.no_png, "with an .exr output, do not also write a .png preview");
+  cmd.add_flag("--spectral", args.spectral,
+               "spectral transport: each sample carries three wavelengths and the RGB inputs are read as spectra, "
+               "as pbrt-v4 does (also Option \"bool spectral\" true in the scene; docs/rendering.md)");
   cmd.add_option("--checkpoint", args.checkpoint,
                  "save the film state to this file every --checkpoint-interval seconds (between passes), on Ctrl-C "
                  "and at the end, for --resume");
@@ -270,6 +273,7 @@ RenderOptions render_options(const RenderArgs& a, const RenderJob& job, const Sc
   opt.threads = a.threads;
   opt.seed = render_seed(a, desc);
   opt.sampler = desc.settings.sampler;
+  opt.spectral = a.spectral || desc.settings.spectral;
   opt.time_limit = a.time_limit;
   opt.adaptive.noise_threshold = desc.settings.noise_threshold;
   opt.adaptive.min_spp = desc.settings.min_spp;
@@ -388,6 +392,15 @@ int render_once(const RenderArgs& args, const RenderJob& job, const LiveRender& 
   if (failed(error)) return 2;
 
   RenderOptions opt = render_options(a, job, desc, group);
+  if (opt.spectral) {
+    if (const std::string why = spectral_unsupported(*scene); !why.empty()) {
+      if (root) fmt::print(stderr, "{}: warning: --spectral: {}: the scene is rendered in RGB\n", program, why);
+      opt.spectral = false;
+    } else if (!a.checkpoint.empty() || !a.resume.empty()) {
+      if (root) fmt::print(stderr, "{}: --spectral does not work with --checkpoint or --resume yet\n", program);
+      return 2;
+    }
+  }
   const PixelBounds pixels = film_pixel_bounds(scene->film);
   const int64_t total = int64_t(pixels.width()) * pixels.height() * opt.spp;
   Progress progress("Rendering", total, progress_style);

@@ -30,6 +30,7 @@ struct RenderArgs {
   std::string subsurface;
   bool error_map = false;  // write the samples and error channels (implied by adaptive sampling)
   bool quiet = false, no_png = false;
+  bool spectral = false;  // --spectral
   int64_t points = 0;
   std::string save_pointcloud, load_pointcloud;
   std::string checkpoint, resume;  // film state files (render/checkpoint.h)

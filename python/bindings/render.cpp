@@ -95,7 +95,8 @@ std::optional<int> preview_port(const py::object& preview) {
 
 py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed, int threads, double time_limit,
                   std::optional<std::string> sampler, const py::object& progress, bool stats,
-                  std::optional<double> noise_threshold, std::optional<int> min_spp, const py::object& preview) {
+                  std::optional<double> noise_threshold, std::optional<int> min_spp, const py::object& preview,
+                  std::optional<bool> spectral) {
   BusyGuard busy(s);
   RenderOptions opt;
   opt.spp = spp.value_or(s.desc.settings.spp);
@@ -117,6 +118,17 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
     throw py::value_error(fmt::format("min_spp must be positive, got {}", opt.adaptive.min_spp));
 
   std::shared_ptr<RenderScene> scene = prepared_scene(s, opt.seed, opt.sampler);
+  opt.spectral = spectral.value_or(s.desc.settings.spectral);
+  std::string spectral_note;
+  if (opt.spectral) {
+    spectral_note = spectral_unsupported(*scene);
+    if (!spectral_note.empty()) {
+      opt.spectral = false;
+      if (PyErr_WarnEx(PyExc_UserWarning,
+                       fmt::format("spectral: {}: the scene is rendered in RGB", spectral_note).c_str(), 1) < 0)
+        throw py::error_already_set();
+    }
+  }
 
   const PixelBounds px = film_pixel_bounds(scene->film);
   const int64_t total = int64_t(px.width()) * px.height() * opt.spp;
@@ -171,6 +183,7 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
   st["min_spp"] = r.min_spp;
   st["max_spp"] = r.max_spp;
   st["rays"] = r.rays;
+  st["spectral"] = opt.spectral;
   st["nonfinite"] = r.nonfinite;
   st["truncated"] = r.truncated;
   st["interrupted"] = r.interrupted;
@@ -226,7 +239,7 @@ void bind_render(py::module_& m) {
   m.def("render", &render, py::arg("scene"), py::kw_only(), py::arg("spp") = py::none(), py::arg("seed") = py::none(),
         py::arg("threads") = 0, py::arg("time_limit") = 0.0, py::arg("sampler") = py::none(),
         py::arg("progress") = py::none(), py::arg("stats") = false, py::arg("noise_threshold") = py::none(),
-        py::arg("min_spp") = py::none(), py::arg("preview") = py::none(),
+        py::arg("min_spp") = py::none(), py::arg("preview") = py::none(), py::arg("spectral") = py::none(),
         R"(Renders a scene; returns a float32 NumPy array (height, width, 3) of linear RGB.
 
 spp: samples per pixel (default: scene.spp, the scene's Sampler).
@@ -258,6 +271,11 @@ preview: True (a free port) or a port number: while the render runs, a page at
   http://127.0.0.1:PORT/ shows the image as it converges (the URL is written to
   sys.stderr as "preview: URL", and given in stats as preview_url); it stops when render()
   returns. From a notebook: open the URL, or call render() in a thread (docs/preview.md).
+spectral: spectral transport (default: the scene's Option "bool spectral"): each sample
+  carries three wavelengths, the RGB inputs are read as spectra as pbrt-v4 reads them, and
+  the image is the colour of the result (CIE 1931 to linear sRGB). A scene with subsurface
+  materials or media has no spectral form yet: a UserWarning says so and it renders in RGB
+  (stats["spectral"] says which; docs/rendering.md).
 The GIL is released while rendering. Ctrl-C raises dermis.RenderInterrupted (a
 KeyboardInterrupt) whose .image is the partial image. The scene's assembly and
 preparation (BVH, albedo tables, point clouds) are kept for the next render until the

@@ -18,8 +18,11 @@ struct PixelStatistics {
   std::vector<RGB> mean, stderr_;  // standard error of the mean, per channel
 };
 
-// Renders with pixel-centre rays (no filter) and spp independent samples per pixel.
-inline PixelStatistics pixel_statistics(const RenderScene& sc, int spp, uint64_t seed, const PathStart& start = {}) {
+// Renders with pixel-centre rays (no filter) and spp independent samples per pixel;
+// `spectral`: each sample with its wavelengths and its colour recorded as the renderer's
+// film does (renderer.cpp).
+inline PixelStatistics pixel_statistics(const RenderScene& sc, int spp, uint64_t seed, const PathStart& start = {},
+                                        bool spectral = false) {
   PixelStatistics st;
   st.width = sc.film.xres;
   st.height = sc.film.yres;
@@ -34,7 +37,15 @@ inline PixelStatistics pixel_statistics(const RenderScene& sc, int spp, uint64_t
         // Independent samples, so that the sample variance gives the standard error.
         Sampler sampler(SamplerKind::Independent, seed, p, uint32_t(i));
         Ray ray = sc.camera.generate_ray({float(x) + 0.5f, float(y) + 0.5f}, {0.5f, 0.5f});
-        RGB L = trace_path(sc, ray, sc.camera_medium, sampler, counters, start);
+        RGB L;
+        if (spectral) {
+          const SampledWavelengths w = SampledWavelengths::sample_visible(sampler.get1d());
+          PathStart with_wavelengths = start;
+          with_wavelengths.wavelengths = &w;
+          L = w.to_linear_srgb(trace_path(sc, ray, sc.camera_medium, sampler, counters, with_wavelengths));
+        } else {
+          L = trace_path(sc, ray, sc.camera_medium, sampler, counters, start);
+        }
         for (int c = 0; c < 3; ++c) {
           s[c] += L[c];
           s2[c] += double(L[c]) * L[c];

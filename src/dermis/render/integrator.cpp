@@ -4,6 +4,7 @@
 
 #include "dermis/core/warp.h"
 #include "dermis/geometry/shading_normal.h"
+#include "dermis/materials/at_wavelengths.h"
 #include "dermis/materials/fresnel.h"
 #include "dermis/render/path/direct_light.h"
 #include "dermis/render/path/emission.h"
@@ -24,8 +25,9 @@ RGB transmitted_irradiance(const RenderScene& sc, Vec3 p, Vec3 n, float eta, int
     return (rough ? rough->at(c) : 1 - fresnel_dielectric(c, eta)) * c;
   };
   Vec3 p_out = offset_ray_origin(p, n, n);
-  // Direct light by next-event estimation (MIS against the cosine sampling below).
-  RGB E = estimate_direct(sc, p_out, n, medium, sampler, counters, [&](Vec3 wi) {
+  // Direct light by next-event estimation (MIS against the cosine sampling below). In RGB:
+  // the point clouds' irradiance (subsurface materials have no spectral form yet).
+  RGB E = estimate_direct(sc, p_out, n, medium, sampler, counters, nullptr, [&](Vec3 wi) {
     return std::pair{RGB(transmitted_cos(wi)), cosine_hemisphere_pdf(dot(wi, n))};
   });
   // Everything else along one cosine-distributed direction.
@@ -45,14 +47,19 @@ RGB transmitted_irradiance(const RenderScene& sc, Vec3 p, Vec3 n, float eta, int
 }
 
 RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float distance, int medium,
-                         PathCounters& counters) {
+                         PathCounters& counters, const SampledWavelengths* wavelengths) {
+  // A medium's transmittance, at the path's wavelengths when it has them.
+  auto medium_tr = [&](int m, float d) {
+    return wavelengths ? medium_at_wavelengths(sc.media[m], *wavelengths).transmittance(d)
+                       : sc.media[m].transmittance(d);
+  };
   RGB tr(1);
   if (!sc.has_interfaces) {
     // No index-matched boundary: any hit blocks, and the medium cannot change.
     const Ray shadow{origin, dir, distance};
     counters.count(shadow);
     if (sc.embree->occluded(shadow)) return RGB(0);
-    if (medium >= 0) tr = sc.media[medium].transmittance(distance);
+    if (medium >= 0) tr = medium_tr(medium, distance);
     return tr;
   }
   {
@@ -71,12 +78,12 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
         SurfaceHit hit;
         sc.embree->fill_hit(raw[i], shadow, hit);
         next = raw[i].t + surface_offset(hit.p);
-        if (medium >= 0) tr *= sc.media[medium].transmittance(hit.t - t_medium);
+        if (medium >= 0) tr *= medium_tr(medium, hit.t - t_medium);
         if (tr.is_black()) return tr;
         medium = medium_after_crossing(sc.shapes[hit.shape], dir, hit.ng, medium);
         t_medium = hit.t;
       }
-      if (medium >= 0) tr *= sc.media[medium].transmittance(distance - t_medium);
+      if (medium >= 0) tr *= medium_tr(medium, distance - t_medium);
       return tr;
     }
   }
@@ -88,12 +95,12 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
     counters.count(shadow);
     SurfaceHit hit;
     if (!sc.embree->intersect(shadow, hit)) {
-      if (medium >= 0) tr *= sc.media[medium].transmittance(remaining);
+      if (medium >= 0) tr *= medium_tr(medium, remaining);
       return tr;
     }
     const Shape& s = sc.shapes[hit.shape];
     if (!sc.materials[s.material].is_interface()) return RGB(0);
-    if (medium >= 0) tr *= sc.media[medium].transmittance(hit.t);
+    if (medium >= 0) tr *= medium_tr(medium, hit.t);
     if (tr.is_black()) return tr;
     medium = medium_after_crossing(s, dir, hit.ng, medium);
     Vec3 next = offset_ray_origin(hit.p, hit.ng, dir);

@@ -13,6 +13,7 @@
 #include "dermis/geometry/ray.h"
 #include "dermis/render/path_counters.h"
 #include "dermis/render/render_scene.h"
+#include "dermis/spectral/sampled_wavelengths.h"
 
 namespace dermis {
 
@@ -80,6 +81,9 @@ struct PathStart {
   // The copies that path splitting may still add for this camera sample
   // (render/path_splitting.h), shared by the paths nested in it; null: a budget of its own.
   int* split_budget = nullptr;
+  // The wavelengths the path carries (--spectral: each RGB channel of its values is the
+  // value at one of them); null: the channels are red, green and blue.
+  const SampledWavelengths* wavelengths = nullptr;
 };
 
 // Radiance arriving along `ray` (from the camera), starting in `medium`: the loop over the
@@ -98,8 +102,9 @@ RGB transmitted_irradiance(const RenderScene& scene, Vec3 p, Vec3 n, float eta, 
 
 // Transmittance from `origin` along unit `dir` over `distance` (infinity allowed),
 // starting in `medium`: zero if an opaque or refractive surface is in the way,
-// otherwise the product of the media's transmittances across index-matched boundaries.
+// otherwise the product of the media's transmittances across index-matched boundaries,
+// at the path's wavelengths when it has them (null: RGB).
 RGB shadow_transmittance(const RenderScene& scene, Vec3 origin, Vec3 dir, float distance, int medium,
-                         PathCounters& counters);
+                         PathCounters& counters, const SampledWavelengths* wavelengths);
 
 }  // namespace dermis

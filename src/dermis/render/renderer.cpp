@@ -13,6 +13,7 @@
 #include "dermis/render/adaptive_sampling.h"
 #include "dermis/render/film.h"
 #include "dermis/render/integrator.h"
+#include "dermis/render/path/sampler_regions.h"
 #include "dermis/render/subsurface_pilot.h"
 
 namespace dermis {
@@ -64,7 +65,8 @@ class ImageRender {
         filter_(sc.film.filter),
         group_(opt.group ? *opt.group : single_process()),
         tiles_(own_tiles(w_, h_, group_, opt.tile_assignment)),
-        spp_(uint32_t(opt.spp)) {
+        spp_(uint32_t(opt.spp)),
+        spectral_(opt.spectral && spectral_unsupported(sc).empty()) {
     if (opt.resume) {
       if (opt.resume->width != w_ || opt.resume->height != h_)
         throw std::invalid_argument("render_image: the film to resume has another size than the image");
@@ -126,7 +128,17 @@ class ImageRender {
       // a sample that meets only the sky (trace_path starts at its own dimension).
       const Vec2 u_lens = sc_.camera.has_lens() ? sampler.get2d() : Vec2{0.5f, 0.5f};
       Ray ray = sc_.camera.generate_ray(film_pos, u_lens);
-      RGB L = trace_path(sc_, ray, sc_.camera_medium, sampler, counters, camera_path_);
+      RGB L;
+      if (spectral_) {
+        // The wavelengths from a region of their own: the path's dimensions are an RGB render's.
+        sampler.set_dimension(Sampler::region(kCameraDimensions, kWavelengthsRegion));
+        const SampledWavelengths wavelengths = SampledWavelengths::sample_visible(sampler.get1d());
+        PathStart start = camera_path_;
+        start.wavelengths = &wavelengths;
+        L = wavelengths.to_linear_srgb(trace_path(sc_, ray, sc_.camera_medium, sampler, counters, start));
+      } else {
+        L = trace_path(sc_, ray, sc_.camera_medium, sampler, counters, camera_path_);
+      }
       if (!L.is_finite()) {
         ++bad;  // never reaches the film: counted as a zero sample and reported
         continue;
@@ -324,6 +336,7 @@ class ImageRender {
   ProcessGroup& group_;
   const std::vector<Tile> tiles_;
   const uint32_t spp_;
+  const bool spectral_;  // RenderOptions::spectral, where the scene allows it
   uint32_t min_spp_ = 0;
   // The count every pixel has reached in the passes taken by all (the processes of a
   // group keep it in step).
@@ -341,6 +354,11 @@ class ImageRender {
 };
 
 }  // namespace
+
+std::string spectral_unsupported(const RenderScene& sc) {
+  if (!sc.subsurface.empty()) return "subsurface materials have no spectral form yet";
+  return {};
+}
 
 RenderResult render_image(const RenderScene& sc, const RenderOptions& opt) { return ImageRender(sc, opt).run(); }
 

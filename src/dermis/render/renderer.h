@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "dermis/core/sampler.h"
@@ -27,11 +28,20 @@ enum class TileAssignment {
   Blocks,       // contiguous runs of tiles, one per process (ProcessGroup::share)
 };
 
+// Why `sc` cannot be rendered spectrally yet (empty: it can): subsurface materials have no
+// spectral form yet.
+std::string spectral_unsupported(const RenderScene& sc);
+
 struct RenderOptions {
   int spp = 16;
   int threads = 0;  // 0: all cores
   uint64_t seed = 0;
   SamplerKind sampler = SamplerKind::Sobol;
+  // Spectral transport (--spectral): each camera sample carries kPathWavelengths wavelengths
+  // (spectral/sampled_wavelengths.h), its RGB inputs read as pbrt-v4 reads them, and the film
+  // records the colour of its values (CIE 1931 to linear sRGB). Where the scene has what
+  // has no spectral form yet (spectral_unsupported) the render is RGB.
+  bool spectral = false;
   double time_limit = 0;                      // seconds; 0: none
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop early
   // Called from worker threads with the number of pixel samples just finished; with a

@@ -415,7 +415,10 @@ void SceneParser::directive(const Token& d, TokenStream& ts) {
   } else if (n == "Option") {
     ParamList pl = ParamList::parse(ts);
     std::string what = pl.items().empty() ? "" : pl.items()[0].param.name;
-    s_.diagnostics.warn(loc, fmt::format("Option \"{}\" ignored", what));
+    if (what == "spectral")  // Dermis' own: spectral transport (pbrt-v4 is always spectral)
+      s_.settings.spectral = pl.get_bool("spectral", false);
+    else
+      s_.diagnostics.warn(loc, fmt::format("Option \"{}\" ignored", what));
   } else if (n == "WorldBegin") {
     if (in_world_) throw SceneError(loc, "WorldBegin given twice");
     in_world_ = true;

@@ -80,6 +80,9 @@ struct RenderSettingsDesc {
   // (0: off) and "integer minpixelsamples" (0: the default).
   double noise_threshold = 0;
   int min_spp = 0;
+  // Spectral transport (render/renderer.h RenderOptions::spectral): Dermis' Option "bool
+  // spectral" (pbrt-v4 renders spectrally always; --spectral sets it too).
+  bool spectral = false;
 };
 
 struct TextureDesc {

@@ -1,5 +1,6 @@
 #include "dermis/spectral/cie_observer.h"
 
+#include <algorithm>
 #include <string_view>
 #include <vector>
 
@@ -36,6 +37,14 @@ const CieTables& cie_tables() {
     return t;
   }();
   return tables;
+}
+
+float cie_table_at(const std::array<double, CieTables::kSamples>& table, float lambda_nm) {
+  const float x = lambda_nm - CieTables::kLambdaMin;
+  if (!(x >= 0 && x <= CieTables::kSamples - 1)) return 0;
+  const int i = std::min(int(x), CieTables::kSamples - 2);
+  const float f = x - float(i);
+  return float((1 - f) * table[std::size_t(i)] + f * table[std::size_t(i) + 1]);
 }
 
 std::array<double, 3> xyz_to_linear_srgb(double X, double Y, double Z) {

@@ -17,6 +17,9 @@ struct CieTables {
 };
 const CieTables& cie_tables();
 
+// A table of CieTables read at a wavelength, linearly between its nanometres (0 outside).
+float cie_table_at(const std::array<double, CieTables::kSamples>& table, float lambda_nm);
+
 // CIE XYZ to linear sRGB (IEC 61966-2-1:1999, eq. F.7; D65 white), unclamped.
 std::array<double, 3> xyz_to_linear_srgb(double X, double Y, double Z);
 

@@ -13,6 +13,7 @@
 #include "dermis/render/integrator.h"
 #include "dermis/render/path_counters.h"
 #include "dermis/render/render_scene.h"
+#include "dermis/spectral/spectrum_at.h"
 
 namespace dermis {
 
@@ -42,6 +43,11 @@ inline Vec3 direction_about(Vec3 axis, float cos_theta, float u) {
   return Frame(axis).to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
 }
 
+// An emission (a light's RGB) as the path carries it: at its wavelengths when it has them.
+inline RGB path_emission(RGB Le, const SampledWavelengths* wavelengths) {
+  return wavelengths ? illuminant_at(Le, *wavelengths) : Le;
+}
+
 // Next-event estimation from point p (already offset for surfaces) in `medium`.
 // `scatter(wi)` returns f(wo, wi)|cos| (or the phase function) and its sampling pdf.
 // n: the unit normal of the hemisphere the scattering at p sees (zero in a medium), for
@@ -53,8 +59,8 @@ inline Vec3 direction_about(Vec3 axis, float cos_theta, float u) {
 // number for the choice would scatter them).
 template <class Scatter>
 RGB estimate_direct_group(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
-                          Scatter&& scatter, int group, float* group_importance = nullptr,
-                          SkyRule sky = SkyRule::Sampled) {
+                          const SampledWavelengths* wavelengths, Scatter&& scatter, int group,
+                          float* group_importance = nullptr, SkyRule sky = SkyRule::Sampled) {
   const Vec2 u = sampler.get2d();
   float pmf, u_reused = 0;
   const int li = sc.light_selection.sample(u.x, p, n, &pmf, &u_reused, group, group_importance, sky);
@@ -66,11 +72,11 @@ RGB estimate_direct_group(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sam
   auto [f, scatter_pdf] = scatter(ls.wi);
   if (f.is_black()) return RGB(0);
   float dist = ls.delta && std::isinf(ls.distance) ? kInfiniteDistance : ls.distance * (1 - 1e-4f);
-  RGB tr = shadow_transmittance(sc, p, ls.wi, dist, medium, counters);
+  RGB tr = shadow_transmittance(sc, p, ls.wi, dist, medium, counters, wavelengths);
   if (tr.is_black()) return RGB(0);
   float light_pdf = pmf * ls.pdf;
   float w = ls.delta ? 1.0f : power_heuristic(light_pdf, scatter_pdf);
-  return f * tr * ls.L * (w / light_pdf);
+  return f * tr * path_emission(ls.L, wavelengths) * (w / light_pdf);
 }
 
 // One light sample from each group of the light selection (finite lights, lights at
@@ -82,12 +88,12 @@ RGB estimate_direct_group(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sam
 // SkyRule::GivesWay (the probes' exits, some walk strategies') no uniform sky is chosen.
 template <class Scatter>
 RGB estimate_direct(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sampler& sampler, PathCounters& counters,
-                    Scatter&& scatter, SkyRule sky = SkyRule::Sampled) {
+                    const SampledWavelengths* wavelengths, Scatter&& scatter, SkyRule sky = SkyRule::Sampled) {
   float finite_importance = 0;
-  RGB L = estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 0, &finite_importance, sky);
+  RGB L = estimate_direct_group(sc, p, n, medium, sampler, counters, wavelengths, scatter, 0, &finite_importance, sky);
   if (sc.light_selection.groups(n) == 2) {
     if (sky != SkyRule::Outweighed || !sc.light_selection.uniform_sky_outweighed(finite_importance))
-      L += estimate_direct_group(sc, p, n, medium, sampler, counters, scatter, 1, nullptr, sky);
+      L += estimate_direct_group(sc, p, n, medium, sampler, counters, wavelengths, scatter, 1, nullptr, sky);
     else
       sampler.get2d();
   }

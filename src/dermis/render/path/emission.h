@@ -18,8 +18,9 @@ void add_emission_at_infinity(const PathContext& ctx, PathState& st);
 void add_area_emission(const PathContext& ctx, PathState& st, const Shape& s, const SurfaceHit& hit);
 
 // The emission `ray` meets at its first surface, or from the lights at infinity where it
-// meets none, in full (as after a specular bounce). In vacuum: no transmittance.
-RGB emission_seen(const RenderScene& sc, const Ray& ray, PathCounters& counters);
+// meets none, in full (as after a specular bounce). In vacuum: no transmittance. At the
+// path's wavelengths when it has them (null: RGB).
+RGB emission_seen(const RenderScene& sc, const Ray& ray, PathCounters& counters, const SampledWavelengths* wavelengths);
 
 // The mean luminance of the lights at infinity over the sphere of directions.
 float mean_sky_luminance(const RenderScene& sc);
@@ -34,6 +35,7 @@ bool may_see_bright_emission(const RenderScene& sc, const Ray& ray);
 // every hit, a reflected path then going on without it (at subsurface entries and smooth
 // glass). Any rule that looks at the emission alone keeps the estimate unbiased. Where it
 // cannot be that bright (may_see_bright_emission) the ray is not traced: the same result.
-bool add_bright_emission_seen(const RenderScene& sc, const Ray& ray, RGB weight, PathCounters& counters, RGB& L);
+bool add_bright_emission_seen(const RenderScene& sc, const Ray& ray, RGB weight, PathCounters& counters,
+                              const SampledWavelengths* wavelengths, RGB& L);
 
 }  // namespace dermis

@@ -17,7 +17,8 @@ PathState::PathState(const Ray& r, int m, const PathStart& start)
       emission_weight(start.prev_emission_weight),
       depth(start.depth),
       camera_chain(start.from_camera && start.depth == 0),
-      vertex_dimension(start.first_dimension) {}
+      vertex_dimension(start.first_dimension),
+      wavelengths(start.wavelengths) {}
 
 bool survives_roulette(PathContext& ctx, PathState& st, float threshold) {
   if (st.depth <= 1) return true;
@@ -63,6 +64,7 @@ PathStart continuation(const PathStart& parent, int depth, uint64_t first_dimens
   next.first_dimension = first_dimension;
   next.subsurface_strategies = parent.subsurface_strategies;
   next.split_budget = &split_budget;
+  next.wavelengths = parent.wavelengths;
   return next;
 }
 

@@ -11,6 +11,7 @@
 #include "dermis/core/rgb.h"
 #include "dermis/core/sampler.h"
 #include "dermis/geometry/ray.h"
+#include "dermis/materials/at_wavelengths.h"
 #include "dermis/materials/medium.h"
 #include "dermis/render/integrator.h"
 #include "dermis/render/path_counters.h"
@@ -67,9 +68,23 @@ struct PathState {
   HomogeneousMedium entered;
   int entered_medium = -1;
 
+  // The path's wavelengths (PathStart::wavelengths; null: RGB).
+  const SampledWavelengths* wavelengths;
+
+  // Medium m as the path sees it: at its wavelengths when it has them (the last one
+  // converted kept: a path stays in a medium for many vertices).
   const HomogeneousMedium& medium_of(const RenderScene& sc, int m) const {
-    return m == entered_medium ? entered : sc.media[m];
+    const HomogeneousMedium& rgb = m == entered_medium ? entered : sc.media[m];
+    if (!wavelengths) return rgb;
+    if (converted_index_ != m || converted_entered_ != (m == entered_medium)) {
+      converted_ = medium_at_wavelengths(rgb, *wavelengths);
+      converted_index_ = m;
+      converted_entered_ = m == entered_medium;
+    }
+    return converted_;
   }
+  // A textured volumetric medium entered anew: the medium converted before is stale.
+  void forget_converted_medium() { converted_index_ = -2; }
 
   // After a scattering event: the path goes on along `next`, sampled with solid-angle
   // density pdf; p and n (zero in a medium) are where the event's light sampling was done,
@@ -84,6 +99,11 @@ struct PathState {
     specular = counts_in_full;
     emission_weight = 1;
   }
+
+ private:
+  mutable HomogeneousMedium converted_;
+  mutable int converted_index_ = -2;
+  mutable bool converted_entered_ = false;
 };
 
 // Russian roulette after the second bounce on max(throughput) x eta scale (pbrt-v4 sec.

@@ -29,6 +29,9 @@ enum SamplerRegion : uint32_t {
   kSplitCopyPathRegion = 0x5b127u,
   // The nested path of transmitted_irradiance (integrator.h).
   kTransmittedIrradianceRegion = 0x1aadu,
+  // A spectral camera sample's wavelengths (renderer.cpp), one number from the camera's
+  // block: the dimensions of the path are those of an RGB render.
+  kWavelengthsRegion = 0x1a3bdu,
 };
 
 // Not a region: mixed into a vertex's sample hash to seed a layered BSDF's own random

@@ -45,10 +45,12 @@ bool SubsurfaceVertex::enter() {
     const bool entry_nee = ctx_.sc.switches.rough_glass_nee;
     const Vec3 p_out = offset_ray_origin(hit_.p, hit_.ng, hit_.ng);
     if (entry_nee) {
-      st_.L += st_.beta * estimate_direct(sc, p_out, hit_.ng, st_.medium, sampler, ctx_.counters, [&](Vec3 wi) {
-                 if (dot(wi, hit_.ng) <= 0 || !shading_side_agrees(hit_, wi)) return std::pair{RGB(0), 0.0f};
-                 return std::pair{bsdf_eval(boundary, wo_, wi), bsdf_pdf(boundary, wo_, wi)};
-               });
+      st_.L += st_.beta * estimate_direct(sc, p_out, hit_.ng, st_.medium, sampler, ctx_.counters,
+                                          ctx_.start.wavelengths, [&](Vec3 wi) {
+                                            if (dot(wi, hit_.ng) <= 0 || !shading_side_agrees(hit_, wi))
+                                              return std::pair{RGB(0), 0.0f};
+                                            return std::pair{bsdf_eval(boundary, wo_, wi), bsdf_pdf(boundary, wo_, wi)};
+                                          });
     }
     const float u_lobe = sampler.get1d();
     const auto bs = bsdf_sample(boundary, wo_, u_lobe, sampler.get2d());
@@ -86,8 +88,9 @@ bool SubsurfaceVertex::enter() {
     const Vec3 wi = reflect(wo_, hit_.ns);
     const Ray reflected{offset_ray_origin(hit_.p, hit_.ng, wi), wi};
     const bool reflects = shading_side_agrees(hit_, wi);  // else into the surface: no light
-    const bool counted = ctx_.sc.switches.reflection_emission && st_.medium < 0 && F > 0 && reflects &&
-                         add_bright_emission_seen(sc, reflected, st_.beta * F, ctx_.counters, st_.L);
+    const bool counted =
+        ctx_.sc.switches.reflection_emission && st_.medium < 0 && F > 0 && reflects &&
+        add_bright_emission_seen(sc, reflected, st_.beta * F, ctx_.counters, ctx_.start.wavelengths, st_.L);
     if (reflect_path) {
       if (!reflects) return false;
       st_.after_scatter(reflected, F, hit_.p, hit_.ng, SkyRule::Sampled, true);
@@ -111,16 +114,17 @@ RGB SubsurfaceVertex::interior_albedo(const SurfaceHit& h) const {
 
 RGB SubsurfaceVertex::light_through(Vec3 p, Vec3 n, const BSDF& b, Vec3 wo_in, Sampler& smp) const {
   if (!ctx_.sc.switches.rough_glass_nee) return RGB(0);
-  return estimate_direct(ctx_.sc, offset_ray_origin(p, n, n), n, st_.medium, smp, ctx_.counters, [&](Vec3 wi) {
-    if (!shading_side_agrees(n, b.n, wi) || dot(wi, n) <= 0) return std::pair{RGB(0), 0.0f};
-    return std::pair{bsdf_eval(b, wo_in, wi), bsdf_pdf(b, wo_in, wi)};
-  });
+  return estimate_direct(ctx_.sc, offset_ray_origin(p, n, n), n, st_.medium, smp, ctx_.counters, ctx_.start.wavelengths,
+                         [&](Vec3 wi) {
+                           if (!shading_side_agrees(n, b.n, wi) || dot(wi, n) <= 0) return std::pair{RGB(0), 0.0f};
+                           return std::pair{bsdf_eval(b, wo_in, wi), bsdf_pdf(b, wo_in, wi)};
+                         });
 }
 
 RGB SubsurfaceVertex::light_through_lobe(const SurfaceHit& at, const BSDF& sw, Sampler& smp) const {
   if (exit_light_none_) return RGB(0);
   return estimate_direct(
-      ctx_.sc, offset_ray_origin(at.p, at.ng, at.ng), at.ng, st_.medium, smp, ctx_.counters,
+      ctx_.sc, offset_ray_origin(at.p, at.ng, at.ng), at.ng, st_.medium, smp, ctx_.counters, ctx_.start.wavelengths,
       [&](Vec3 wi) {
         if (!shading_side_agrees(at, wi)) return std::pair{RGB(0), 0.0f};
         return std::pair{bsdf_eval(sw, at.ns, wi), bsdf_pdf(sw, at.ns, wi)};
@@ -193,7 +197,7 @@ VertexOutcome SubsurfaceVertex::exit() {
   };
   auto light_density = [&](Vec3 y, Vec3 w) { return light_density_from_inside(sc, y, w); };
   auto emission = [&](Vec3 x, Vec3 n, Vec3 w) {
-    return emission_seen(sc, Ray{offset_ray_origin(x, n, w), w}, ctx_.counters);
+    return emission_seen(sc, Ray{offset_ray_origin(x, n, w), w}, ctx_.counters, ctx_.start.wavelengths);
   };
   const bool offered_inside = lights_offered_inside(sc, st_.medium);
   const std::optional<KeyLight> key = offered_inside ? key_light(sc) : std::nullopt;

@@ -1,6 +1,7 @@
 #include "dermis/render/path/surface_vertex.h"
 
 #include "dermis/geometry/shading_normal.h"
+#include "dermis/materials/at_wavelengths.h"
 #include "dermis/materials/bsdf.h"
 #include "dermis/materials/fresnel.h"
 #include "dermis/render/path/camera_reflection.h"
@@ -17,6 +18,7 @@ VertexOutcome shade_surface(PathContext& ctx, PathState& st, const SurfaceHit& h
   const RenderScene& sc = ctx.sc;
   Sampler& sampler = ctx.sampler;
   BSDF bsdf = bsdf_at(mat, sc.textures, hit);
+  if (ctx.start.wavelengths) bsdf = bsdf_at_wavelengths(bsdf, *ctx.start.wavelengths);
   // The random streams of a layered BSDF's estimates: fresh for every vertex (bsdf.h).
   if (bsdf.type == BSDF::Type::Coated) bsdf.seed = sampler.sample_hash(st.vertex_dimension ^ kCoatedSeedSalt);
   // Shadow rays leave on the side of the light; the medium there is the one the path
@@ -36,18 +38,21 @@ VertexOutcome shade_surface(PathContext& ctx, PathState& st, const SurfaceHit& h
   const bool two_sided_nee = nee && (bsdf.type == BSDF::Type::DiffuseTransmission || rough_glass);
   const Vec3 p_back = two_sided_nee ? offset_ray_origin(hit.p, hit.ng, -wo) : p_out;
   if (nee) {
-    st.L += st.beta * estimate_direct(sc, p_out, surface_n, st.medium, sampler, ctx.counters, [&](Vec3 wi) {
-              if (two_sided_nee && dot(wi, surface_n) <= 0) return std::pair{RGB(0), 0.0f};
-              if (!shading_side_agrees(hit, wi)) return std::pair{RGB(0), 0.0f};
-              return std::pair{bsdf_eval(bsdf, wo, wi), bsdf_pdf(bsdf, wo, wi)};
-            });
+    st.L += st.beta * estimate_direct(sc, p_out, surface_n, st.medium, sampler, ctx.counters, ctx.start.wavelengths,
+                                      [&](Vec3 wi) {
+                                        if (two_sided_nee && dot(wi, surface_n) <= 0) return std::pair{RGB(0), 0.0f};
+                                        if (!shading_side_agrees(hit, wi)) return std::pair{RGB(0), 0.0f};
+                                        return std::pair{bsdf_eval(bsdf, wo, wi), bsdf_pdf(bsdf, wo, wi)};
+                                      });
   }
   if (two_sided_nee) {
     const int medium_behind = medium_after_crossing(s, -wo, hit.ng, st.medium);
-    st.L += st.beta * estimate_direct(sc, p_back, -surface_n, medium_behind, sampler, ctx.counters, [&](Vec3 wi) {
-              if (dot(wi, surface_n) >= 0 || !shading_side_agrees(hit, wi)) return std::pair{RGB(0), 0.0f};
-              return std::pair{bsdf_eval(bsdf, wo, wi), bsdf_pdf(bsdf, wo, wi)};
-            });
+    st.L += st.beta * estimate_direct(sc, p_back, -surface_n, medium_behind, sampler, ctx.counters,
+                                      ctx.start.wavelengths, [&](Vec3 wi) {
+                                        if (dot(wi, surface_n) >= 0 || !shading_side_agrees(hit, wi))
+                                          return std::pair{RGB(0), 0.0f};
+                                        return std::pair{bsdf_eval(bsdf, wo, wi), bsdf_pdf(bsdf, wo, wi)};
+                                      });
   }
   float u_lobe = sampler.get1d();
   const Vec2 u_dir = sampler.get2d();
@@ -80,7 +85,7 @@ VertexOutcome shade_surface(PathContext& ctx, PathState& st, const SurfaceHit& h
     if (reflected && !reflected->transmission && shading_side_agrees(hit, reflected->wi))
       reflection_counted =
           add_bright_emission_seen(sc, Ray{offset_ray_origin(hit.p, hit.ng, reflected->wi), reflected->wi},
-                                   st.beta * reflected->weight * F, ctx.counters, st.L);
+                                   st.beta * reflected->weight * F, ctx.counters, ctx.start.wavelengths, st.L);
   }
   auto bs = bsdf_sample(bsdf, wo, u_lobe, u_dir);
   if (!bs || !shading_side_agrees(hit, bs->wi)) return VertexOutcome::kStop;
@@ -98,6 +103,7 @@ VertexOutcome shade_surface(PathContext& ctx, PathState& st, const SurfaceHit& h
     if (const int v = textured_volumetric(sc, st.medium); v >= 0 && st.medium != before) {
       st.entered = volumetric_medium_at(sc, v, hit);
       st.entered_medium = st.medium;
+      st.forget_converted_medium();
     }
   }
   if (!st.beta.is_finite() || st.beta.is_black()) return VertexOutcome::kStop;

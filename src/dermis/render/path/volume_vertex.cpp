@@ -37,7 +37,7 @@ VertexOutcome shade_volume(PathContext& ctx, PathState& st, float t_hit) {
       const float g = m.g;
       st.L += st.beta * sp.weight *
               estimate_direct(sc, st.ray.o + st.ray.d * sp.t, Vec3(0, 0, 0), st.medium, sampler, ctx.counters,
-                              [&](Vec3 wi) {
+                              ctx.start.wavelengths, [&](Vec3 wi) {
                                 float ph = henyey_greenstein(dot(-wo, wi), g);
                                 return std::pair{RGB(ph), ph};
                               });

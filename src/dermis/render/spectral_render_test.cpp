@@ -1,0 +1,179 @@
+// Spectral transport (RenderOptions::spectral) through the parser and the path tracer: each
+// image against a closed form or the RGB render, within 4 standard errors per pixel.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "dermis/render/renderer.h"
+#include "dermis/render/scene_preparation.h"
+#include "dermis/scene/parser.h"
+#include "dermis/spectral/cie_observer.h"
+#include "dermis/spectral/rgb_to_spectrum.h"
+#include "dermis/spectral/spectrum_at.h"
+#include "support/pixel_statistics.h"
+
+namespace dermis {
+namespace {
+
+std::unique_ptr<RenderScene> scene_from(const std::string& text) {
+  Diagnostics diag;
+  return build_render_scene(parse_scene_string(text, "test.pbrt"), diag);
+}
+
+// A sphere of `material` filling the view, under a uniform sky of radiance `sky` and `extra`.
+std::string sphere_scene(const std::string& material, const std::string& sky, const std::string& extra = "") {
+  return fmt::format(
+      "LookAt 0 0 -4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 20\n"
+      "Film \"rgb\" \"integer xresolution\" 6 \"integer yresolution\" 6\n"
+      "Integrator \"volpath\" \"integer maxdepth\" 100000\nWorldBegin\n"
+      "LightSource \"infinite\" \"rgb L\" [{}]\n{}\nMaterial {}\nShape \"sphere\"\n",
+      sky, extra, material);
+}
+
+// The film's colour of sRGB's white, D65 at luminance 1 (spectrum_at.h): (1, 1, 1) up to the
+// tables' rounding.
+RGB d65_white() {
+  const CieTables& c = cie_tables();
+  double X = 0, Z = 0;
+  for (int i = 0; i < CieTables::kSamples; ++i) X += c.d65[i] * c.x[i], Z += c.d65[i] * c.z[i];
+  const auto rgb = xyz_to_linear_srgb(X / c.d65_y, 1, Z / c.d65_y);
+  return RGB(float(rgb[0]), float(rgb[1]), float(rgb[2]));
+}
+
+// |mean - expected| within 4 standard errors in every pixel and channel, with `floor`
+// (stated per test) for what the expectation itself is known to within.
+void expect_image_equals(const testing::PixelStatistics& st, RGB expected, double floor) {
+  int failures = 0;
+  for (std::size_t p = 0; p < st.mean.size(); ++p)
+    for (int c = 0; c < 3; ++c) {
+      const double tol = 4.0 * st.stderr_[p][c] + floor;
+      if (std::abs(st.mean[p][c] - expected[c]) > tol && failures++ < 5)
+        ADD_FAILURE() << "pixel " << p << " channel " << c << ": " << st.mean[p][c] << " vs " << expected[c]
+                      << " (tolerance " << tol << ")";
+    }
+  EXPECT_EQ(failures, 0);
+}
+
+TEST(SpectralRender, D65IsSrgbWhite) {
+  const RGB w = d65_white();
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(w[c], 1.0f, 2e-3f) << c;
+}
+
+// The white furnace, spectral: a white diffuse sphere under a white sky shows the sky's
+// colour, D65's white, at every pixel (every bounce reflects everything at every wavelength).
+TEST(SpectralRender, WhiteFurnace) {
+  const auto sc = scene_from(sphere_scene("\"diffuse\" \"rgb reflectance\" [1 1 1]", "1 1 1"));
+  expect_image_equals(testing::pixel_statistics(*sc, 512, 1, {}, true), d65_white(), 2e-6);
+}
+
+// A coloured convex sphere under a white sky: each pixel is one bounce off the sphere,
+// whose colour under D65 is its rgb (the uplift's round trip, within 1e-3:
+// spectral/rgb_to_spectrum_test.cpp).
+TEST(SpectralRender, ColouredFurnaceShowsTheReflectance) {
+  const RGB r(0.7f, 0.45f, 0.3f);
+  const auto sc = scene_from(sphere_scene("\"diffuse\" \"rgb reflectance\" [0.7 0.45 0.3]", "1 1 1"));
+  const RGB white = d65_white();
+  expect_image_equals(testing::pixel_statistics(*sc, 512, 2, {}, true), r * white, 1e-3);
+}
+
+// A grey scene (a grey sphere on a grey floor, a grey sky and a grey area light: every
+// spectrum flat but the lights', which are D65) renders in spectral mode as in RGB times
+// D65's white, within 4 sigma of the two estimates.
+TEST(SpectralRender, GreySceneRendersAsRgb) {
+  const std::string text = fmt::format(
+      "LookAt 0 -3 1.2  0 0 0.3  0 0 1\nCamera \"perspective\" \"float fov\" 35\n"
+      "Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 8\n"
+      "Integrator \"volpath\" \"integer maxdepth\" 20\nWorldBegin\n"
+      "LightSource \"infinite\" \"rgb L\" [0.4 0.4 0.4]\n"
+      "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [5 5 5]\nTranslate 1 -1 2.5\n"
+      "Shape \"trianglemesh\" \"point3 P\" [-0.4 -0.4 0 0.4 -0.4 0 0.4 0.4 0 -0.4 0.4 0] \"integer indices\" [0 2 1 0 "
+      "3 "
+      "2]\nAttributeEnd\n"
+      "Material \"diffuse\" \"rgb reflectance\" [0.6 0.6 0.6]\nTranslate 0 0 0.5\nShape \"sphere\" \"float radius\" "
+      "0.5\nTranslate 0 0 -0.5\nMaterial \"diffuse\" \"rgb reflectance\" [0.3 0.3 0.3]\n"
+      "Shape \"trianglemesh\" \"point3 P\" [-4 -4 0 4 -4 0 4 4 0 -4 4 0] \"integer indices\" [0 1 2 0 2 3]\n");
+  const auto sc = scene_from(text);
+  const auto rgb = testing::pixel_statistics(*sc, 1024, 3);
+  const auto spectral = testing::pixel_statistics(*sc, 1024, 4, {}, true);
+  const RGB white = d65_white();
+  int failures = 0;
+  double sum_rgb = 0, sum_spectral = 0, var = 0;
+  for (std::size_t p = 0; p < rgb.mean.size(); ++p)
+    for (int c = 0; c < 3; ++c) {
+      const double a = rgb.mean[p][c] * white[c], b = spectral.mean[p][c];
+      const double sigma = std::hypot(rgb.stderr_[p][c] * white[c], spectral.stderr_[p][c]);
+      if (std::abs(a - b) > 4 * sigma + 1e-6 && failures++ < 5)
+        ADD_FAILURE() << "pixel " << p << " channel " << c << ": RGB " << a << ", spectral " << b;
+      sum_rgb += a, sum_spectral += b, var += sigma * sigma;
+    }
+  EXPECT_EQ(failures, 0);
+  EXPECT_NEAR(sum_spectral, sum_rgb, 4 * std::sqrt(var));  // the image means: sharper
+}
+
+// A purely absorbing coloured sphere in an index-matched boundary, against a white sky: each
+// pixel-centre ray crosses a chord c of it, and the film records D65 x exp(-sigma_a(lambda) c)
+// through the observer, sigma_a the unbounded spectrum of its rgb (as pbrt-v4 reads a
+// medium's coefficients), summed here at every nanometre; within 4 sigma (the wavelengths'
+// noise) plus 1e-4 (the sum's).
+TEST(SpectralRender, AbsorbingSphereShowsBeerLambertOfItsSpectrum) {
+  const RGB sigma_a(2.0f, 0.6f, 0.2f);
+  const auto sc = scene_from(
+      "LookAt 0 0 -4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 20\n"
+      "Film \"rgb\" \"integer xresolution\" 6 \"integer yresolution\" 6\n"
+      "Integrator \"volpath\" \"integer maxdepth\" 100\nWorldBegin\n"
+      "LightSource \"infinite\" \"rgb L\" [1 1 1]\n"
+      "MakeNamedMedium \"ink\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [2 0.6 0.2] \"rgb sigma_s\" [0 0 0] "
+      "\"float scale\" 1\nMaterial \"interface\"\nMediumInterface \"ink\" \"\"\nShape \"sphere\"\n");
+  const auto st = testing::pixel_statistics(*sc, 256, 5, {}, true);
+  const UnboundedSpectrum spectrum = unbounded_spectrum(RgbToSpectrumTable::srgb(), sigma_a);
+  const CieTables& cie = cie_tables();
+  int failures = 0;
+  for (int y = 0; y < st.height; ++y)
+    for (int x = 0; x < st.width; ++x) {
+      const Ray ray = sc->camera.generate_ray({float(x) + 0.5f, float(y) + 0.5f}, {0.5f, 0.5f});
+      // The chord through the unit sphere at the origin: 2 sqrt(1 - d^2), d the ray's distance to it.
+      const Vec3 o = ray.o, d = normalize(ray.d);
+      const float along = -dot(o, d);
+      const float d2 = dot(o, o) - along * along;
+      const double chord = d2 < 1 ? 2 * std::sqrt(1 - d2) : 0;
+      double X = 0, Y = 0, Z = 0;
+      for (int i = 0; i < CieTables::kSamples; ++i) {
+        const float lambda = float(CieTables::kLambdaMin + i);
+        const double v = d65_at(lambda) * std::exp(-spectrum(lambda) * chord) / cie.y_sum;
+        X += v * cie.x[i], Y += v * cie.y[i], Z += v * cie.z[i];
+      }
+      const auto expected = xyz_to_linear_srgb(X, Y, Z);
+      const std::size_t p = std::size_t(y) * st.width + x;
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(st.mean[p][c] - expected[std::size_t(c)]) > 4 * st.stderr_[p][c] + 1e-4 && failures++ < 5)
+          ADD_FAILURE() << "pixel " << x << "," << y << " channel " << c << ": " << st.mean[p][c] << " vs "
+                        << expected[std::size_t(c)] << " (chord " << chord << ")";
+    }
+  EXPECT_EQ(failures, 0);
+}
+
+// The white furnace through a scattering, non-absorbing chromatic medium (free flights
+// chosen by wavelength, spectral MIS): D65's white at every pixel.
+TEST(SpectralRender, ScatteringMediumFurnace) {
+  const auto sc = scene_from(
+      "LookAt 0 0 -4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 20\n"
+      "Film \"rgb\" \"integer xresolution\" 6 \"integer yresolution\" 6\n"
+      "Integrator \"volpath\" \"integer maxdepth\" 100000\nWorldBegin\n"
+      "LightSource \"infinite\" \"rgb L\" [1 1 1]\n"
+      "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [0 0 0] \"rgb sigma_s\" [4 1 0.3] "
+      "\"float scale\" 1 \"float g\" 0.3\nMaterial \"interface\"\nMediumInterface \"fog\" \"\"\nShape \"sphere\"\n");
+  expect_image_equals(testing::pixel_statistics(*sc, 256, 6, {}, true), d65_white(), 2e-6);
+}
+
+// The switch: a scene with what has no spectral form yet says why, one without does not.
+TEST(SpectralRender, UnsupportedScenesSayWhy) {
+  EXPECT_EQ(spectral_unsupported(*scene_from(sphere_scene("\"diffuse\"", "1 1 1"))), "");
+  const auto sss =
+      scene_from(sphere_scene("\"subsurface\" \"rgb reflectance\" [0.8 0.6 0.5] \"rgb mfp\" [1 1 1]", "1 1 1"));
+  EXPECT_NE(spectral_unsupported(*sss).find("subsurface"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace dermis
