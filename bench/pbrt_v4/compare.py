@@ -46,7 +46,7 @@ markdown tables, also printed). Every render runs under `nice -n 19`.
 
 Options: --pbrt, --dermis (default build/dermis), --spp (64), --seeds (8),
 --reference-spp (1024), --threads (1, for the timed renders), --reference-threads (2),
---floor (0.001), --out, --rerun, --no-exact-subsurface, --quick (16 spp, 3 seeds,
+--floor (0.001), --out, --rerun, --no-exact-subsurface, --spectral (Dermis with --spectral), --quick (16 spp, 3 seeds,
 128-spp references), scenes (default: every bench/pbrt_v4/scenes/*.pbrt).
 """
 
@@ -71,8 +71,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SCENES = os.path.join(HERE, "scenes")
 
 # The order of the table; scenes not listed follow in alphabetical order.
-ORDER = ["diffuse", "arealights", "envmap", "coateddiffuse", "coateddiffuse-grey", "conductor",
-         "conductor-grey", "dielectric", "roughdielectric", "medium-interface",
+ORDER = ["diffuse", "arealights", "envmap", "blackbody", "coateddiffuse", "coateddiffuse-grey", "conductor",
+         "conductor-grey", "coatedconductor", "coatedconductor-grey", "dielectric", "roughdielectric", "medium-interface",
          "medium-dielectric", "sss-named", "sss-mfp", "sss-mfp-grey", "sss-mfp-scale", "sss-sigma", "sss-rough"]
 BLOCK = 16
 SIGMA_LIMIT = 5.0
@@ -496,6 +496,8 @@ def main():
     ap.add_argument("--subsurface", default="",
                     help="Dermis renders with `--subsurface TEXT` (e.g. pbrt-v4: pbrt-v4's photon-beam "
                          "profile; the subsurface scenes are then held to the same targets as the others)")
+    ap.add_argument("--spectral", action="store_true",
+                    help="Dermis renders with --spectral (docs/rendering.md, \"Spectral transport\")")
     ap.add_argument("--no-exact-subsurface", dest="exact_subsurface", action="store_false",
                     help="skip Dermis' volumetric reference of the subsurface scenes")
     args = ap.parse_args()
@@ -526,10 +528,11 @@ def main():
 
     os.makedirs(args.out, exist_ok=True)
     pbrt = Renderer("pbrt", args.pbrt, args.out, args.rerun)
-    dermis = Renderer("dermis", args.dermis, args.out, args.rerun,
-                      extra=["--subsurface", args.subsurface] if args.subsurface else [],
-                      label="dermis-" + re.sub(r"[^A-Za-z0-9]+", "_", args.subsurface).strip("_")
-                      if args.subsurface else None)
+    extra = (["--subsurface", args.subsurface] if args.subsurface else []) + (["--spectral"] if args.spectral else [])
+    label = "-".join(["dermis"] + ([re.sub(r"[^A-Za-z0-9]+", "_", args.subsurface).strip("_")] if args.subsurface
+                                   else []) + (["spectral"] if args.spectral else []))
+    dermis = Renderer("dermis", args.dermis, args.out, args.rerun, extra=extra,
+                      label=label if extra else None)
     dermis_plain = Renderer("dermis", args.dermis, args.out, args.rerun)  # the volumetric reference
     results = []
     t_start = time.perf_counter()

@@ -38,6 +38,11 @@ struct Light {
   // directions w toward the light with dot(w, portal_normal) <= 0 carry none. Zero: no portal.
   Vec3 portal_normal{0, 0, 0};
   int medium = -1;
+  // The emission as a spectrum (RenderScene::spectra) where the scene gave one (a blackbody,
+  // a named or tabulated spectrum), and that spectrum's colour at the scale it is kept at:
+  // spectral rendering reads emission x its ratio to that colour (render/path/direct_light.h).
+  int spectrum_data = -1;
+  RGB spectrum_data_rgb{0, 0, 0};
 };
 
 struct LightSample {

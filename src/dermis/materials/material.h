@@ -29,6 +29,9 @@ struct Material {
   float amount = 0.5f;
   int amount_texture = -1;  // a float texture for amount, or -1
   float eta = 1.5f;
+  // The conductor's eta and k as spectra (RenderScene::spectra; -1: the RGB below), for
+  // spectral rendering (render/path/surface_vertex.cpp).
+  int cond_eta_data = -1, cond_k_data = -1;
   RGB cond_eta, cond_k;
   // Dielectric, Conductor: Trowbridge-Reitz alpha along the two tangent axes (after
   // pbrt-v4's remaproughness); 0 (below kSmoothAlpha): smooth.

@@ -52,6 +52,9 @@ struct RenderScene {
   std::unique_ptr<EmbreeScene> embree;
   std::vector<Material> materials;
   std::vector<Texture> textures;
+  // Spectra given as data, at every nanometre of 360-830 nm (SceneDesc::spectra): spectral
+  // rendering reads them where lights and conductors name them.
+  std::vector<std::vector<float>> spectra;
   std::vector<HomogeneousMedium> media;
   // Subsurface materials (Material::subsurface indexes both): the parameters as parsed,
   // and the methods made from them by preparation.

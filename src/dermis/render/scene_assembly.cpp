@@ -41,6 +41,8 @@ Material make_material(const MaterialDesc& d, [[maybe_unused]] Diagnostics& diag
       break;
     case MaterialDesc::Type::Conductor:
       m.type = Material::Type::Conductor;
+      m.cond_eta_data = d.conductor_eta_data;
+      m.cond_k_data = d.conductor_k_data;
       if (d.has_reflectance) {
         // pbrt-v4: a conductor given a reflectance r uses eta = 1 and k = 2 sqrt(r) / sqrt(1 - r).
         m.cond_eta = RGB(1);
@@ -72,6 +74,8 @@ Material make_material(const MaterialDesc& d, [[maybe_unused]] Diagnostics& diag
         c.base = CoatedLayer::Base::Diffuse;  // its reflectance at the hit: bsdf_at()
       } else {
         c.base = CoatedLayer::Base::Conductor;
+        m.cond_eta_data = d.conductor_eta_data;
+        m.cond_k_data = d.conductor_k_data;
         c.conductor_eta = d.conductor_eta;
         c.conductor_k = d.conductor_k;
         if (d.has_reflectance) {
@@ -352,11 +356,16 @@ Shape make_scene_shape(const ShapeDesc& d, int default_material, const std::vect
 void add_area_lights(Shape& s, const ShapeDesc& d, int shape_id, std::vector<Light>& lights) {
   RGB L = d.area_light->L * d.area_light->scale;
   if (L.is_black()) return;
+  auto with_data = [&](Light& l) {
+    l.spectrum_data = d.area_light->L_data;
+    l.spectrum_data_rgb = d.area_light->L;
+  };
   s.first_light = int(lights.size());
   if (s.type == Shape::Type::Sphere) {
     Light l;
     l.type = Light::Type::Sphere;
     l.emission = L;
+    with_data(l);
     l.two_sided = d.area_light->two_sided;
     l.center = s.center;
     l.radius = s.radius;
@@ -369,6 +378,7 @@ void add_area_lights(Shape& s, const ShapeDesc& d, int shape_id, std::vector<Lig
       Light l;
       l.type = Light::Type::Triangle;
       l.emission = L;
+      with_data(l);
       l.two_sided = d.area_light->two_sided;
       l.p0 = s.positions[s.indices[3 * t]];
       l.p1 = s.positions[s.indices[3 * t + 1]];
@@ -509,6 +519,10 @@ Light make_light(const LightDesc& d) {
   Light l;
   l.medium = d.medium;
   l.emission = d.spectrum * d.scale;
+  if (d.filename.empty()) {
+    l.spectrum_data = d.spectrum_data;
+    l.spectrum_data_rgb = d.spectrum;
+  }
   switch (d.type) {
     case LightDesc::Type::Point:
       l.type = Light::Type::Point;
@@ -596,6 +610,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
   check_scene_point(desc.camera.camera_to_world.point(Vec3(0, 0, 0)), desc.camera.loc, "the camera");
 
   for (const TextureDesc& t : desc.textures) sc->textures.push_back(make_texture(t));
+  sc->spectra = desc.spectra;
   for (const MaterialDesc& m : desc.materials) sc->materials.push_back(make_material(m, diag));
   const int default_material = int(sc->materials.size());
   sc->materials.push_back(Material{});  // pbrt's default: diffuse, reflectance 0.5

@@ -4,11 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
+#include "dermis/core/fresnel.h"
 #include "dermis/render/renderer.h"
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
+#include "dermis/scene/spectra.h"
 #include "dermis/spectral/cie_observer.h"
 #include "dermis/spectral/rgb_to_spectrum.h"
 #include "dermis/spectral/spectrum_at.h"
@@ -165,6 +168,94 @@ TEST(SpectralRender, ScatteringMediumFurnace) {
       "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [0 0 0] \"rgb sigma_s\" [4 1 0.3] "
       "\"float scale\" 1 \"float g\" 0.3\nMaterial \"interface\"\nMediumInterface \"fog\" \"\"\nShape \"sphere\"\n");
   expect_image_equals(testing::pixel_statistics(*sc, 256, 6, {}, true), d65_white(), 2e-6);
+}
+
+// The colour a film records for a spectrum given at every nanometre (CIE 1931, linear sRGB).
+template <class Spectrum>
+RGB film_colour(const Spectrum& s) {
+  const CieTables& cie = cie_tables();
+  double X = 0, Y = 0, Z = 0;
+  for (int i = 0; i < CieTables::kSamples; ++i) {
+    const double v = s(i, float(CieTables::kLambdaMin + i)) / cie.y_sum;
+    X += v * cie.x[i], Y += v * cie.y[i], Z += v * cie.z[i];
+  }
+  const auto rgb = xyz_to_linear_srgb(X, Y, Z);
+  return RGB(float(rgb[0]), float(rgb[1]), float(rgb[2]));
+}
+
+// A blackbody sky is its spectrum, not the spectrum of its colour: under a 2000 K sky of
+// luminance 1, a saturated sphere shows the colour of planck x its reflectance's spectrum:
+// per pixel within 4 sigma (+1e-4, the sums'), and the image's mean within 4 sigma of it
+// while lighting by the spectrum of the sky's RGB would be beyond (checked).
+TEST(SpectralRender, BlackbodyLightIsItsSpectrum) {
+  const RGB r(0.05f, 0.3f, 0.9f);
+  const auto sc = scene_from(
+      "LookAt 0 0 -4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 20\n"
+      "Film \"rgb\" \"integer xresolution\" 4 \"integer yresolution\" 4\n"
+      "Integrator \"volpath\" \"integer maxdepth\" 100\nWorldBegin\n"
+      "LightSource \"infinite\" \"blackbody L\" [2000]\n"
+      "Material \"diffuse\" \"rgb reflectance\" [0.05 0.3 0.9]\nShape \"sphere\"\n");
+  const RgbSpectrum reflectance = RgbToSpectrumTable::srgb()(r);
+  const CieTables& cie = cie_tables();
+  auto planck = [](double l) {
+    const double c = 299792458.0, h = 6.62607015e-34, kb = 1.380649e-23, m = l * 1e-9;
+    return 1 / (std::pow(m, 5) * (std::exp(h * c / (m * kb * 2000)) - 1));
+  };
+  double sy = 0;
+  for (int i = 0; i < CieTables::kSamples; ++i) sy += planck(CieTables::kLambdaMin + i) * cie.y[i];
+  const double to_luminance_one = cie.y_sum / sy;
+  const RGB expected = film_colour([&](int, float l) { return planck(l) * to_luminance_one * double(reflectance(l)); });
+  const RGB sky_rgb = film_colour([&](int, float l) { return planck(l) * to_luminance_one; });
+  const RgbSpectrum sky_uplift = RgbToSpectrumTable::srgb()(sky_rgb / (2 * sky_rgb.max()));
+  const RGB via_rgb =
+      film_colour([&](int, float l) { return 2 * sky_rgb.max() * sky_uplift(l) * d65_at(l) * double(reflectance(l)); });
+  const auto st = testing::pixel_statistics(*sc, 4096, 7, {}, true);
+  expect_image_equals(st, expected, 1e-4);
+  bool told_apart = false;
+  for (int c = 0; c < 3; ++c) {
+    double mean = 0, var = 0;
+    for (std::size_t p = 0; p < st.mean.size(); ++p)
+      mean += st.mean[p][c], var += double(st.stderr_[p][c]) * st.stderr_[p][c];
+    mean /= double(st.mean.size());
+    const double sigma = std::sqrt(var) / double(st.mean.size());
+    std::printf("channel %d: image %.5f +- %.5f, planck %.5f, via RGB %.5f\n", c, mean, sigma, expected[c], via_rgb[c]);
+    EXPECT_NEAR(mean, expected[c], 4 * sigma + 1e-4);
+    told_apart = told_apart || std::abs(via_rgb[c] - expected[c]) > 4 * sigma + 1e-4;
+  }
+  EXPECT_TRUE(told_apart) << "the test could not tell the spectrum from the spectrum of its colour";
+}
+
+// A named metal is its measured spectra: a smooth gold sphere under a white sky reflects
+// D65 x Fresnel(cos theta, eta(lambda), k(lambda)) of metal-Au, at each pixel's angle.
+TEST(SpectralRender, NamedMetalIsItsMeasuredSpectra) {
+  const auto sc = scene_from(
+      "LookAt 0 0 -4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 20\n"
+      "Film \"rgb\" \"integer xresolution\" 4 \"integer yresolution\" 4\n"
+      "Integrator \"volpath\" \"integer maxdepth\" 100\nWorldBegin\n"
+      "LightSource \"infinite\" \"rgb L\" [1 1 1]\n"
+      "Material \"conductor\" \"spectrum eta\" \"metal-Au-eta\" \"spectrum k\" \"metal-Au-k\" \"float roughness\" 0\n"
+      "Shape \"sphere\"\n");
+  const auto eta = named_spectrum_samples("metal-Au-eta", SpectrumType::Unbounded);
+  const auto k = named_spectrum_samples("metal-Au-k", SpectrumType::Unbounded);
+  const auto st = testing::pixel_statistics(*sc, 512, 8, {}, true);
+  int failures = 0;
+  for (int y = 0; y < st.height; ++y)
+    for (int x = 0; x < st.width; ++x) {
+      const Ray ray = sc->camera.generate_ray({float(x) + 0.5f, float(y) + 0.5f}, {0.5f, 0.5f});
+      const Vec3 o = ray.o, d = normalize(ray.d);
+      const float along = -dot(o, d), d2 = dot(o, o) - along * along;
+      const std::size_t p = std::size_t(y) * st.width + x;
+      if (d2 >= 1) continue;                      // the sky
+      const float cos_theta = std::sqrt(1 - d2);  // at the hit, the normal against -d
+      const RGB expected = film_colour([&](int i, float l) {
+        return d65_at(l) * fresnel_conductor(cos_theta, (*eta)[std::size_t(i)], (*k)[std::size_t(i)]);
+      });
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(st.mean[p][c] - expected[c]) > 4 * st.stderr_[p][c] + 1e-4 && failures++ < 5)
+          ADD_FAILURE() << "pixel " << x << "," << y << " channel " << c << ": " << st.mean[p][c] << " vs "
+                        << expected[c];
+    }
+  EXPECT_EQ(failures, 0);
 }
 
 // The switch: a scene with what has no spectral form yet says why, one without does not.

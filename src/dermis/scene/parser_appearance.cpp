@@ -149,6 +149,20 @@ void SceneParser::read_microfacet_roughness(const ParamList& pl, const std::stri
   m.roughness = std::max({m.roughness, u, v, textures[0] >= 0 || textures[1] >= 0 ? 1.0f : 0.0f});
 }
 
+int SceneParser::spectrum_data(const ParamList& pl, const std::string& name, SpectrumType type) {
+  const ParsedParam* p = pl.find(name);
+  if (!p) return -1;
+  std::optional<std::vector<float>> samples = spectrum_param_samples(*p, type);
+  if (!samples) return -1;
+  s_.spectra.push_back(std::move(*samples));
+  return int(s_.spectra.size()) - 1;
+}
+
+int SceneParser::named_spectrum_data(const std::string& name) {
+  s_.spectra.push_back(*named_spectrum_samples(name, SpectrumType::Unbounded));
+  return int(s_.spectra.size()) - 1;
+}
+
 // pbrt-v4's coating parameters, common to coateddiffuse and coatedconductor; thickness and g
 // may be float textures, albedo a spectrum texture (evaluated per hit, clamped to their
 // ranges as pbrt-v4 does).
@@ -227,6 +241,10 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
       m.conductor_k = *named_spectrum_rgb("metal-Cu-k");
       m.conductor_eta = rgb_param(pl, "eta", m.conductor_eta, s_.diagnostics);
       m.conductor_k = rgb_param(pl, "k", m.conductor_k, s_.diagnostics);
+      m.conductor_eta_data =
+          pl.has("eta") ? spectrum_data(pl, "eta", SpectrumType::Unbounded) : named_spectrum_data("metal-Cu-eta");
+      m.conductor_k_data =
+          pl.has("k") ? spectrum_data(pl, "k", SpectrumType::Unbounded) : named_spectrum_data("metal-Cu-k");
     }
     read_microfacet_roughness(pl, "", m, m.uroughness, m.vroughness, m.roughness_texture);
   } else if (type == "interface" || type == "" || type == "none") {
@@ -255,6 +273,10 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
     } else {
       m.conductor_eta = rgb_param(pl, "conductor.eta", *named_spectrum_rgb("metal-Cu-eta"), s_.diagnostics);
       m.conductor_k = rgb_param(pl, "conductor.k", *named_spectrum_rgb("metal-Cu-k"), s_.diagnostics);
+      m.conductor_eta_data = pl.has("conductor.eta") ? spectrum_data(pl, "conductor.eta", SpectrumType::Unbounded)
+                                                     : named_spectrum_data("metal-Cu-eta");
+      m.conductor_k_data = pl.has("conductor.k") ? spectrum_data(pl, "conductor.k", SpectrumType::Unbounded)
+                                                 : named_spectrum_data("metal-Cu-k");
     }
     read_coating(pl, m);
   } else if (type == "diffusetransmission") {
@@ -562,10 +584,12 @@ void SceneParser::light_source(const Token& d, TokenStream& ts) {
   if (type == "point") {
     l.type = LightDesc::Type::Point;
     l.spectrum = emission_param(pl, "I", s_.diagnostics);
+    l.spectrum_data = spectrum_data(pl, "I", SpectrumType::Illuminant);
     l.from = pl.get_vec3("from", {"point3"}).value_or(l.from);
   } else if (type == "spot") {
     l.type = LightDesc::Type::Spot;
     l.spectrum = emission_param(pl, "I", s_.diagnostics);
+    l.spectrum_data = spectrum_data(pl, "I", SpectrumType::Illuminant);
     l.from = pl.get_vec3("from", {"point3"}).value_or(l.from);
     l.to = pl.get_vec3("to", {"point3"}).value_or(l.to);
     l.cone_angle = pl.get_float("coneangle", l.cone_angle);
@@ -577,6 +601,7 @@ void SceneParser::light_source(const Token& d, TokenStream& ts) {
   } else if (type == "distant") {
     l.type = LightDesc::Type::Distant;
     l.spectrum = emission_param(pl, "L", s_.diagnostics);
+    l.spectrum_data = spectrum_data(pl, "L", SpectrumType::Illuminant);
     l.from = pl.get_vec3("from", {"point3"}).value_or(l.from);
     l.to = pl.get_vec3("to", {"point3"}).value_or(l.to);
     if (l.from == l.to) throw SceneError(loc, "distant light: \"from\" and \"to\" coincide");
@@ -590,6 +615,7 @@ void SceneParser::light_source(const Token& d, TokenStream& ts) {
     if (pl.has("L") && pl.has("filename"))
       throw SceneError(pl.find("filename")->param.loc, "infinite light: give either \"L\" or \"filename\", not both");
     l.spectrum = emission_param(pl, "L", s_.diagnostics);
+    l.spectrum_data = spectrum_data(pl, "L", SpectrumType::Illuminant);
     if (pl.has("filename"))
       l.filename = existing_file(pl, "filename",
                                  scene_path(pl.get_string("filename", ""), pl.find("filename")->value_loc, "image"),
@@ -656,6 +682,7 @@ void SceneParser::area_light_source(const Token& d, TokenStream& ts) {
   }
   AreaLightDesc a;
   a.L = emission_param(pl, "L", s_.diagnostics);
+  a.L_data = spectrum_data(pl, "L", SpectrumType::Illuminant);
   a.scale = light_scale_param(pl, a.L, "L");
   a.two_sided = pl.get_bool("twosided", false);
   for (const char* ignored : {"power", "filename"})

@@ -149,10 +149,13 @@ struct MaterialDesc {
     Mix
   };
   Type type = Type::Diffuse;
-  std::string name;                      // MakeNamedMaterial name, or empty
-  RGBTexture reflectance;                // diffuse, coateddiffuse, diffusetransmission; conductor and
-                                         // coatedconductor when has_reflectance
-  float eta = 1.5f;                      // dielectric, subsurface, coateddiffuse, coatedconductor's interface.eta
+  std::string name;        // MakeNamedMaterial name, or empty
+  RGBTexture reflectance;  // diffuse, coateddiffuse, diffusetransmission; conductor and
+                           // coatedconductor when has_reflectance
+  float eta = 1.5f;        // dielectric, subsurface, coateddiffuse, coatedconductor's interface.eta
+  // eta and k as spectra (SceneDesc::spectra), where given as named spectra, files or
+  // samples (pbrt-v4's default copper included); -1: RGB.
+  int conductor_eta_data = -1, conductor_k_data = -1;
   RGB conductor_eta{0.2f, 0.92f, 1.1f};  // conductor, RGB approximation (default: metal-Cu-eta)
   RGB conductor_k{3.9f, 2.45f, 2.14f};   // conductor, RGB approximation (default: metal-Cu-k)
   bool has_reflectance = false;          // conductor given "reflectance" instead of eta/k
@@ -195,6 +198,7 @@ struct MaterialDesc {
 
 struct AreaLightDesc {
   RGB L{1, 1, 1};
+  int L_data = -1;  // L as a spectrum (SceneDesc::spectra), where given as one; -1: RGB
   float scale = 1;
   bool two_sided = false;
 };
@@ -246,7 +250,8 @@ struct LightDesc {
   enum class Type { Point, Spot, Distant, Infinite };
   Type type = Type::Point;
   Transform light_to_world;
-  RGB spectrum{1, 1, 1};  // I for point and spot, L for distant and infinite
+  RGB spectrum{1, 1, 1};   // I for point and spot, L for distant and infinite
+  int spectrum_data = -1;  // the same as a spectrum (SceneDesc::spectra), where given as one; -1: RGB
   float scale = 1;
   Vec3 from{0, 0, 0};      // point, spot, distant (light space)
   Vec3 to{0, 0, 1};        // spot, distant (light space)
@@ -275,6 +280,10 @@ struct MediumDesc {
 };
 
 struct SceneDesc {
+  // Spectra given as data (named spectra, files, samples, blackbodies) at every nanometre of
+  // 360-830 nm (scene/spectra.h spectrum_param_samples), for spectral rendering; the RGB
+  // stand-ins beside them are what RGB rendering reads.
+  std::vector<std::vector<float>> spectra;
   CameraDesc camera;
   FilmDesc film;
   RenderSettingsDesc settings;

@@ -14,6 +14,7 @@
 #include "dermis/core/load_monitor.h"
 #include "dermis/scene/params.h"
 #include "dermis/scene/scene_desc.h"
+#include "dermis/scene/spectra.h"
 #include "dermis/scene/tokenizer.h"
 
 namespace dermis {
@@ -108,6 +109,11 @@ class SceneParser {
   void read_microfacet_roughness(const ParamList& pl, const std::string& prefix, MaterialDesc& m, float& u, float& v,
                                  std::array<int, 2>& textures);
   void read_coating(const ParamList& pl, MaterialDesc& m);
+  // Parameter `name`'s spectrum kept as data (SceneDesc::spectra) where it is one: its index,
+  // else -1 (absent, or rgb).
+  int spectrum_data(const ParamList& pl, const std::string& name, SpectrumType type);
+  // A named spectrum kept as data (a default, such as pbrt-v4's copper): its index.
+  int named_spectrum_data(const std::string& name);
   void read_mix_materials(const ParamList& pl, const SourceLoc& loc, MaterialDesc& m);
   void read_image_map(const ParamList& pl, const SourceLoc& loc, TextureDesc& t);
   RGBTexture spectrum_or_texture(const ParamList& pl, const std::string& name, RGB def);

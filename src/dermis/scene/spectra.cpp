@@ -220,6 +220,53 @@ RGB spectrum_param_rgb(const ParsedParam& p, Diagnostics& diag, SpectrumType typ
                                             p.param.name, p.param.type));
 }
 
+namespace {
+
+// At every nanometre, scaled as `type` asks (spectrum_param_samples).
+std::vector<float> samples_of(std::span<const double> value, SpectrumType type, double extra_scale) {
+  if (type == SpectrumType::Illuminant) {
+    // Luminance 1: sum s y / sum y = 1, as the film's colour of it (spectral/sampled_wavelengths.h).
+    const CieTables& o = cie_tables();
+    double sy = 0;
+    for (int i = 0; i < kSamples; ++i) sy += value[std::size_t(i)] * o.y[std::size_t(i)];
+    if (sy > 0) extra_scale *= o.y_sum / sy;
+  }
+  std::vector<float> out(kSamples);
+  for (int i = 0; i < kSamples; ++i) out[std::size_t(i)] = float(value[std::size_t(i)] * extra_scale);
+  return out;
+}
+
+std::vector<double> at_every_nanometre(const Pairs& pairs, SpectrumEnds ends) {
+  PiecewiseLinear f(pairs.lambda, pairs.value, ends);
+  std::vector<double> value(kSamples);
+  for (int i = 0; i < kSamples; ++i) value[std::size_t(i)] = f.at(kLambdaMin + i);
+  return value;
+}
+
+}  // namespace
+
+std::optional<std::vector<float>> named_spectrum_samples(const std::string& name, SpectrumType type) {
+  const NamedSpectrumTable* t = find_table(name);
+  if (!t) return std::nullopt;
+  return samples_of(at_every_nanometre(split(t->pairs), SpectrumEnds::Extend), type, 1);
+}
+
+std::optional<std::vector<float>> spectrum_param_samples(const ParsedParam& p, SpectrumType type) {
+  if (p.type != "blackbody" && p.type != "spectrum") return std::nullopt;
+  if (p.type == "spectrum" && !p.param.strings.empty())
+    if (auto named = named_spectrum_samples(p.param.strings[0], type)) return named;
+  if (p.type == "blackbody") {
+    const auto& v = p.param.numbers;  // checked by spectrum_param_rgb
+    std::vector<double> value(kSamples);
+    for (int i = 0; i < kSamples; ++i) value[std::size_t(i)] = planck(kLambdaMin + i, v[0]);
+    return samples_of(value, type, v.size() == 2 ? v[1] : 1);  // pbrt-v3's [T scale]
+  }
+  if (!p.param.strings.empty())
+    return samples_of(at_every_nanometre(spectrum_file_pairs(p), SpectrumEnds::Zero), type, 1);
+  check_pairs(p);
+  return samples_of(at_every_nanometre(split(p.param.numbers), SpectrumEnds::Zero), type, 1);
+}
+
 float ior_param(const ParsedParam& p, Diagnostics& diag) {
   p.used = true;
   if (p.type == "float") {

@@ -6,6 +6,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "dermis/core/rgb.h"
 #include "dermis/scene/diagnostics.h"
@@ -51,6 +52,15 @@ RGB blackbody_rgb(double kelvin);
 // blackbody. A file name resolves against the parameter's base directory. Warns (at the
 // parameter) when a sampled spectrum or a spectrum file is reduced to RGB.
 RGB spectrum_param_rgb(const ParsedParam& p, Diagnostics& diag, SpectrumType type = SpectrumType::Unbounded);
+
+// The spectrum behind a parameter of type spectrum (pairs, a name or a file name) or
+// blackbody, at every nanometre of 360-830 nm, for spectral rendering (render/renderer.h
+// RenderOptions::spectral) to use as data: a light's (Illuminant) scaled so that its
+// luminance is 1, the scale spectrum_param_rgb's colour has, a coefficient's (Unbounded) as
+// given. nullopt for an rgb parameter (spectral rendering reads RGB as pbrt-v4 does).
+std::optional<std::vector<float>> spectrum_param_samples(const ParsedParam& p, SpectrumType type);
+// The same for one of pbrt-v4's named spectra (nullopt for other names).
+std::optional<std::vector<float>> named_spectrum_samples(const std::string& name, SpectrumType type);
 
 // A scalar from a float parameter, a named glass, or a sampled spectrum or spectrum file
 // (mean over 400-700 nm, with a warning).

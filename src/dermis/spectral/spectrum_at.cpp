@@ -82,6 +82,20 @@ RGB reflectance_at(RGB rgb, const SampledWavelengths& w) { return at_wavelengths
 RGB unbounded_at(RGB rgb, const SampledWavelengths& w) { return at_wavelengths(rgb, Kind::Unbounded, w); }
 RGB illuminant_at(RGB rgb, const SampledWavelengths& w) { return at_wavelengths(rgb, Kind::Illuminant, w); }
 
+RGB tabulated_at(std::span<const float> every_nanometre, const SampledWavelengths& w) {
+  RGB out;
+  const int n = int(every_nanometre.size());
+  for (int i = 0; i < kPathWavelengths; ++i) {
+    const float x = w.lambda[std::size_t(i)] - CieTables::kLambdaMin;
+    const int k = std::clamp(int(x), 0, std::max(n - 2, 0));
+    const float f = std::clamp(x - float(k), 0.0f, 1.0f);
+    out[i] = n == 0   ? 0
+             : n == 1 ? every_nanometre[0]
+                      : (1 - f) * every_nanometre[std::size_t(k)] + f * every_nanometre[std::size_t(k) + 1];
+  }
+  return out;
+}
+
 float d65_at(float lambda_nm) {
   const CieTables& cie = cie_tables();
   static const double to_luminance_one = cie.y_sum / cie.d65_y;  // sum d65 y / sum y = 1

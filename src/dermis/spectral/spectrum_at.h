@@ -6,6 +6,8 @@
 // D65's white and a film records it as (1, 1, 1).
 #pragma once
 
+#include <span>
+
 #include "dermis/core/rgb.h"
 #include "dermis/spectral/sampled_wavelengths.h"
 
@@ -15,6 +17,10 @@ namespace dermis {
 RGB reflectance_at(RGB rgb, const SampledWavelengths& w);  // rgb clamped to [0, 1]
 RGB unbounded_at(RGB rgb, const SampledWavelengths& w);    // negative components as 0
 RGB illuminant_at(RGB rgb, const SampledWavelengths& w);   // negative components as 0
+
+// A spectrum given as data at every nanometre of 360-830 nm (scene/spectra.h
+// spectrum_param_samples), read at the wavelengths (linear between nanometres).
+RGB tabulated_at(std::span<const float> every_nanometre, const SampledWavelengths& w);
 
 // D65's relative spectral power at a wavelength, scaled to luminance Y = 1 (linear between
 // the nanometres of cie_observer.h).

@@ -43,9 +43,18 @@ inline Vec3 direction_about(Vec3 axis, float cos_theta, float u) {
   return Frame(axis).to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
 }
 
-// An emission (a light's RGB) as the path carries it: at its wavelengths when it has them.
-inline RGB path_emission(RGB Le, const SampledWavelengths* wavelengths) {
-  return wavelengths ? illuminant_at(Le, *wavelengths) : Le;
+// An emission Le of `light` as the path carries it: at its wavelengths when it has them,
+// from the light's spectrum where the scene gave one (Le is its colour times a factor:
+// the same factor on the spectrum), else as pbrt-v4 reads an RGB emission.
+inline RGB path_emission(RGB Le, const Light& light, const RenderScene& sc, const SampledWavelengths* wavelengths) {
+  if (!wavelengths) return Le;
+  if (light.spectrum_data >= 0) {
+    const RGB& colour = light.spectrum_data_rgb;
+    const int c = colour[0] >= colour[1] ? (colour[0] >= colour[2] ? 0 : 2) : (colour[1] >= colour[2] ? 1 : 2);
+    if (colour[c] > 0)
+      return tabulated_at(sc.spectra[std::size_t(light.spectrum_data)], *wavelengths) * (Le[c] / colour[c]);
+  }
+  return illuminant_at(Le, *wavelengths);
 }
 
 // Next-event estimation from point p (already offset for surfaces) in `medium`.
@@ -76,7 +85,7 @@ RGB estimate_direct_group(const RenderScene& sc, Vec3 p, Vec3 n, int medium, Sam
   if (tr.is_black()) return RGB(0);
   float light_pdf = pmf * ls.pdf;
   float w = ls.delta ? 1.0f : power_heuristic(light_pdf, scatter_pdf);
-  return f * tr * path_emission(ls.L, wavelengths) * (w / light_pdf);
+  return f * tr * path_emission(ls.L, light, sc, wavelengths) * (w / light_pdf);
 }
 
 // One light sample from each group of the light selection (finite lights, lights at

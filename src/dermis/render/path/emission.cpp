@@ -10,7 +10,7 @@ void add_emission_at_infinity(const PathContext& ctx, PathState& st) {
     const Light& light = sc.lights[li];
     RGB Le = infinite_light_radiance(light, st.ray.d);
     if (Le.is_black()) continue;
-    Le = path_emission(Le, ctx.start.wavelengths);
+    Le = path_emission(Le, light, sc, ctx.start.wavelengths);
     float w = st.specular ? 1.0f
                           : power_heuristic(st.prev_pdf, sc.light_selection.pmf(li, st.prev_p, st.prev_n, st.prev_sky) *
                                                              light_pdf(light, st.prev_p, st.ray.d, {}, {}, st.prev_n));
@@ -24,26 +24,31 @@ void add_area_emission(const PathContext& ctx, PathState& st, const Shape& s, co
   const Light& light = sc.lights[li];
   RGB Le = area_light_radiance(light, hit.ng, -st.ray.d);
   if (Le.is_black()) return;
-  Le = path_emission(Le, ctx.start.wavelengths);
+  Le = path_emission(Le, light, sc, ctx.start.wavelengths);
   float w = st.specular ? 1.0f
                         : power_heuristic(st.prev_pdf, sc.light_selection.pmf(li, st.prev_p, st.prev_n, st.prev_sky) *
                                                            light_pdf(light, st.prev_p, st.ray.d, hit.p, hit.ng));
   st.L += st.beta * Le * (w * st.emission_weight);
 }
 
-RGB emission_seen(const RenderScene& sc, const Ray& ray, PathCounters& counters,
-                  const SampledWavelengths* wavelengths) {
+RGB emission_seen(const RenderScene& sc, const Ray& ray, PathCounters& counters, const SampledWavelengths* wavelengths,
+                  RGB* rgb) {
   SurfaceHit hit;
   counters.count(ray);
+  RGB Le(0), in_rgb(0);
   if (!sc.embree->intersect(ray, hit)) {
-    RGB Le(0);
-    for (int li : sc.infinite_lights) Le += infinite_light_radiance(sc.lights[li], ray.d);
-    return path_emission(Le, wavelengths);
+    for (int li : sc.infinite_lights) {
+      const RGB e = infinite_light_radiance(sc.lights[li], ray.d);
+      in_rgb += e;
+      Le += path_emission(e, sc.lights[li], sc, wavelengths);
+    }
+  } else if (const Shape& s = sc.shapes[hit.shape]; s.first_light >= 0) {
+    const int li = s.first_light + (s.type == Shape::Type::Mesh ? hit.prim : 0);
+    in_rgb = area_light_radiance(sc.lights[li], hit.ng, -ray.d);
+    Le = path_emission(in_rgb, sc.lights[li], sc, wavelengths);
   }
-  const Shape& s = sc.shapes[hit.shape];
-  if (s.first_light < 0) return RGB(0);
-  const int li = s.first_light + (s.type == Shape::Type::Mesh ? hit.prim : 0);
-  return path_emission(area_light_radiance(sc.lights[li], hit.ng, -ray.d), wavelengths);
+  if (rgb) *rgb = in_rgb;
+  return Le;
 }
 
 float mean_sky_luminance(const RenderScene& sc) {
@@ -65,9 +70,10 @@ bool may_see_bright_emission(const RenderScene& sc, const Ray& ray) {
 bool add_bright_emission_seen(const RenderScene& sc, const Ray& ray, RGB weight, PathCounters& counters,
                               const SampledWavelengths* wavelengths, RGB& L) {
   if (!may_see_bright_emission(sc, ray)) return false;
-  const RGB Le = emission_seen(sc, ray, counters, nullptr);  // the choice, in RGB
-  if (!(Le.luminance() > 2 * mean_sky_luminance(sc))) return false;
-  L += weight * path_emission(Le, wavelengths);
+  RGB in_rgb;  // the choice is made in RGB
+  const RGB Le = emission_seen(sc, ray, counters, wavelengths, &in_rgb);
+  if (!(in_rgb.luminance() > 2 * mean_sky_luminance(sc))) return false;
+  L += weight * Le;
   return true;
 }
 

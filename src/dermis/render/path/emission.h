@@ -19,8 +19,9 @@ void add_area_emission(const PathContext& ctx, PathState& st, const Shape& s, co
 
 // The emission `ray` meets at its first surface, or from the lights at infinity where it
 // meets none, in full (as after a specular bounce). In vacuum: no transmittance. At the
-// path's wavelengths when it has them (null: RGB).
-RGB emission_seen(const RenderScene& sc, const Ray& ray, PathCounters& counters, const SampledWavelengths* wavelengths);
+// path's wavelengths when it has them (null: RGB); `rgb`, if given, receives it in RGB.
+RGB emission_seen(const RenderScene& sc, const Ray& ray, PathCounters& counters, const SampledWavelengths* wavelengths,
+                  RGB* rgb = nullptr);
 
 // The mean luminance of the lights at infinity over the sphere of directions.
 float mean_sky_luminance(const RenderScene& sc);

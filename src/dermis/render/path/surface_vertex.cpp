@@ -18,7 +18,18 @@ VertexOutcome shade_surface(PathContext& ctx, PathState& st, const SurfaceHit& h
   const RenderScene& sc = ctx.sc;
   Sampler& sampler = ctx.sampler;
   BSDF bsdf = bsdf_at(mat, sc.textures, hit);
-  if (ctx.start.wavelengths) bsdf = bsdf_at_wavelengths(bsdf, *ctx.start.wavelengths);
+  if (ctx.start.wavelengths) {
+    const SampledWavelengths& w = *ctx.start.wavelengths;
+    bsdf = bsdf_at_wavelengths(bsdf, w);
+    // A conductor given as spectra (a named metal, pbrt-v4's default copper): its own data.
+    if (mat.cond_eta_data >= 0 && mat.cond_k_data >= 0) {
+      const RGB eta = tabulated_at(sc.spectra[std::size_t(mat.cond_eta_data)], w);
+      const RGB k = tabulated_at(sc.spectra[std::size_t(mat.cond_k_data)], w);
+      if (bsdf.type == BSDF::Type::Conductor) bsdf.cond_eta = eta, bsdf.cond_k = k;
+      if (bsdf.type == BSDF::Type::Coated && bsdf.coat.base == CoatedLayer::Base::Conductor)
+        bsdf.coat.conductor_eta = eta, bsdf.coat.conductor_k = k;
+    }
+  }
   // The random streams of a layered BSDF's estimates: fresh for every vertex (bsdf.h).
   if (bsdf.type == BSDF::Type::Coated) bsdf.seed = sampler.sample_hash(st.vertex_dimension ^ kCoatedSeedSalt);
   // Shadow rays leave on the side of the light; the medium there is the one the path
