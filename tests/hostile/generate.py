@@ -222,6 +222,17 @@ world('Include "trunc.pbrt.gz"\n', "include_truncated_gzip", 2)
 cases[-1]["files"]["trunc.pbrt.gz"] = gzip.compress(b'Shape "sphere"\n' * 100, mtime=0)[:30]
 
 # --confine: only files inside the scene's directory (docs/robustness.md, "File access")
+# Spectra (issue 65): a reflectance outside [0, 1] at some wavelength, a non-monotone
+# spectrum file, and --spectral with checkpoints (refused) or a subsurface scene (warned).
+world('Material "diffuse" "spectrum reflectance" [400 -0.5 700 0.5]\nShape "sphere"\n', "reflectance_negative", 2)
+world('Material "diffuse" "spectrum reflectance" "r.spd"\nShape "sphere"\n', "spectrum_file_not_monotone", 2)
+cases[-1]["files"]["r.spd"] = "400 0.5 500 0.4\n450 0.3\n"
+NO_SSS = BASE.replace('Material "subsurface" "string method" "randomwalk" "rgb reflectance" [0.8 0.6 0.5] "rgb mfp" '
+                      '[0.5 0.5 0.5]', 'Material "diffuse"')
+assert NO_SSS != BASE
+case("spectral_checkpoint", {"scene.pbrt": NO_SSS}, 2, kind="cli",
+     args=RENDER + ["--spectral", "--checkpoint", "out/ck.bin"])
+case("spectral_subsurface_warns", {"scene.pbrt": BASE}, 0, args=RENDER + ["--spectral"])
 CONFINED = RENDER + ["--confine"]
 world('Include "../outside.pbrt"\n', "confine_dotdot", 2, args=CONFINED)
 world('Include "/etc/passwd"\n', "confine_absolute", 2, args=CONFINED)

@@ -111,6 +111,19 @@ RGBTexture SceneParser::spectrum_or_texture(const ParamList& pl, const std::stri
     return t;
   }
   t.value = spectrum_param_rgb(*p, s_.diagnostics);
+  // Every parameter read here is a reflectance (reflectance, transmittance, albedo): a
+  // spectrum given as data must lie in [0, 1] where it is seen, not only its colour.
+  if (const auto samples = spectrum_param_samples(*p, SpectrumType::Unbounded)) {
+    std::size_t worst = 0;  // the farthest outside [0, 1]
+    auto outside = [](float v) { return v < 0 ? -v : v > 1 ? v - 1 : std::isnan(v) ? INFINITY : 0.0f; };
+    for (std::size_t i = 1; i < samples->size(); ++i)
+      if (outside((*samples)[i]) > outside((*samples)[worst])) worst = i;
+    if (outside((*samples)[worst]) > 0)
+      throw SceneError(p->value_loc,
+                       fmt::format("\"{}\" is a reflectance and must lie in [0, 1] at every wavelength of 360-830 nm; "
+                                   "this spectrum is {:g} at {} nm",
+                                   name, (*samples)[worst], 360 + worst));
+  }
   return t;
 }
 

@@ -252,6 +252,22 @@ TEST(SpectrumFile, ErrorsNameTheFileLineAndColumn) {
   expect_error_at(mat + "\"sub\"\n", dir.path(), "test.pbrt:2:43", "spectrum file '" + d + "sub'");
 }
 
+// A reflectance given as a spectrum must lie in [0, 1] at every wavelength it is seen at
+// (issue 65, item 7), not only its colour: an error at the scene's value, naming where.
+TEST(SpectrumFile, AReflectanceSpectrumOutsideZeroToOneIsAnError) {
+  TempDir dir;
+  dir.write("bright.spd", "400 0.5 550 1.3 700 0.5\n");
+  const std::string mat = "Material \"diffuse\" \"spectrum reflectance\" ";
+  expect_error_at(mat + "[400 -0.2 700 0.5]\n", dir.path(), "test.pbrt:2:43",
+                  "\"reflectance\" is a reflectance and must lie in [0, 1] at every wavelength of 360-830 nm; this "
+                  "spectrum is -0.2 at 400 nm");
+  expect_error_at(mat + "\"bright.spd\"\n", dir.path(), "test.pbrt:2:43", "this spectrum is 1.3 at 550 nm");
+  expect_error_at("Material \"coateddiffuse\" \"spectrum albedo\" \"metal-Au-eta\"\n", dir.path(), "test.pbrt:2:44",
+                  "\"albedo\" is a reflectance");
+  // Within [0, 1]: fine, outside the visible range too.
+  EXPECT_NO_THROW(parse_world(mat + "[300 2 360 1 830 0 900 -1]\n", dir.path()));
+}
+
 TEST(SpectrumFile, IndexOfRefractionFromAFile) {
   TempDir dir;
   dir.write("n.spd", "400 1.6 700 1.4\n");
