@@ -1,5 +1,6 @@
 // The CIE 1931 2-degree observer and illuminant D65 at every nanometre of 360-830 nm
-// (interpolated linearly from the 5 nm tables of named_spectra_data.cpp), and CIE XYZ to
+// (the observer by Sprague interpolation, D65 linearly, from the 5 nm tables of
+// named_spectra_data.cpp), and CIE XYZ to
 // linear sRGB: what turns a spectrum into the colour a film records.
 #pragma once
 
