@@ -296,6 +296,21 @@ void print_render_header(const RenderArgs& a, const RenderScene& scene, const Re
       scene.shapes.size(), scene.lights.size(), group.size() > 1 ? fmt::format(", {} processes", group.size()) : "");
 }
 
+// --spectral where the scene allows it: a scene with what has no spectral form yet is
+// rendered in RGB, with a warning; false (refused) with checkpoints, which hold RGB films.
+bool settle_spectral(const RenderArgs& a, const RenderScene& scene, const std::string& program, bool root,
+                     RenderOptions& opt) {
+  if (!opt.spectral) return true;
+  if (const std::string why = spectral_unsupported(scene); !why.empty()) {
+    if (root) fmt::print(stderr, "{}: warning: --spectral: {}: the scene is rendered in RGB\n", program, why);
+    opt.spectral = false;
+  } else if (!a.checkpoint.empty() || !a.resume.empty()) {
+    if (root) fmt::print(stderr, "{}: --spectral does not work with --checkpoint or --resume yet\n", program);
+    return false;
+  }
+  return true;
+}
+
 // What a live render (--preview, --watch) adds to one render of the scene.
 struct LiveRender {
   LiveImage* image = nullptr;                 // the preview's picture, if any
@@ -392,15 +407,7 @@ int render_once(const RenderArgs& args, const RenderJob& job, const LiveRender& 
   if (failed(error)) return 2;
 
   RenderOptions opt = render_options(a, job, desc, group);
-  if (opt.spectral) {
-    if (const std::string why = spectral_unsupported(*scene); !why.empty()) {
-      if (root) fmt::print(stderr, "{}: warning: --spectral: {}: the scene is rendered in RGB\n", program, why);
-      opt.spectral = false;
-    } else if (!a.checkpoint.empty() || !a.resume.empty()) {
-      if (root) fmt::print(stderr, "{}: --spectral does not work with --checkpoint or --resume yet\n", program);
-      return 2;
-    }
-  }
+  if (!settle_spectral(a, *scene, program, root, opt)) return 2;
   const PixelBounds pixels = film_pixel_bounds(scene->film);
   const int64_t total = int64_t(pixels.width()) * pixels.height() * opt.spp;
   Progress progress("Rendering", total, progress_style);

@@ -13,17 +13,12 @@
 #include "dermis/core/rng.h"
 #include "dermis/core/warp.h"
 #include "dermis/materials/bsdf.h"
+#include "support/running_mean.h"
 
 namespace dermis {
 namespace {
 
-// Running mean and standard error of the mean.
-struct Mean {
-  double n = 0, s = 0, s2 = 0;
-  void add(double x) { n += 1, s += x, s2 += x * x; }
-  double mean() const { return s / n; }
-  double stderr_() const { return std::sqrt(std::max(0.0, s2 / n - mean() * mean()) / (n - 1)); }
-};
+using testing::Mean;
 
 // Directional albedo of the stack from wo: the mean of sample() weights (channel c).
 Mean sampled_albedo(const CoatedLayer& c, Vec3 wo, int n, uint64_t seed, int channel = 0) {

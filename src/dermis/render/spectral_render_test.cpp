@@ -45,6 +45,15 @@ RGB d65_white() {
   return RGB(float(rgb[0]), float(rgb[1]), float(rgb[2]));
 }
 
+// The squared distance from the origin (the unit sphere's centre) to pixel (x, y)'s
+// pixel-centre ray.
+float squared_distance_to_centre(const RenderScene& sc, int x, int y) {
+  const Ray ray = sc.camera.generate_ray({float(x) + 0.5f, float(y) + 0.5f}, {0.5f, 0.5f});
+  const Vec3 o = ray.o, d = normalize(ray.d);
+  const float along = -dot(o, d);
+  return dot(o, o) - along * along;
+}
+
 // |mean - expected| within 4 standard errors in every pixel and channel, with `floor`
 // (stated per test) for what the expectation itself is known to within.
 void expect_image_equals(const testing::PixelStatistics& st, RGB expected, double floor) {
@@ -135,12 +144,8 @@ TEST(SpectralRender, AbsorbingSphereShowsBeerLambertOfItsSpectrum) {
   int failures = 0;
   for (int y = 0; y < st.height; ++y)
     for (int x = 0; x < st.width; ++x) {
-      const Ray ray = sc->camera.generate_ray({float(x) + 0.5f, float(y) + 0.5f}, {0.5f, 0.5f});
-      // The chord through the unit sphere at the origin: 2 sqrt(1 - d^2), d the ray's distance to it.
-      const Vec3 o = ray.o, d = normalize(ray.d);
-      const float along = -dot(o, d);
-      const float d2 = dot(o, o) - along * along;
-      const double chord = d2 < 1 ? 2 * std::sqrt(1 - d2) : 0;
+      const float d2 = squared_distance_to_centre(*sc, x, y);
+      const double chord = d2 < 1 ? 2 * std::sqrt(1 - d2) : 0;  // through the unit sphere
       double X = 0, Y = 0, Z = 0;
       for (int i = 0; i < CieTables::kSamples; ++i) {
         const float lambda = float(CieTables::kLambdaMin + i);
@@ -241,9 +246,7 @@ TEST(SpectralRender, NamedMetalIsItsMeasuredSpectra) {
   int failures = 0;
   for (int y = 0; y < st.height; ++y)
     for (int x = 0; x < st.width; ++x) {
-      const Ray ray = sc->camera.generate_ray({float(x) + 0.5f, float(y) + 0.5f}, {0.5f, 0.5f});
-      const Vec3 o = ray.o, d = normalize(ray.d);
-      const float along = -dot(o, d), d2 = dot(o, o) - along * along;
+      const float d2 = squared_distance_to_centre(*sc, x, y);
       const std::size_t p = std::size_t(y) * st.width + x;
       if (d2 >= 1) continue;                      // the sky
       const float cos_theta = std::sqrt(1 - d2);  // at the hit, the normal against -d

@@ -7,17 +7,12 @@
 
 #include "dermis/core/rng.h"
 #include "dermis/spectral/cie_observer.h"
+#include "support/running_mean.h"
 
 namespace dermis {
 namespace {
 
-// Running mean and standard error.
-struct Mean {
-  double n = 0, s = 0, s2 = 0;
-  void add(double x) { n += 1, s += x, s2 += x * x; }
-  double mean() const { return s / n; }
-  double stderr_() const { return std::sqrt(std::max(0.0, s2 / n - mean() * mean()) / (n - 1)); }
-};
+using testing::Mean;
 
 TEST(SampledWavelengths, VisiblePdfIntegratesToOne) {
   double sum = 0;
