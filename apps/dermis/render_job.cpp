@@ -296,18 +296,17 @@ void print_render_header(const RenderArgs& a, const RenderScene& scene, const Re
       scene.shapes.size(), scene.lights.size(), group.size() > 1 ? fmt::format(", {} processes", group.size()) : "");
 }
 
-// --spectral where the scene allows it: a scene with what has no spectral form yet is
-// rendered in RGB, with a warning; false (refused) with checkpoints, which hold RGB films.
+// --spectral: a warning for what the scene does in RGB inside it (spectral_limitations);
+// false (refused) with checkpoints, which hold RGB films.
 bool settle_spectral(const RenderArgs& a, const RenderScene& scene, const std::string& program, bool root,
-                     RenderOptions& opt) {
+                     const RenderOptions& opt) {
   if (!opt.spectral) return true;
-  if (const std::string why = spectral_unsupported(scene); !why.empty()) {
-    if (root) fmt::print(stderr, "{}: warning: --spectral: {}: the scene is rendered in RGB\n", program, why);
-    opt.spectral = false;
-  } else if (!a.checkpoint.empty() || !a.resume.empty()) {
+  if (!a.checkpoint.empty() || !a.resume.empty()) {
     if (root) fmt::print(stderr, "{}: --spectral does not work with --checkpoint or --resume yet\n", program);
     return false;
   }
+  if (const std::string what = spectral_limitations(scene); !what.empty() && root)
+    fmt::print(stderr, "{}: warning: --spectral: {}\n", program, what);
   return true;
 }
 

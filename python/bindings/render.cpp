@@ -121,13 +121,10 @@ py::object render(Scene& s, std::optional<int> spp, std::optional<int64_t> seed,
   opt.spectral = spectral.value_or(s.desc.settings.spectral);
   std::string spectral_note;
   if (opt.spectral) {
-    spectral_note = spectral_unsupported(*scene);
-    if (!spectral_note.empty()) {
-      opt.spectral = false;
-      if (PyErr_WarnEx(PyExc_UserWarning,
-                       fmt::format("spectral: {}: the scene is rendered in RGB", spectral_note).c_str(), 1) < 0)
-        throw py::error_already_set();
-    }
+    spectral_note = spectral_limitations(*scene);
+    if (!spectral_note.empty() &&
+        PyErr_WarnEx(PyExc_UserWarning, fmt::format("spectral: {}", spectral_note).c_str(), 1) < 0)
+      throw py::error_already_set();
   }
 
   const PixelBounds px = film_pixel_bounds(scene->film);

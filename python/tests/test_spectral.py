@@ -46,21 +46,32 @@ def test_the_scenes_option_and_the_flag_agree(dermis_module, dermis_binary, tmp_
     assert np.array_equal(dermis_module.render(scene, seed=2), dermis_module.read_image(str(a)))
 
 
-def test_a_scene_without_spectral_form_warns_and_renders_rgb(dermis_module, sphere_scene, dermis_binary, tmp_path):
-    with pytest.warns(UserWarning, match="subsurface materials have no spectral form yet"):
-        image, stats = dermis_module.render(sphere_scene, spp=1, stats=True, spectral=True)
-    assert not stats["spectral"]
+def test_a_subsurface_scene_renders_spectrally(dermis_module, sphere_scene):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        assert np.array_equal(image, dermis_module.render(sphere_scene, spp=1))
+        image, stats = dermis_module.render(sphere_scene, spp=1, stats=True, spectral=True)
+    assert stats["spectral"]
+    assert not np.array_equal(image, dermis_module.render(sphere_scene, spp=1))
 
 
-def test_the_command_line_warns_where_the_scene_has_no_spectral_form(dermis_binary, tmp_path):
+def point_cloud_scene():
     from conftest import SPHERE_SCENE
-    path = tmp_path / "sss.pbrt"
-    path.write_text(SPHERE_SCENE)
+    return SPHERE_SCENE.replace('"string method" "randomwalk"', '"string method" "pointcloud"')
+
+
+def test_the_point_cloud_warns_what_it_does_in_rgb(dermis_module):
+    scene = point_cloud_scene()
+    assert "pointcloud" in scene
+    with pytest.warns(UserWarning, match="the point-cloud method has no spectral form"):
+        _, stats = dermis_module.render(dermis_module.load_scene(scene), spp=1, stats=True, spectral=True)
+    assert stats["spectral"]
+
+
+def test_the_command_line_warns_what_the_point_cloud_does_in_rgb(dermis_binary, tmp_path):
+    path = tmp_path / "cloud.pbrt"
+    path.write_text(point_cloud_scene())
     run = subprocess.run([dermis_binary, "render", str(path), "--spectral", "--spp", "1", "-o",
-                          str(tmp_path / "sss.exr"), "--no-png"], capture_output=True, text=True)
-    assert run.returncode == 0
-    assert "warning: --spectral: subsurface materials have no spectral form yet: the scene is rendered in RGB" \
+                          str(tmp_path / "cloud.exr"), "--no-png"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert "warning: --spectral: the point-cloud method has no spectral form: its cloud is computed in RGB" \
         in run.stderr

@@ -66,7 +66,7 @@ class ImageRender {
         group_(opt.group ? *opt.group : single_process()),
         tiles_(own_tiles(w_, h_, group_, opt.tile_assignment)),
         spp_(uint32_t(opt.spp)),
-        spectral_(opt.spectral && spectral_unsupported(sc).empty()) {
+        spectral_(opt.spectral) {
     if (opt.resume) {
       if (opt.resume->width != w_ || opt.resume->height != h_)
         throw std::invalid_argument("render_image: the film to resume has another size than the image");
@@ -355,8 +355,11 @@ class ImageRender {
 
 }  // namespace
 
-std::string spectral_unsupported(const RenderScene& sc) {
-  if (!sc.subsurface.empty()) return "subsurface materials have no spectral form yet";
+std::string spectral_limitations(const RenderScene& sc) {
+  for (const auto& m : sc.subsurface)
+    if (std::holds_alternative<PointCloudMethod>(m->method))
+      return "the point-cloud method has no spectral form: its cloud is computed in RGB and the colour of its light "
+             "is uplifted to the path's wavelengths";
   return {};
 }
 

@@ -28,9 +28,10 @@ enum class TileAssignment {
   Blocks,       // contiguous runs of tiles, one per process (ProcessGroup::share)
 };
 
-// Why `sc` cannot be rendered spectrally yet (empty: it can): subsurface materials have no
-// spectral form yet.
-std::string spectral_unsupported(const RenderScene& sc);
+// What a spectral render of `sc` does in RGB (empty: nothing), for a warning that names the
+// method and what it does instead: the point-cloud method's cloud is RGB, and its light's
+// colour is uplifted to the path's wavelengths (subsurface/point_cloud_method.h).
+std::string spectral_limitations(const RenderScene& sc);
 
 struct RenderOptions {
   int spp = 16;
@@ -39,8 +40,8 @@ struct RenderOptions {
   SamplerKind sampler = SamplerKind::Sobol;
   // Spectral transport (--spectral): each camera sample carries kPathWavelengths wavelengths
   // (spectral/sampled_wavelengths.h), its RGB inputs read as pbrt-v4 reads them, and the film
-  // records the colour of its values (CIE 1931 to linear sRGB). Where the scene has what
-  // has no spectral form yet (spectral_unsupported) the render is RGB.
+  // records the colour of its values (CIE 1931 to linear sRGB). What stays RGB inside a
+  // spectral render: spectral_limitations.
   bool spectral = false;
   double time_limit = 0;                      // seconds; 0: none
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop early

@@ -261,13 +261,5 @@ TEST(SpectralRender, NamedMetalIsItsMeasuredSpectra) {
   EXPECT_EQ(failures, 0);
 }
 
-// The switch: a scene with what has no spectral form yet says why, one without does not.
-TEST(SpectralRender, UnsupportedScenesSayWhy) {
-  EXPECT_EQ(spectral_unsupported(*scene_from(sphere_scene("\"diffuse\"", "1 1 1"))), "");
-  const auto sss =
-      scene_from(sphere_scene("\"subsurface\" \"rgb reflectance\" [0.8 0.6 0.5] \"rgb mfp\" [1 1 1]", "1 1 1"));
-  EXPECT_NE(spectral_unsupported(*sss).find("subsurface"), std::string::npos);
-}
-
 }  // namespace
 }  // namespace dermis

@@ -8,6 +8,7 @@
 #include "dermis/geometry/ray.h"
 #include "dermis/materials/medium.h"
 #include "dermis/render/render_scene.h"
+#include "dermis/spectral/sampled_wavelengths.h"
 
 namespace dermis {
 
@@ -18,9 +19,17 @@ inline int textured_volumetric(const RenderScene& scene, int medium) {
              : -1;
 }
 
+// The entry in scene.volumetric_media of `medium`, textured or not, else -1.
+int volumetric_of_medium(const RenderScene& scene, int medium);
+
 // The medium of volumetric entry `v` at the surface point `entry`: its textures there,
 // (reflectance, mfp) turned into coefficients by the same dielectric table as the
-// constants (a lookup; allocates nothing).
-HomogeneousMedium volumetric_medium_at(const RenderScene& scene, int v, const SurfaceHit& entry);
+// constants (a lookup; allocates nothing). At the wavelengths `w` when given: the
+// parameters read at them (subsurface/coefficients.h medium_at_wavelengths) and inverted
+// per wavelength, as the random walk does.
+HomogeneousMedium volumetric_medium_at(const RenderScene& scene, int v, const SurfaceHit& entry,
+                                       const SampledWavelengths* w = nullptr);
+// The medium of volumetric entry `v`'s constant parameters at the wavelengths `w`.
+HomogeneousMedium volumetric_medium_at_wavelengths(const RenderScene& scene, int v, const SampledWavelengths& w);
 
 }  // namespace dermis

@@ -1,8 +1,10 @@
 #include "dermis/render/path/path_state.h"
 
+#include "dermis/materials/at_wavelengths.h"
 #include "dermis/render/path/emission.h"
 #include "dermis/render/path/sampler_regions.h"
 #include "dermis/render/russian_roulette.h"
+#include "dermis/render/volumetric_texture.h"
 
 namespace dermis {
 
@@ -19,6 +21,18 @@ PathState::PathState(const Ray& r, int m, const PathStart& start)
       camera_chain(start.from_camera && start.depth == 0),
       vertex_dimension(start.first_dimension),
       wavelengths(start.wavelengths) {}
+
+const HomogeneousMedium& PathState::medium_of(const RenderScene& sc, int m) const {
+  if (m == entered_medium) return entered;
+  if (!wavelengths) return sc.media[m];
+  if (converted_index_ != m) {
+    const int v = volumetric_of_medium(sc, m);
+    converted_ = v >= 0 ? volumetric_medium_at_wavelengths(sc, v, *wavelengths)
+                        : medium_at_wavelengths(sc.media[m], *wavelengths);
+    converted_index_ = m;
+  }
+  return converted_;
+}
 
 bool survives_roulette(PathContext& ctx, PathState& st, float threshold) {
   if (st.depth <= 1) return true;

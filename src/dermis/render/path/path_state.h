@@ -11,7 +11,6 @@
 #include "dermis/core/rgb.h"
 #include "dermis/core/sampler.h"
 #include "dermis/geometry/ray.h"
-#include "dermis/materials/at_wavelengths.h"
 #include "dermis/materials/medium.h"
 #include "dermis/render/integrator.h"
 #include "dermis/render/path_counters.h"
@@ -64,7 +63,8 @@ struct PathState {
   bool first_vertex = true;   // PathStart::first_vertex_roulette not yet applied
   uint64_t vertex_dimension;  // this vertex's block of sampler dimensions (integrator.h)
   // A textured `volumetric` object: the path takes the medium of the point where it
-  // entered and keeps it while inside (volumetric_texture.h); elsewhere sc.media.
+  // entered and keeps it while inside (volumetric_texture.h), made at the path's
+  // wavelengths when it has them; elsewhere sc.media.
   HomogeneousMedium entered;
   int entered_medium = -1;
 
@@ -72,19 +72,10 @@ struct PathState {
   const SampledWavelengths* wavelengths;
 
   // Medium m as the path sees it: at its wavelengths when it has them (the last one
-  // converted kept: a path stays in a medium for many vertices).
-  const HomogeneousMedium& medium_of(const RenderScene& sc, int m) const {
-    const HomogeneousMedium& rgb = m == entered_medium ? entered : sc.media[m];
-    if (!wavelengths) return rgb;
-    if (converted_index_ != m || converted_entered_ != (m == entered_medium)) {
-      converted_ = medium_at_wavelengths(rgb, *wavelengths);
-      converted_index_ = m;
-      converted_entered_ = m == entered_medium;
-    }
-    return converted_;
-  }
-  // A textured volumetric medium entered anew: the medium converted before is stale.
-  void forget_converted_medium() { converted_index_ = -2; }
+  // converted kept: a path stays in a medium for many vertices). A `volumetric` medium's
+  // parameters are read at the wavelengths and inverted per wavelength (volumetric_texture.h),
+  // as its random walk twin's are.
+  const HomogeneousMedium& medium_of(const RenderScene& sc, int m) const;
 
   // After a scattering event: the path goes on along `next`, sampled with solid-angle
   // density pdf; p and n (zero in a medium) are where the event's light sampling was done,
@@ -103,7 +94,6 @@ struct PathState {
  private:
   mutable HomogeneousMedium converted_;
   mutable int converted_index_ = -2;
-  mutable bool converted_entered_ = false;
 };
 
 // Russian roulette after the second bounce on max(throughput) x eta scale (pbrt-v4 sec.

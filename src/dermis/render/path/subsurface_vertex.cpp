@@ -11,6 +11,7 @@
 #include "dermis/render/path_splitting.h"
 #include "dermis/render/russian_roulette.h"
 #include "dermis/render/subsurface/object_tracer.h"
+#include "dermis/spectral/spectrum_at.h"
 
 namespace dermis {
 
@@ -109,7 +110,9 @@ RGB SubsurfaceVertex::irradiance(Vec3 p, Vec3 n, float eta, Sampler& smp) const 
 
 RGB SubsurfaceVertex::interior_albedo(const SurfaceHit& h) const {
   const Material& m = ctx_.sc.materials[ctx_.sc.shapes[h.shape].material];
-  return m.type == Material::Type::Diffuse ? bsdf_at(m, ctx_.sc.textures, h).albedo : RGB(0);
+  if (m.type != Material::Type::Diffuse) return RGB(0);
+  const RGB albedo = bsdf_at(m, ctx_.sc.textures, h).albedo;
+  return ctx_.start.wavelengths ? reflectance_at(albedo, *ctx_.start.wavelengths) : albedo;
 }
 
 RGB SubsurfaceVertex::light_through(Vec3 p, Vec3 n, const BSDF& b, Vec3 wo_in, Sampler& smp) const {
@@ -219,6 +222,7 @@ VertexOutcome SubsurfaceVertex::exit() {
                         first_entry_exits > 0 ? 0 : -1,
                         exit_light_none_};
   if (offered_inside) entry.lights_from_inside = &lights_inside;
+  entry.wavelengths = ctx_.start.wavelengths;
   if (first_entry_ && ctx_.start.subsurface_record && ctx_.start.subsurface_record->material < 0)
     ctx_.start.subsurface_record->material = mat_.subsurface;
   // The probes' exits at the camera's first entry are one stratified sequence of the

@@ -112,9 +112,8 @@ VertexOutcome shade_surface(PathContext& ctx, PathState& st, const SurfaceHit& h
     const int before = st.medium;
     st.medium = medium_after_crossing(s, bs->wi, hit.ng, st.medium);
     if (const int v = textured_volumetric(sc, st.medium); v >= 0 && st.medium != before) {
-      st.entered = volumetric_medium_at(sc, v, hit);
+      st.entered = volumetric_medium_at(sc, v, hit, st.wavelengths);
       st.entered_medium = st.medium;
-      st.forget_converted_medium();
     }
   }
   if (!st.beta.is_finite() || st.beta.is_black()) return VertexOutcome::kStop;

@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "dermis/core/microfacet.h"
+#include "dermis/spectral/spectrum_at.h"
 #include "dermis/sss/study/albedo_inversion.h"
 #include "dermis/sss/walk/albedo_inversion.h"
 
@@ -148,6 +149,17 @@ MediumAt medium_at(const SubsurfaceParams& p, const std::vector<Texture>* textur
     if (m.mfp) *m.mfp = *m.mfp * s;
   }
   return m;
+}
+
+MediumAt medium_at_wavelengths(MediumAt at, const SampledWavelengths& w) {
+  if (at.reflectance) at.reflectance = reflectance_at(*at.reflectance, w);
+  if (at.mfp) {  // a length: kept positive, as medium_at keeps a textured one
+    const RGB l = unbounded_at(*at.mfp, w);
+    at.mfp = RGB(std::max(l[0], 1e-6f), std::max(l[1], 1e-6f), std::max(l[2], 1e-6f));
+  }
+  if (at.sigma_a) at.sigma_a = unbounded_at(*at.sigma_a, w);
+  if (at.sigma_s) at.sigma_s = unbounded_at(*at.sigma_s, w);
+  return at;
 }
 
 const sss::AlbedoInversion* albedo_inversion_for(const SubsurfaceParams& p) {

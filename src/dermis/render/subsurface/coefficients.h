@@ -13,6 +13,7 @@
 #include "dermis/materials/texture.h"
 #include "dermis/render/process_group.h"
 #include "dermis/scene/subsurface_params.h"
+#include "dermis/spectral/sampled_wavelengths.h"
 
 namespace dermis::sss {
 class AlbedoInversion;
@@ -31,6 +32,13 @@ struct MediumAt {
 // to [0, 1], lengths and coefficients kept positive). Without textures: the constants.
 MediumAt medium_at(const SubsurfaceParams& params, const std::vector<Texture>* textures = nullptr,
                    const TextureContext& at = {});
+
+// The medium at a spectral path's wavelengths (spectral/spectrum_at.h), read as pbrt-v4
+// reads a subsurface material: the reflectance as a reflectance spectrum, the coefficients
+// and the mean free path as unbounded spectra. Each channel is then one wavelength, and
+// everything made from it per channel (the albedo inversion, the profiles, the walk's
+// medium) is made per wavelength.
+MediumAt medium_at_wavelengths(MediumAt at, const SampledWavelengths& w);
 
 struct Coefficients {
   RGB sigma_a, sigma_s;

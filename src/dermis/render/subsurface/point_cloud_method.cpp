@@ -6,6 +6,7 @@
 #include "dermis/materials/bsdf.h"
 #include "dermis/render/subsurface/coefficients.h"
 #include "dermis/render/subsurface/profile_from_params.h"
+#include "dermis/spectral/spectrum_at.h"
 
 namespace dermis {
 
@@ -36,6 +37,10 @@ bool PointCloudMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sample
                           make_profile(params_, medium_at(params_, textures_, texture_context(entry.hit)), table_))
                     : c->radiant_exitance(entry.hit.p, Ex);
   out.radiance = M / (sw_norm_ * kPi);  // L = Sw M (METHODS.md sec. 0)
+  // A spectral path: the cloud is RGB (its pre-pass gathers RGB irradiance); the colour of
+  // its light is uplifted to the path's wavelengths as an emitter's is, which the film
+  // turns back into that colour (spectral_limitations, renderer.h).
+  if (entry.wavelengths) out.radiance = illuminant_at(out.radiance, *entry.wavelengths);
   return true;
 }
 

@@ -20,6 +20,8 @@ namespace dermis {
 // Textured parameters: the cloud holds irradiance and area only; the exitance at a
 // shading point spreads every point's E_p A_p with the profile of the parameters at the
 // shading point (as the probes weight every exit with the entry point's profile).
+// Spectral transport: the cloud stays RGB, and its light's colour is uplifted to the path's
+// wavelengths (a documented limitation: the colour is the RGB method's, not the spectrum's).
 class PointCloudMethod {
  public:
   // sw_norm: c of the exit lobe Sw (bsdf.h; the rough table's when the boundary is rough).

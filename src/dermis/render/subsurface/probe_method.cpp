@@ -216,10 +216,10 @@ bool ProbeMethod::sample_lines(const sss::ProfileRGB& profile, const sss::Sphere
   sss::SphereLineRetry r = lines.sample_retry(p, sampler, count_hits);
   out.kind = SubsurfaceExit::Kind::ThroughLobe;
   if (r.hits == 0) {
-    out.hit = entry.hit;
+    out.hit = entry.hit;  // the fallback's weight: the tables' own, or the entry profile's
     for (int c = 0; c < 3; ++c)
       out.weight[c] =
-          float(params_.textured() ? energy_within(profile[c], lines.max_radius()) : lines.fallback_weight(c));
+          float(&profile != profile_.get() ? energy_within(profile[c], lines.max_radius()) : lines.fallback_weight(c));
     return true;
   }
   const SurfaceHit& h = (*hits)[r.chosen];
@@ -233,12 +233,15 @@ bool ProbeMethod::sample_lines(const sss::ProfileRGB& profile, const sss::Sphere
 
 bool ProbeMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, SubsurfaceExit& out) const {
   const int strategy = entry.strategy >= 0 && entry.strategy < strategy_count() ? entry.strategy : 0;
-  if (!params_.textured())
+  if (!params_.textured() && !entry.wavelengths)
     return !disks_.empty() ? sample_disk(*profile_, *disks_[std::size_t(strategy)], entry, sampler, out)
                            : sample_lines(*profile_, *lines_, entry, sampler, out);
-  // The entry point's own parameters: its profile and probe sampler on the stack.
-  const sss::ProfileRGB profile =
-      make_profile(params_, medium_at(params_, textures_, texture_context(entry.hit)), table_);
+  // The entry point's own parameters, at the path's wavelengths on a spectral path: its
+  // profile (per wavelength) and probe sampler on the stack. The channel MIS of the probes
+  // is then MIS over the path's wavelengths.
+  MediumAt at = medium_at(params_, textures_, texture_context(entry.hit));
+  if (entry.wavelengths) at = medium_at_wavelengths(at, *entry.wavelengths);
+  const sss::ProfileRGB profile = make_profile(params_, at, table_);
   if (!disks_.empty()) {
     const sss::DiskProbeSampler disk(profile, probe_channel_weights(profile), axes(strategy));
     return sample_disk(profile, disk, entry, sampler, out);

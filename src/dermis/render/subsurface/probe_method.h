@@ -38,10 +38,10 @@ RGB probe_channel_weights(const sss::ProfileRGB& profile);
 // unbiased: the area density sums over the axes with them.
 inline constexpr std::array<double, 3> kDiskNormalAxisShares{0.75, 0.95, 0.5};
 
-// Textured parameters: the profile and its probe sampler are made at each entry point
-// from the parameters there, on the stack (no allocation), and the exit is weighted
-// with that profile. The disk sampler is closed-form; the sphere lines stretch the
-// tables of the textures' mean to the entry profile's reach (sphere_lines.h).
+// Textured parameters, and every spectral path (at its wavelengths): the profile and its
+// probe sampler are made at each entry point from the parameters there, on the stack (no
+// allocation for the closed-form profiles), and the exit is weighted with that profile. The disk sampler is
+// closed-form; the sphere lines stretch the tables of the textures' mean to the entry profile's reach (sphere_lines.h).
 class ProbeMethod {
  public:
   // textures: the scene's (outlives the method).

@@ -12,6 +12,7 @@
 #include "dermis/materials/bsdf.h"
 #include "dermis/render/subsurface/object_tracer.h"
 #include "dermis/render/subsurface/refracted_light.h"
+#include "dermis/spectral/sampled_wavelengths.h"
 #include "dermis/sss/walk/boundary_hit.h"
 
 namespace dermis {
@@ -97,6 +98,10 @@ struct SubsurfaceEntry {
   // The lights as seen from inside, for light sampled through a smooth boundary
   // (refracted_light.h); null where the integrator does not offer it.
   const LightsFromInside* lights_from_inside = nullptr;
+  // The path's wavelengths (spectral transport: each colour channel of the exit's weight
+  // is the value at one of them; integrator.h PathStart::wavelengths); null: RGB. A method
+  // reads its parameters at them (coefficients.h medium_at_wavelengths).
+  const SampledWavelengths* wavelengths = nullptr;
 };
 
 }  // namespace dermis

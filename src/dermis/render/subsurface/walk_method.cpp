@@ -181,12 +181,15 @@ bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Sub
     initial[channel] = 1;
   }
   bool exited = false;
-  if (!medium_per_entry_) {
+  if (!medium_per_entry_ && !entry.wavelengths) {
     exited = walk(entry, settings_[strategy], steps_[strategy], initial, sampler, out);
   } else {
-    // The entry point's own medium.
-    const MediumAt at = medium_at(params_, textures_, texture_context(entry.hit));
-    const float boundary_alpha = roughness_.at(entry.hit).x;
+    // The entry point's own medium, at the path's wavelengths on a spectral path: the
+    // albedo inverted and the step made per wavelength, each channel's walk its own
+    // wavelength's (the walk's channel MIS is then MIS over the path's wavelengths).
+    MediumAt at = medium_at(params_, textures_, texture_context(entry.hit));
+    if (entry.wavelengths) at = medium_at_wavelengths(at, *entry.wavelengths);
+    const float boundary_alpha = medium_per_entry_ ? roughness_.at(entry.hit).x : roughness_.constant().x;
     LastTexturedStep& last = t_last_textured_step;
     if (!last.matches(id_, strategy, at, boundary_alpha)) {
       last.method = ~uint64_t(0);  // until the new one is built (make_walk_step may throw)
