@@ -247,7 +247,8 @@ AlbedoAndMfp albedo_and_mfp(const MediumAt& m, float g) {
   for (int c = 0; c < 3; ++c) {
     double ss = (*m.sigma_s)[c] * (1 - g), st = (*m.sigma_a)[c] + ss;
     r.mfp[c] = float(1 / st);
-    r.albedo[c] = float(sss::surface_albedo_index_matched(ss / st));  // Chandrasekhar 1950 (METHODS.md sec. 6)
+    // Chandrasekhar 1950 (METHODS.md sec. 6), tabulated: made at every textured or spectral entry.
+    r.albedo[c] = float(sss::surface_albedo_index_matched_tabulated(ss / st));
   }
   return r;
 }

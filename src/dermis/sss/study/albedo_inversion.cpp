@@ -1,11 +1,14 @@
 #include "dermis/sss/study/albedo_inversion.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "dermis/sss/halfspace/chandrasekhar.h"
 #include "dermis/sss/halfspace/halfspace.h"
+#include "dermis/sss/walk/monotone_hermite.h"
 
 namespace dermis::sss {
 
@@ -26,6 +29,25 @@ double surface_albedo_index_matched(double alpha) {
     throw std::invalid_argument("single-scattering albedo must lie in [0, 1] (got " + std::to_string(alpha) + ")");
   const HFunction h(alpha);
   return halfspace_albedo_collimated(h, 1.0);  // 1 - H(1) sqrt(1 - alpha) (Chandrasekhar 1950, ch. V)
+}
+
+double surface_albedo_index_matched_tabulated(double alpha) {
+  static const std::vector<HermiteNode> nodes = [] {
+    constexpr int n = kSurfaceAlbedoNodes;
+    constexpr double h = 1.0 / (n - 1);
+    std::vector<HermiteNode> out(n);
+    for (int k = 0; k < n; ++k) out[std::size_t(k)] = {k * h, surface_albedo_of_u(k * h * k * h), 0};
+    for (int k = 0; k < n; ++k) {  // central differences; one-sided (second order) at the ends
+      const auto y = [&](int i) { return out[std::size_t(i)].y; };
+      out[std::size_t(k)].m = k == 0       ? (-3 * y(0) + 4 * y(1) - y(2)) / (2 * h)
+                              : k == n - 1 ? (3 * y(n - 1) - 4 * y(n - 2) + y(n - 3)) / (2 * h)
+                                           : (y(k + 1) - y(k - 1)) / (2 * h);
+    }
+    return out;
+  }();
+  const double t = std::sqrt(std::sqrt(1 - std::clamp(alpha, 0.0, 1.0)));
+  const int k = std::min(int(t * (kSurfaceAlbedoNodes - 1)), kSurfaceAlbedoNodes - 2);
+  return hermite_between(nodes[std::size_t(k)], nodes[std::size_t(k) + 1], t);
 }
 
 double single_scattering_albedo_index_matched(double a) {

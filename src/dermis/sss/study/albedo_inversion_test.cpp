@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "dermis/sss/halfspace/halfspace.h"
@@ -20,6 +22,21 @@ TEST(AlbedoInversion, SurfaceAlbedoRoundTrips) {
   }
   EXPECT_EQ(single_scattering_albedo_index_matched(0.0), 0.0);
   EXPECT_EQ(single_scattering_albedo_index_matched(1.0), 1.0);
+}
+
+// The table against the exact relation, between its nodes and at them, over the whole range
+// of alpha (half of the points where A changes fastest, near alpha = 1).
+TEST(AlbedoInversion, TabulatedSurfaceAlbedoIsTheExactOne) {
+  double worst = 0;
+  for (int i = 0; i <= 200; ++i) {
+    const double u = (i + 0.37) / 201.0, alpha = i < 100 ? 1 - u * u : double(i - 100) / 100;
+    const double err = std::abs(surface_albedo_index_matched_tabulated(alpha) - surface_albedo_index_matched(alpha));
+    worst = std::max(worst, err);
+    EXPECT_LT(err, 2e-7) << alpha;
+  }
+  std::printf("largest difference: %.3g\n", worst);
+  EXPECT_EQ(surface_albedo_index_matched_tabulated(1.0), 1.0);
+  EXPECT_NEAR(surface_albedo_index_matched_tabulated(0.0), 0.0, 1e-12);
 }
 
 // alpha -> A -> alpha, compared in u = sqrt(1 - alpha) (A is linear in u near alpha = 1,
