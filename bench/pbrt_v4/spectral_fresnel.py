@@ -21,7 +21,7 @@ import numpy as np
 
 from bench.harness.paths import ROOT
 
-DATA = os.path.join(ROOT, "src", "dermis", "scene", "named_spectra_data.cpp")
+DATA = os.path.join(ROOT, "src", "dermis", "spectral", "named_spectra_data.cpp")
 
 XYZ_TO_SRGB = np.array([[3.2404542, -1.5371385, -0.4985314],
                         [-0.9692660, 1.8760108, 0.0415560],

@@ -1,5 +1,6 @@
 #include "dermis/spectral/sampled_wavelengths.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "dermis/spectral/cie_observer.h"
@@ -39,18 +40,25 @@ float SampledWavelengths::visible_pdf(float lambda_nm) {
 
 SampledWavelengths SampledWavelengths::sample_visible(float u) {
   SampledWavelengths w;
-  for (int i = 0; i < kPathWavelengths; ++i) {
-    float ui = u + float(i) / kPathWavelengths;
-    if (ui >= 1) ui -= 1;
-    sample_visible_wavelength(ui, w.lambda[std::size_t(i)], w.pdf[std::size_t(i)]);
-  }
+  for (int i = 0; i < kPathWavelengths; ++i)
+    sample_visible_wavelength((u + float(i)) / kPathWavelengths, w.lambda[std::size_t(i)], w.pdf[std::size_t(i)]);
   return w;
 }
 
-void SampledWavelengths::terminate_secondary() {
+bool SampledWavelengths::secondary_terminated() const {
+  int kept = 0;
+  for (float p : pdf) kept += p > 0;
+  return kept == 1;
+}
+
+void SampledWavelengths::terminate_secondary(float u) {
   if (secondary_terminated()) return;
-  for (int i = 1; i < kPathWavelengths; ++i) pdf[std::size_t(i)] = 0;
-  pdf[0] /= kPathWavelengths;  // the hero alone now stands for all the path's samples
+  const int kept = std::min(int(u * kPathWavelengths), kPathWavelengths - 1);
+  for (int i = 0; i < kPathWavelengths; ++i)
+    if (i != kept) pdf[std::size_t(i)] = 0;
+  // Chosen with probability 1 / n from its slice, where its density is n x visible_pdf: its
+  // density is visible_pdf, and it alone now stands for all the path's samples.
+  pdf[std::size_t(kept)] /= kPathWavelengths;
 }
 
 RGB SampledWavelengths::to_linear_srgb(RGB values) const {

@@ -12,11 +12,10 @@ namespace dermis::sss {
 // (Chandrasekhar 1950, ch. V; METHODS 6), H solved numerically (chandrasekhar.h).
 double surface_albedo_index_matched(double single_scattering_albedo);
 // The same from a table of kSurfaceAlbedoNodes exact values uniform in t = (1 - alpha)^(1/4)
-// (the nodes closer where A bends most, near alpha = 1), a cubic Hermite between nodes (Fritsch & Carlson 1980, eq. 2), slopes
-// by central differences: within 2e-7 of the exact (albedo_inversion_test.cpp), in tens of
-// nanoseconds where the exact solves the H-equation (about a millisecond). Made once per
-// process, on first use (about 0.2 s). For the profiles made at every entry point (textured
-// or spectral coefficients). alpha is clamped to [0, 1].
+// (the nodes closer where A bends most, near alpha = 1), a cubic Hermite between nodes (Fritsch & Carlson 1980, eq. 2),
+// slopes by central differences: within 2e-7 of the exact (albedo_inversion_test.cpp), in tens of nanoseconds where the
+// exact solves the H-equation (about a millisecond). Made once per process, on first use (about 0.2 s). For the
+// profiles made at every entry point (textured or spectral coefficients). alpha is clamped to [0, 1].
 inline constexpr int kSurfaceAlbedoNodes = 129;
 double surface_albedo_index_matched_tabulated(double single_scattering_albedo);
 
