@@ -39,7 +39,7 @@ inline PixelStatistics pixel_statistics(const RenderScene& sc, int spp, uint64_t
         Ray ray = sc.camera.generate_ray({float(x) + 0.5f, float(y) + 0.5f}, {0.5f, 0.5f});
         RGB L;
         if (spectral) {
-          const SampledWavelengths w = SampledWavelengths::sample_visible(sampler.get1d());
+          SampledWavelengths w = SampledWavelengths::sample_visible(sampler.get1d());
           PathStart with_wavelengths = start;
           with_wavelengths.wavelengths = &w;
           L = w.to_linear_srgb(trace_path(sc, ray, sc.camera_medium, sampler, counters, with_wavelengths));

@@ -32,6 +32,12 @@ struct Material {
   // The conductor's eta and k as spectra (RenderScene::spectra; -1: the RGB below), for
   // spectral rendering (render/path/surface_vertex.cpp).
   int cond_eta_data = -1, cond_k_data = -1;
+  // The same for the reflectance (Diffuse, DiffuseTransmission, a Coated diffuse base) and
+  // the transmittance (DiffuseTransmission) given as spectra.
+  int reflectance_data = -1, transmittance_data = -1;
+  // Dielectric: its index as a spectrum (RenderScene::spectra; -1: `eta` at every wavelength):
+  // dispersion, which keeps one wavelength of a spectral path (render/path/surface_vertex.cpp).
+  int eta_data = -1;
   RGB cond_eta, cond_k;
   // Dielectric, Conductor: Trowbridge-Reitz alpha along the two tangent axes (after
   // pbrt-v4's remaproughness); 0 (below kSmoothAlpha): smooth.

@@ -4,7 +4,6 @@
 
 #include "dermis/core/warp.h"
 #include "dermis/geometry/shading_normal.h"
-#include "dermis/materials/at_wavelengths.h"
 #include "dermis/materials/fresnel.h"
 #include "dermis/render/path/direct_light.h"
 #include "dermis/render/path/emission.h"
@@ -14,6 +13,7 @@
 #include "dermis/render/path/surface_vertex.h"
 #include "dermis/render/path/volume_vertex.h"
 #include "dermis/render/path_splitting.h"
+#include "dermis/render/spectral_media.h"
 
 namespace dermis {
 
@@ -50,7 +50,7 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
                          PathCounters& counters, const SampledWavelengths* wavelengths) {
   // A medium's transmittance, at the path's wavelengths when it has them.
   auto medium_tr = [&](int m, float d) {
-    return wavelengths ? medium_at_wavelengths(sc.media[m], *wavelengths).transmittance(d)
+    return wavelengths ? scene_medium_at_wavelengths(sc, m, *wavelengths).transmittance(d)
                        : sc.media[m].transmittance(d);
   };
   RGB tr(1);

@@ -83,7 +83,9 @@ struct PathStart {
   int* split_budget = nullptr;
   // The wavelengths the path carries (--spectral: each RGB channel of its values is the
   // value at one of them); null: the channels are red, green and blue.
-  const SampledWavelengths* wavelengths = nullptr;
+  // Not const: a dispersive dielectric keeps one of them (SampledWavelengths::
+  // terminate_secondary), for the whole camera sample.
+  SampledWavelengths* wavelengths = nullptr;
 };
 
 // Radiance arriving along `ray` (from the camera), starting in `medium`: the loop over the

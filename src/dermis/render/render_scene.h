@@ -56,6 +56,13 @@ struct RenderScene {
   // rendering reads them where lights and conductors name them.
   std::vector<std::vector<float>> spectra;
   std::vector<HomogeneousMedium> media;
+  // Per medium of the file (the first entries of `media`): its coefficients given as spectra
+  // (indices into `spectra`, -1: its RGB's spectrum), and the scale they take.
+  struct MediumSpectra {
+    int sigma_a = -1, sigma_s = -1;
+    float scale = 1;
+  };
+  std::vector<MediumSpectra> medium_spectra;
   // Subsurface materials (Material::subsurface indexes both): the parameters as parsed,
   // and the methods made from them by preparation.
   std::vector<SubsurfaceParams> subsurface_params;

@@ -132,7 +132,7 @@ class ImageRender {
       if (spectral_) {
         // The wavelengths from a region of their own: the path's dimensions are an RGB render's.
         sampler.set_dimension(Sampler::region(kCameraDimensions, kWavelengthsRegion));
-        const SampledWavelengths wavelengths = SampledWavelengths::sample_visible(sampler.get1d());
+        SampledWavelengths wavelengths = SampledWavelengths::sample_visible(sampler.get1d());
         PathStart start = camera_path_;
         start.wavelengths = &wavelengths;
         L = wavelengths.to_linear_srgb(trace_path(sc_, ray, sc_.camera_medium, sampler, counters, start));

@@ -31,6 +31,9 @@ Material make_material(const MaterialDesc& d, [[maybe_unused]] Diagnostics& diag
   Material m;
   m.reflectance = d.reflectance.value;
   m.reflectance_texture = d.reflectance.texture;
+  if (d.type == MaterialDesc::Type::Diffuse || d.type == MaterialDesc::Type::DiffuseTransmission ||
+      d.type == MaterialDesc::Type::CoatedDiffuse)
+    m.reflectance_data = d.reflectance.data;
   m.eta = d.eta;
   switch (d.type) {
     case MaterialDesc::Type::Diffuse:
@@ -38,6 +41,7 @@ Material make_material(const MaterialDesc& d, [[maybe_unused]] Diagnostics& diag
       break;
     case MaterialDesc::Type::Dielectric:
       m.type = Material::Type::Dielectric;
+      m.eta_data = d.eta_data;
       break;
     case MaterialDesc::Type::Conductor:
       m.type = Material::Type::Conductor;
@@ -91,6 +95,7 @@ Material make_material(const MaterialDesc& d, [[maybe_unused]] Diagnostics& diag
       m.type = Material::Type::DiffuseTransmission;
       m.transmittance = d.transmittance.value;
       m.transmittance_texture = d.transmittance.texture;
+      m.transmittance_data = d.transmittance.data;
       m.scale = d.scale;
       break;
     case MaterialDesc::Type::Mix:
@@ -618,6 +623,7 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
   for (const MediumDesc& m : desc.media) {
     // Emission (Le) is not rendered: the parser has warned about it, once.
     sc->media.push_back(HomogeneousMedium::from_coefficients(m.sigma_a, m.sigma_s, m.scale, m.g));
+    sc->medium_spectra.push_back({m.sigma_a_data, m.sigma_s_data, m.scale});
   }
   const std::vector<int> subsurface_medium = resolve_subsurface_materials(desc, *sc);
   note_default_boundaries(desc, has_delta_lights(desc), diag);

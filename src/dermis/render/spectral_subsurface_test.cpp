@@ -58,7 +58,7 @@ struct PerWavelength {
 // The radiance leaving the centre of the slab's top face at the wavelengths w, divided by
 // the sky's there: over `views` cosine-distributed directions (hemispherical = true: the
 // slab's albedo under diffuse light), or straight down. Independent samples.
-PerWavelength slab_reflectance(const std::string& material, const SampledWavelengths& w, int views, bool hemispherical,
+PerWavelength slab_reflectance(const std::string& material, SampledWavelengths& w, int views, bool hemispherical,
                                uint64_t seed = 91) {
   Diagnostics diag;
   auto sc = build_render_scene(parse_scene_string(slab_scene(material)), diag);
@@ -109,7 +109,7 @@ TEST(SpectralSubsurface, WalkAtThreeWavelengthsIsChandrasekharsHalfSpace) {
       "Material \"subsurface\" \"rgb sigma_a\" [0.02 0.12 0.5] \"rgb sigma_s\" [1 1 1] "
       "\"float eta\" 1 \"float g\" 0 \"string method\" \"randomwalk\" \"string boundary\" "
       "\"matched\"";
-  const SampledWavelengths w = three_wavelengths();
+  SampledWavelengths w = three_wavelengths();
   const RGB sa = unbounded_at(sigma_a, w), ss = unbounded_at(sigma_s, w);
   RGB expected, rgb;
   for (int c = 0; c < 3; ++c) {
@@ -132,7 +132,7 @@ TEST(SpectralSubsurface, WalkInvertsTheReflectanceAtEachWavelength) {
   const std::string material =
       "Material \"subsurface\" \"rgb reflectance\" [0.8 0.45 0.2] \"rgb mfp\" [1 0.5 0.25] \"float eta\" 1.4 "
       "\"string method\" \"randomwalk\" \"string boundary\" \"dielectric\"";
-  const SampledWavelengths w = three_wavelengths();
+  SampledWavelengths w = three_wavelengths();
   const RGB A_w = reflectance_at(A, w);
   const float F = float(diffuse_fresnel(1.4));
   expect_per_wavelength(slab_reflectance(material, w, 6000, true), RGB(F) + A_w * (1 - F), RGB(F) + A * (1 - F));
@@ -149,7 +149,7 @@ TEST(SpectralSubsurface, DiskProbesUseTheProfileOfEachWavelength) {
   Diagnostics diag;
   auto sc = build_render_scene(parse_scene_string(slab_scene(material)), diag);
   const ProbeMethod& m = std::get<ProbeMethod>(sc->subsurface.at(0)->method);
-  const SampledWavelengths w = three_wavelengths();
+  SampledWavelengths w = three_wavelengths();
   const sss::ProfileRGB at_w =
       make_profile(sc->subsurface_params[0], medium_at_wavelengths(medium_at(sc->subsurface_params[0]), w),
                    profile_table(sc->subsurface_params[0]));

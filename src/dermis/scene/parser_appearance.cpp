@@ -2,6 +2,7 @@
 // MakeNamedMedium, MediumInterface.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -113,7 +114,7 @@ RGBTexture SceneParser::spectrum_or_texture(const ParamList& pl, const std::stri
   t.value = spectrum_param_rgb(*p, s_.diagnostics);
   // Every parameter read here is a reflectance (reflectance, transmittance, albedo): a
   // spectrum given as data must lie in [0, 1] where it is seen, not only its colour.
-  if (const auto samples = spectrum_param_samples(*p, SpectrumType::Unbounded)) {
+  if (auto samples = spectrum_param_samples(*p, SpectrumType::Unbounded)) {
     std::size_t worst = 0;  // the farthest outside [0, 1]
     auto outside = [](float v) { return v < 0 ? -v : v > 1 ? v - 1 : std::isnan(v) ? INFINITY : 0.0f; };
     for (std::size_t i = 1; i < samples->size(); ++i)
@@ -123,6 +124,8 @@ RGBTexture SceneParser::spectrum_or_texture(const ParamList& pl, const std::stri
                        fmt::format("\"{}\" is a reflectance and must lie in [0, 1] at every wavelength of 360-830 nm; "
                                    "this spectrum is {:g} at {} nm",
                                    name, (*samples)[worst], 360 + worst));
+    s_.spectra.push_back(std::move(*samples));  // spectral rendering reads it as data
+    t.data = int(s_.spectra.size()) - 1;
   }
   return t;
 }
@@ -239,6 +242,11 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
     if (type == "thindielectric") s_.diagnostics.warn(loc, "thindielectric is rendered as dielectric");
     m.type = MaterialDesc::Type::Dielectric;
     if (const ParsedParam* p = pl.find("eta")) m.eta = ior_param(*p, s_.diagnostics);
+    m.eta_data = spectrum_data(pl, "eta", SpectrumType::Unbounded);
+    if (m.eta_data >= 0) {  // dispersion where it is an index at every wavelength (a file's is 0 past its ends)
+      const std::vector<float>& eta = s_.spectra[std::size_t(m.eta_data)];
+      if (*std::min_element(eta.begin(), eta.end()) <= 0) s_.spectra.pop_back(), m.eta_data = -1;
+    }
     read_microfacet_roughness(pl, "", m, m.uroughness, m.vroughness, m.roughness_texture);
   } else if (type == "conductor") {
     m.type = MaterialDesc::Type::Conductor;
@@ -749,6 +757,8 @@ void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
   } else {
     m.sigma_a = rgb_param(pl, "sigma_a", m.sigma_a, s_.diagnostics);
     m.sigma_s = rgb_param(pl, "sigma_s", m.sigma_s, s_.diagnostics);
+    m.sigma_a_data = spectrum_data(pl, "sigma_a", SpectrumType::Unbounded);
+    m.sigma_s_data = spectrum_data(pl, "sigma_s", SpectrumType::Unbounded);
     m.g = pl.get_float("g", 0);
     if (!(m.g > -1 && m.g < 1))
       throw SceneError(pl.find("g")->value_loc, fmt::format("g must be in (-1, 1), got {}", m.g));

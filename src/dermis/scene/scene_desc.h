@@ -134,6 +134,7 @@ struct TextureDesc {
 struct RGBTexture {
   RGB value{0.5f, 0.5f, 0.5f};
   int texture = -1;
+  int data = -1;  // the value given as a spectrum (SceneDesc::spectra), for spectral rendering; -1: none
 };
 
 struct MaterialDesc {
@@ -153,6 +154,9 @@ struct MaterialDesc {
   RGBTexture reflectance;  // diffuse, coateddiffuse, diffusetransmission; conductor and
                            // coatedconductor when has_reflectance
   float eta = 1.5f;        // dielectric, subsurface, coateddiffuse, coatedconductor's interface.eta
+  // A dielectric's eta given as a spectrum (a named glass, a file, samples: SceneDesc::spectra),
+  // positive over 360-830 nm; -1: one number (`eta` above, also what RGB rendering reads).
+  int eta_data = -1;
   // eta and k as spectra (SceneDesc::spectra), where given as named spectra, files or
   // samples (pbrt-v4's default copper included); -1: RGB.
   int conductor_eta_data = -1, conductor_k_data = -1;
@@ -272,6 +276,8 @@ struct MediumDesc {
   std::string type = "homogeneous";
   RGB sigma_a{1, 1, 1};  // per scene unit, before scale (pbrt-v4 defaults)
   RGB sigma_s{1, 1, 1};
+  // The same given as spectra (SceneDesc::spectra, before scale), for spectral rendering; -1: none.
+  int sigma_a_data = -1, sigma_s_data = -1;
   float scale = 1;
   float g = 0;
   RGB Le{0, 0, 0};     // emission: parsed, warned if non-zero

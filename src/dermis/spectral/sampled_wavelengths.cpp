@@ -51,6 +51,12 @@ bool SampledWavelengths::secondary_terminated() const {
   return kept == 1;
 }
 
+int SampledWavelengths::kept() const {
+  for (int i = 0; i < kPathWavelengths; ++i)
+    if (pdf[std::size_t(i)] > 0) return i;
+  return 0;
+}
+
 void SampledWavelengths::terminate_secondary(float u) {
   if (secondary_terminated()) return;
   const int kept = std::min(int(u * kPathWavelengths), kPathWavelengths - 1);

@@ -36,6 +36,8 @@ struct SampledWavelengths {
   // chosen uniformly by u (each lies in its own slice: no one of them follows the density).
   void terminate_secondary(float u);
   bool secondary_terminated() const;
+  // The wavelength kept by terminate_secondary (the first with a density, before).
+  int kept() const;
 
   // The colour of a path's values at these wavelengths, as linear sRGB: the Monte Carlo
   // estimate of integral L(lambda) {x, y, z}(lambda) dlambda / integral y, averaged over the

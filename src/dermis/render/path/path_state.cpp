@@ -1,10 +1,9 @@
 #include "dermis/render/path/path_state.h"
 
-#include "dermis/materials/at_wavelengths.h"
 #include "dermis/render/path/emission.h"
 #include "dermis/render/path/sampler_regions.h"
 #include "dermis/render/russian_roulette.h"
-#include "dermis/render/volumetric_texture.h"
+#include "dermis/render/spectral_media.h"
 
 namespace dermis {
 
@@ -26,9 +25,7 @@ const HomogeneousMedium& PathState::medium_of(const RenderScene& sc, int m) cons
   if (m == entered_medium) return entered;
   if (!wavelengths) return sc.media[m];
   if (converted_index_ != m) {
-    const int v = volumetric_of_medium(sc, m);
-    converted_ = v >= 0 ? volumetric_medium_at_wavelengths(sc, v, *wavelengths)
-                        : medium_at_wavelengths(sc.media[m], *wavelengths);
+    converted_ = scene_medium_at_wavelengths(sc, m, *wavelengths);
     converted_index_ = m;
   }
   return converted_;

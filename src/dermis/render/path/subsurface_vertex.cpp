@@ -8,10 +8,10 @@
 #include "dermis/render/path/emission.h"
 #include "dermis/render/path/lights_from_inside.h"
 #include "dermis/render/path/sampler_regions.h"
+#include "dermis/render/path/surface_vertex.h"
 #include "dermis/render/path_splitting.h"
 #include "dermis/render/russian_roulette.h"
 #include "dermis/render/subsurface/object_tracer.h"
-#include "dermis/spectral/spectrum_at.h"
 
 namespace dermis {
 
@@ -111,8 +111,9 @@ RGB SubsurfaceVertex::irradiance(Vec3 p, Vec3 n, float eta, Sampler& smp) const 
 RGB SubsurfaceVertex::interior_albedo(const SurfaceHit& h) const {
   const Material& m = ctx_.sc.materials[ctx_.sc.shapes[h.shape].material];
   if (m.type != Material::Type::Diffuse) return RGB(0);
-  const RGB albedo = bsdf_at(m, ctx_.sc.textures, h).albedo;
-  return ctx_.start.wavelengths ? reflectance_at(albedo, *ctx_.start.wavelengths) : albedo;
+  const BSDF b = bsdf_at(m, ctx_.sc.textures, h);
+  return ctx_.start.wavelengths ? material_bsdf_at_wavelengths(ctx_.sc, m, b, *ctx_.start.wavelengths).albedo
+                                : b.albedo;
 }
 
 RGB SubsurfaceVertex::light_through(Vec3 p, Vec3 n, const BSDF& b, Vec3 wo_in, Sampler& smp) const {

@@ -13,22 +13,59 @@
 
 namespace dermis {
 
+BSDF material_bsdf_at_wavelengths(const RenderScene& sc, const Material& mat, BSDF bsdf, const SampledWavelengths& w) {
+  bsdf = bsdf_at_wavelengths(bsdf, w);
+  auto data = [&](int d) { return tabulated_at(sc.spectra[std::size_t(d)], w); };
+  // A conductor given as spectra (a named metal, pbrt-v4's default copper): its own data.
+  if (mat.cond_eta_data >= 0 && mat.cond_k_data >= 0) {
+    const RGB eta = data(mat.cond_eta_data), k = data(mat.cond_k_data);
+    if (bsdf.type == BSDF::Type::Conductor) bsdf.cond_eta = eta, bsdf.cond_k = k;
+    if (bsdf.type == BSDF::Type::Coated && bsdf.coat.base == CoatedLayer::Base::Conductor)
+      bsdf.coat.conductor_eta = eta, bsdf.coat.conductor_k = k;
+  }
+  // A reflectance or transmittance given as a spectrum (a named spectrum, a file, samples).
+  auto clamped = [](RGB v) {  // as bsdf_at clamps scale x R and scale x T
+    for (int c = 0; c < 3; ++c) v[c] = std::clamp(v[c], 0.0f, 1.0f);
+    return v;
+  };
+  if (mat.reflectance_data >= 0) {
+    if (bsdf.type == BSDF::Type::Diffuse) bsdf.albedo = data(mat.reflectance_data);
+    if (bsdf.type == BSDF::Type::DiffuseTransmission) bsdf.albedo = clamped(data(mat.reflectance_data) * mat.scale);
+    if (bsdf.type == BSDF::Type::Coated && bsdf.coat.base == CoatedLayer::Base::Diffuse)
+      bsdf.coat.base_reflectance = data(mat.reflectance_data);
+  }
+  if (mat.transmittance_data >= 0 && bsdf.type == BSDF::Type::DiffuseTransmission)
+    bsdf.transmittance = clamped(data(mat.transmittance_data) * mat.scale);
+  return bsdf;
+}
+
+namespace {
+
+// A dielectric whose index depends on the wavelength (dispersion): the path keeps one of its
+// wavelengths, chosen uniformly (SampledWavelengths::terminate_secondary, as pbrt-v4's
+// DielectricMaterial keeps its hero), and refracts with that wavelength's index. The other
+// wavelengths' throughput ends here; what they gathered before no longer counts (the film
+// weighs the kept one by the count of wavelengths: unbiased, as the choice is uniform).
+void keep_one_wavelength(PathContext& ctx, PathState& st, const Material& mat, BSDF& bsdf) {
+  SampledWavelengths& w = *ctx.start.wavelengths;
+  if (!w.secondary_terminated()) {
+    w.terminate_secondary(ctx.sampler.get1d());
+    for (int i = 0; i < kPathWavelengths; ++i)
+      if (i != w.kept()) st.beta[i] = 0;
+  }
+  bsdf.eta = tabulated_at(ctx.sc.spectra[std::size_t(mat.eta_data)], w)[w.kept()];
+}
+
+}  // namespace
+
 VertexOutcome shade_surface(PathContext& ctx, PathState& st, const SurfaceHit& hit, const Shape& s, const Material& mat,
                             Vec3 wo) {
   const RenderScene& sc = ctx.sc;
   Sampler& sampler = ctx.sampler;
   BSDF bsdf = bsdf_at(mat, sc.textures, hit);
   if (ctx.start.wavelengths) {
-    const SampledWavelengths& w = *ctx.start.wavelengths;
-    bsdf = bsdf_at_wavelengths(bsdf, w);
-    // A conductor given as spectra (a named metal, pbrt-v4's default copper): its own data.
-    if (mat.cond_eta_data >= 0 && mat.cond_k_data >= 0) {
-      const RGB eta = tabulated_at(sc.spectra[std::size_t(mat.cond_eta_data)], w);
-      const RGB k = tabulated_at(sc.spectra[std::size_t(mat.cond_k_data)], w);
-      if (bsdf.type == BSDF::Type::Conductor) bsdf.cond_eta = eta, bsdf.cond_k = k;
-      if (bsdf.type == BSDF::Type::Coated && bsdf.coat.base == CoatedLayer::Base::Conductor)
-        bsdf.coat.conductor_eta = eta, bsdf.coat.conductor_k = k;
-    }
+    bsdf = material_bsdf_at_wavelengths(sc, mat, bsdf, *ctx.start.wavelengths);
+    if (mat.eta_data >= 0 && bsdf.type == BSDF::Type::Dielectric) keep_one_wavelength(ctx, st, mat, bsdf);
   }
   // The random streams of a layered BSDF's estimates: fresh for every vertex (bsdf.h).
   if (bsdf.type == BSDF::Type::Coated) bsdf.seed = sampler.sample_hash(st.vertex_dimension ^ kCoatedSeedSalt);
