@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "dermis/core/sampler.h"
 #include "dermis/core/warp.h"
@@ -135,7 +136,57 @@ TEST(SpectralSubsurface, WalkInvertsTheReflectanceAtEachWavelength) {
   SampledWavelengths w = three_wavelengths();
   const RGB A_w = reflectance_at(A, w);
   const float F = float(diffuse_fresnel(1.4));
-  expect_per_wavelength(slab_reflectance(material, w, 6000, true), RGB(F) + A_w * (1 - F), RGB(F) + A * (1 - F));
+  expect_per_wavelength(slab_reflectance(material, w, 3000, true), RGB(F) + A_w * (1 - F), RGB(F) + A * (1 - F));
+}
+
+// pbrt-v4's piecewise-linear spectrum of (lambda, value) pairs (here covering 360-830 nm).
+double piecewise(const std::vector<double>& pairs, double l) {
+  for (std::size_t i = 2; i < pairs.size(); i += 2)
+    if (l <= pairs[i])
+      return pairs[i - 1] + (pairs[i + 1] - pairs[i - 1]) * (l - pairs[i - 2]) / (pairs[i] - pairs[i - 2]);
+  return pairs.back();
+}
+
+// A subsurface material's coefficients given as samples are their own spectra: the matched
+// walk's half-space albedo at each wavelength is Chandrasekhar's for sigma_a(lambda) of the
+// samples (times scale), not for the spectrum of their colour (checked).
+TEST(SpectralSubsurface, WalkReadsCoefficientsGivenAsSpectra) {
+  const std::vector<double> pairs{360, 0.6, 500, 0.02, 600, 0.6, 700, 0.02, 830, 0.6};
+  const std::string material =
+      "Material \"subsurface\" \"spectrum sigma_a\" [360 0.6 500 0.02 600 0.6 700 0.02 830 0.6] "
+      "\"rgb sigma_s\" [1 1 1] \"float scale\" 2 \"float eta\" 1 \"float g\" 0 \"string method\" \"randomwalk\" "
+      "\"string boundary\" \"matched\"";
+  SampledWavelengths w = three_wavelengths();
+  Diagnostics diag;
+  const SubsurfaceParams params =
+      build_render_scene(parse_scene_string(slab_scene(material)), diag)->subsurface_params[0];
+  const RGB ss = unbounded_at(RGB(2), w), colour = unbounded_at(*params.sigma_a, w);
+  RGB expected, rgb;
+  for (int c = 0; c < 3; ++c) {
+    const double sa = 2 * piecewise(pairs, w.lambda[std::size_t(c)]);
+    expected[c] = float(sss::halfspace_albedo_diffuse(sss::HFunction(ss[c] / (sa + ss[c]))));
+    rgb[c] = float(sss::halfspace_albedo_diffuse(sss::HFunction(ss[c] / (colour[c] + ss[c]))));
+  }
+  expect_per_wavelength(slab_reflectance(material, w, 20000, true), expected, rgb);
+}
+
+// A reflectance given as samples is its own spectrum: the walk behind a dielectric returns
+// F + (1 - F) A(lambda) of the samples at each wavelength, not of its colour's spectrum.
+TEST(SpectralSubsurface, WalkInvertsAReflectanceGivenAsASpectrum) {
+  const std::vector<double> pairs{360, 0.8, 470, 0.2, 580, 0.8, 690, 0.2, 830, 0.8};
+  const std::string material =
+      "Material \"subsurface\" \"spectrum reflectance\" [360 0.8 470 0.2 580 0.8 690 0.2 830 0.8] "
+      "\"rgb mfp\" [1 0.5 0.25] \"float eta\" 1.4 \"string method\" \"randomwalk\" \"string boundary\" "
+      "\"dielectric\"";
+  SampledWavelengths w = three_wavelengths();
+  Diagnostics diag;
+  const SubsurfaceParams params =
+      build_render_scene(parse_scene_string(slab_scene(material)), diag)->subsurface_params[0];
+  const RGB colour = reflectance_at(*params.reflectance, w);
+  RGB A;
+  for (int c = 0; c < 3; ++c) A[c] = float(piecewise(pairs, w.lambda[std::size_t(c)]));
+  const float F = float(diffuse_fresnel(1.4));
+  expect_per_wavelength(slab_reflectance(material, w, 3000, true), RGB(F) + A * (1 - F), RGB(F) + colour * (1 - F));
 }
 
 // The disk probes with the Christensen-Burley profile, seen straight down: F(1) plus
@@ -150,9 +201,9 @@ TEST(SpectralSubsurface, DiskProbesUseTheProfileOfEachWavelength) {
   auto sc = build_render_scene(parse_scene_string(slab_scene(material)), diag);
   const ProbeMethod& m = std::get<ProbeMethod>(sc->subsurface.at(0)->method);
   SampledWavelengths w = three_wavelengths();
-  const sss::ProfileRGB at_w =
-      make_profile(sc->subsurface_params[0], medium_at_wavelengths(medium_at(sc->subsurface_params[0]), w),
-                   profile_table(sc->subsurface_params[0]));
+  const sss::ProfileRGB at_w = make_profile(
+      sc->subsurface_params[0], medium_at_wavelengths(sc->subsurface_params[0], medium_at(sc->subsurface_params[0]), w),
+      profile_table(sc->subsurface_params[0]));
   const float F = fresnel_dielectric(1.0f, 1.33f);
   const double reach = m.max_radius(at_w);
   ASSERT_LT(reach, 100);  // the probes stay on the top face

@@ -8,7 +8,7 @@ namespace {
 
 HomogeneousMedium volumetric_medium(const RenderScene::VolumetricMedium& vm, MediumAt at, float boundary_alpha,
                                     const SampledWavelengths* w) {
-  if (w) at = medium_at_wavelengths(at, *w);
+  if (w) at = medium_at_wavelengths(vm.params, at, *w);
   const Coefficients k = coefficients_from(at, vm.inversions, boundary_alpha);
   return HomogeneousMedium::from_coefficients(k.sigma_a, k.sigma_s, 1, vm.params.g);
 }

@@ -348,9 +348,15 @@ void check_across_parameters(const GivenParameters& g, const SourceLoc& loc, Dia
 // (pbrt-v4's whole milk when none is given); scale applied as pbrt-v4 does.
 void read_medium(const GivenParameters& g, const SourceLoc& loc, Diagnostics& diag,
                  const TextureIndexOf& texture_index_of, SubsurfaceParams& s) {
-  // A spectrum parameter: its value, or its texture (the value is then a stand-in).
-  auto spectrum = [&](const ParsedParam& p, int& texture, RGB stand_in) {
-    if (p.type != "texture") return read_rgb(p, diag);
+  // A spectrum parameter: its value, or its texture (the value is then a stand-in); given as a
+  // spectrum, its samples too (`data`).
+  auto spectrum = [&](const ParsedParam& p, int& texture, RGB stand_in,
+                      std::shared_ptr<const std::vector<float>>& data) {
+    if (p.type != "texture") {
+      if (auto samples = spectrum_param_samples(p, SpectrumType::Unbounded))
+        data = std::make_shared<const std::vector<float>>(std::move(*samples));
+      return read_rgb(p, diag);
+    }
     texture = texture_index_of(p, false);
     return stand_in;
   };
@@ -372,8 +378,8 @@ void read_medium(const GivenParameters& g, const SourceLoc& loc, Diagnostics& di
     s.g = 0;
   } else if (g.reflectance || g.mfp) {
     if (!g.reflectance || !g.mfp) throw SceneError(loc, "subsurface: \"reflectance\" needs \"mfp\" and vice versa");
-    RGB a = spectrum(*g.reflectance, s.reflectance_texture, RGB(0.5f));
-    RGB l = spectrum(*g.mfp, s.mfp_texture, RGB(1.0f));
+    RGB a = spectrum(*g.reflectance, s.reflectance_texture, RGB(0.5f), s.reflectance_spectrum);
+    RGB l = spectrum(*g.mfp, s.mfp_texture, RGB(1.0f), s.mfp_spectrum);
     for (int c = 0; c < 3; ++c) {
       if (a[c] > 1) throw SceneError(g.reflectance->value_loc, "subsurface: \"reflectance\" must be in [0, 1]");
       if (l[c] <= 0) throw SceneError(g.mfp->value_loc, "subsurface: \"mfp\" must be positive");
@@ -384,8 +390,8 @@ void read_medium(const GivenParameters& g, const SourceLoc& loc, Diagnostics& di
   } else {
     // pbrt-v4's defaults when nothing is given: whole milk, per scene unit.
     RGB sa(0.0011f, 0.0024f, 0.014f), ss(2.55f, 3.21f, 3.77f);
-    if (g.sigma_a) sa = spectrum(*g.sigma_a, s.sigma_a_texture, sa);
-    if (g.sigma_s) ss = spectrum(*g.sigma_s, s.sigma_s_texture, ss);
+    if (g.sigma_a) sa = spectrum(*g.sigma_a, s.sigma_a_texture, sa, s.sigma_a_spectrum);
+    if (g.sigma_s) ss = spectrum(*g.sigma_s, s.sigma_s_texture, ss, s.sigma_s_spectrum);
     s.sigma_a = sa * g.scale;
     s.sigma_s = ss * g.scale;
     for (int c = 0; c < 3; ++c)

@@ -6,9 +6,11 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "dermis/core/rgb.h"
 #include "dermis/scene/diagnostics.h"
@@ -32,6 +34,10 @@ struct SubsurfaceParams {
   // point, -1 for none; the value above is then the texture's mean, for what needs one
   // number per material (e.g. the point spacing of a point cloud).
   int sigma_a_texture = -1, sigma_s_texture = -1, reflectance_texture = -1, mfp_texture = -1;
+  // The same given as spectra (a named spectrum, a file, samples, a blackbody): their values at
+  // every nanometre of 360-830 nm, before `scale`, for spectral rendering (the RGBs above are
+  // their colours); null where given otherwise.
+  std::shared_ptr<const std::vector<float>> sigma_a_spectrum, sigma_s_spectrum, reflectance_spectrum, mfp_spectrum;
   // A float texture for `scale` (-1: none): at each entry point it multiplies the
   // coefficients and mfp (as pbrt-v4) and divides the Skin6 profile's mm, on top of `scale`
   // below, which is then 1.

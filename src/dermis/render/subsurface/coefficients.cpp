@@ -151,14 +151,27 @@ MediumAt medium_at(const SubsurfaceParams& p, const std::vector<Texture>* textur
   return m;
 }
 
-MediumAt medium_at_wavelengths(MediumAt at, const SampledWavelengths& w) {
-  if (at.reflectance) at.reflectance = reflectance_at(*at.reflectance, w);
-  if (at.mfp) {  // a length: kept positive, as medium_at keeps a textured one
-    const RGB l = unbounded_at(*at.mfp, w);
-    at.mfp = RGB(std::max(l[0], 1e-6f), std::max(l[1], 1e-6f), std::max(l[2], 1e-6f));
+MediumAt medium_at_wavelengths(const SubsurfaceParams& p, MediumAt at, const SampledWavelengths& w) {
+  // Given as a spectrum and not textured: its data, times the scale at the point.
+  auto data = [&](const std::shared_ptr<const std::vector<float>>& spectrum, int texture, float scale) {
+    return spectrum && texture < 0 ? std::optional<RGB>(tabulated_at(*spectrum, w) * scale) : std::nullopt;
+  };
+  auto clamped = [](RGB v, float lo, float hi) {
+    for (int c = 0; c < 3; ++c) v[c] = std::clamp(v[c], lo, hi);
+    return v;
+  };
+  if (at.reflectance) {
+    const auto d = data(p.reflectance_spectrum, p.reflectance_texture, 1);
+    at.reflectance = d ? clamped(*d, 0, 1) : reflectance_at(*at.reflectance, w);
   }
-  if (at.sigma_a) at.sigma_a = unbounded_at(*at.sigma_a, w);
-  if (at.sigma_s) at.sigma_s = unbounded_at(*at.sigma_s, w);
+  if (at.mfp) {  // a length: kept positive, as medium_at keeps a textured one
+    const auto d = data(p.mfp_spectrum, p.mfp_texture, at.scale);
+    at.mfp = clamped(d ? *d : unbounded_at(*at.mfp, w), 1e-6f, 1e30f);
+  }
+  if (at.sigma_a)
+    at.sigma_a = data(p.sigma_a_spectrum, p.sigma_a_texture, at.scale).value_or(unbounded_at(*at.sigma_a, w));
+  if (at.sigma_s)
+    at.sigma_s = data(p.sigma_s_spectrum, p.sigma_s_texture, at.scale).value_or(unbounded_at(*at.sigma_s, w));
   return at;
 }
 

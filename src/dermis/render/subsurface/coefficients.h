@@ -37,8 +37,9 @@ MediumAt medium_at(const SubsurfaceParams& params, const std::vector<Texture>* t
 // reads a subsurface material: the reflectance as a reflectance spectrum, the coefficients
 // and the mean free path as unbounded spectra. Each channel is then one wavelength, and
 // everything made from it per channel (the albedo inversion, the profiles, the walk's
-// medium) is made per wavelength.
-MediumAt medium_at_wavelengths(MediumAt at, const SampledWavelengths& w);
+// medium) is made per wavelength. A parameter the material gives as a spectrum (`params`'
+// *_spectrum, not textured) is read as that spectrum, times the scale at the point.
+MediumAt medium_at_wavelengths(const SubsurfaceParams& params, MediumAt at, const SampledWavelengths& w);
 
 struct Coefficients {
   RGB sigma_a, sigma_s;

@@ -240,7 +240,7 @@ bool ProbeMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Su
   // profile (per wavelength) and probe sampler on the stack. The channel MIS of the probes
   // is then MIS over the path's wavelengths.
   MediumAt at = medium_at(params_, textures_, texture_context(entry.hit));
-  if (entry.wavelengths) at = medium_at_wavelengths(at, *entry.wavelengths);
+  if (entry.wavelengths) at = medium_at_wavelengths(params_, at, *entry.wavelengths);
   const sss::ProfileRGB profile = make_profile(params_, at, table_);
   if (!disks_.empty()) {
     const sss::DiskProbeSampler disk(profile, probe_channel_weights(profile), axes(strategy));

@@ -188,7 +188,7 @@ bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Sub
     // albedo inverted and the step made per wavelength, each channel's walk its own
     // wavelength's (the walk's channel MIS is then MIS over the path's wavelengths).
     MediumAt at = medium_at(params_, textures_, texture_context(entry.hit));
-    if (entry.wavelengths) at = medium_at_wavelengths(at, *entry.wavelengths);
+    if (entry.wavelengths) at = medium_at_wavelengths(params_, at, *entry.wavelengths);
     const float boundary_alpha = medium_per_entry_ ? roughness_.at(entry.hit).x : roughness_.constant().x;
     LastTexturedStep& last = t_last_textured_step;
     if (!last.matches(id_, strategy, at, boundary_alpha)) {
