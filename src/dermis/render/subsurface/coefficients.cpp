@@ -168,10 +168,14 @@ MediumAt medium_at_wavelengths(const SubsurfaceParams& p, MediumAt at, const Sam
     const auto d = data(p.mfp_spectrum, p.mfp_texture, at.scale);
     at.mfp = clamped(d ? *d : unbounded_at(*at.mfp, w), 1e-6f, 1e30f);
   }
-  if (at.sigma_a)
-    at.sigma_a = data(p.sigma_a_spectrum, p.sigma_a_texture, at.scale).value_or(unbounded_at(*at.sigma_a, w));
-  if (at.sigma_s)
-    at.sigma_s = data(p.sigma_s_spectrum, p.sigma_s_texture, at.scale).value_or(unbounded_at(*at.sigma_s, w));
+  if (at.sigma_a) {
+    const auto d = data(p.sigma_a_spectrum, p.sigma_a_texture, at.scale);
+    at.sigma_a = d ? *d : unbounded_at(*at.sigma_a, w);
+  }
+  if (at.sigma_s) {
+    const auto d = data(p.sigma_s_spectrum, p.sigma_s_texture, at.scale);
+    at.sigma_s = d ? *d : unbounded_at(*at.sigma_s, w);
+  }
   return at;
 }
 
