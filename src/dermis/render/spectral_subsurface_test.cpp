@@ -147,6 +147,12 @@ double piecewise(const std::vector<double>& pairs, double l) {
   return pairs.back();
 }
 
+// The subsurface parameters of `material` as parsed (the scene is not built: slab_reflectance
+// builds it).
+SubsurfaceParams parsed_params(const std::string& material) {
+  return parse_scene_string(slab_scene(material)).materials.at(0).subsurface;
+}
+
 // A subsurface material's coefficients given as samples are their own spectra: the matched
 // walk's half-space albedo at each wavelength is Chandrasekhar's for sigma_a(lambda) of the
 // samples (times scale), not for the spectrum of their colour (checked).
@@ -157,9 +163,7 @@ TEST(SpectralSubsurface, WalkReadsCoefficientsGivenAsSpectra) {
       "\"rgb sigma_s\" [1 1 1] \"float scale\" 2 \"float eta\" 1 \"float g\" 0 \"string method\" \"randomwalk\" "
       "\"string boundary\" \"matched\"";
   SampledWavelengths w = three_wavelengths();
-  Diagnostics diag;
-  const SubsurfaceParams params =
-      build_render_scene(parse_scene_string(slab_scene(material)), diag)->subsurface_params[0];
+  const SubsurfaceParams params = parsed_params(material);
   const RGB ss = unbounded_at(RGB(2), w), colour = unbounded_at(*params.sigma_a, w);
   RGB expected, rgb;
   for (int c = 0; c < 3; ++c) {
@@ -179,9 +183,7 @@ TEST(SpectralSubsurface, WalkInvertsAReflectanceGivenAsASpectrum) {
       "\"rgb mfp\" [1 0.5 0.25] \"float eta\" 1.4 \"string method\" \"randomwalk\" \"string boundary\" "
       "\"dielectric\"";
   SampledWavelengths w = three_wavelengths();
-  Diagnostics diag;
-  const SubsurfaceParams params =
-      build_render_scene(parse_scene_string(slab_scene(material)), diag)->subsurface_params[0];
+  const SubsurfaceParams params = parsed_params(material);
   const RGB colour = reflectance_at(*params.reflectance, w);
   RGB A;
   for (int c = 0; c < 3; ++c) A[c] = float(piecewise(pairs, w.lambda[std::size_t(c)]));
