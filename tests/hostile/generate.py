@@ -136,7 +136,21 @@ DIRECTIVES = {  # directive: (a valid use, uses that must be refused)
                         ["AreaLightSource", 'AreaLightSource "diffuse" "rgb L" [-1 0 0]']),
     "MakeNamedMedium": ('MakeNamedMedium "f" "string type" "homogeneous"',
                         ["MakeNamedMedium", 'MakeNamedMedium "f"', 'MakeNamedMedium "f" "string type" "plasma"',
-                        ('MakeNamedMedium "f" "string type" "nanovdb"', 0)]),
+                        ('MakeNamedMedium "f" "string type" "nanovdb"', 0),
+                        # grid media (docs/scene-format.md): the count, the values, the box
+                        ('MakeNamedMedium "f" "string type" "uniformgrid" "float density" [1]', 0),
+                        ('MakeNamedMedium "f" "string type" "cloud"', 0),
+                        ('MakeNamedMedium "f" "string type" "rgbgrid" "rgb sigma_s" [1 2 3]', 0),
+                        'MakeNamedMedium "f" "string type" "uniformgrid"',
+                        'MakeNamedMedium "f" "string type" "uniformgrid" "integer nx" 2 "float density" [1 2 3]',
+                        'MakeNamedMedium "f" "string type" "uniformgrid" "integer nx" 2 "float density" [1 -1]',
+                        'MakeNamedMedium "f" "string type" "uniformgrid" "integer nz" -4 "float density" [1]',
+                        'MakeNamedMedium "f" "string type" "uniformgrid" "float density" [1] '
+                        '"point3 p0" [0 0 0] "point3 p1" [0 1 1]',
+                        'MakeNamedMedium "f" "string type" "uniformgrid" "float density" [nan]',
+                        'MakeNamedMedium "f" "string type" "rgbgrid"',
+                        'MakeNamedMedium "f" "string type" "rgbgrid" "integer ny" 2 "rgb sigma_a" [1 2 3]',
+                        'MakeNamedMedium "f" "string type" "cloud" "point3 p0" [1 1 1] "point3 p1" [1 2 2]']),
     "MediumInterface": ('MakeNamedMedium "f" "string type" "homogeneous" MediumInterface "f" ""',
                         # an unknown name is an error once something uses it (pbrt-v4 resolves at use)
                         ["MediumInterface", 'MediumInterface "nowhere" "" Shape "sphere"', "MediumInterface 1 2"]),

@@ -40,9 +40,9 @@ float fade(float t) { return t * t * t * (t * (t * 6 - 15) + 10); }
 
 float lerp(float t, float a, float b) { return a + t * (b - a); }
 
-}  // namespace
-
-float perlin_noise(Vec3 p) {
+// The lattice noise of Perlin 2002 with the gradient ramp `grad` at the 8 corners.
+template <class Gradient>
+float lattice_noise(Vec3 p, Gradient grad) {
   // The lattice cell, reduced modulo 256 (the period) in double so that large
   // coordinates neither overflow an int nor lose the offset within the cell.
   auto split = [](float c, int& cell, float& offset) {
@@ -60,11 +60,26 @@ float perlin_noise(Vec3 p) {
   const int A = perm(X) + Y, AA = perm(A) + Z, AB = perm(A + 1) + Z;
   const int B = perm(X + 1) + Y, BA = perm(B) + Z, BB = perm(B + 1) + Z;
   return lerp(w,
-              lerp(v, lerp(u, gradient(perm(AA), x, y, z), gradient(perm(BA), x - 1, y, z)),
-                   lerp(u, gradient(perm(AB), x, y - 1, z), gradient(perm(BB), x - 1, y - 1, z))),
-              lerp(v, lerp(u, gradient(perm(AA + 1), x, y, z - 1), gradient(perm(BA + 1), x - 1, y, z - 1)),
-                   lerp(u, gradient(perm(AB + 1), x, y - 1, z - 1), gradient(perm(BB + 1), x - 1, y - 1, z - 1))));
+              lerp(v, lerp(u, grad(perm(AA), x, y, z), grad(perm(BA), x - 1, y, z)),
+                   lerp(u, grad(perm(AB), x, y - 1, z), grad(perm(BB), x - 1, y - 1, z))),
+              lerp(v, lerp(u, grad(perm(AA + 1), x, y, z - 1), grad(perm(BA + 1), x - 1, y, z - 1)),
+                   lerp(u, grad(perm(AB + 1), x, y - 1, z - 1), grad(perm(BB + 1), x - 1, y - 1, z - 1))));
 }
+
+// pbrt-v4's choice of gradient for the 16 hashes (util/noise.cpp Grad): the same twelve
+// edge vectors for hashes 0-11; hashes 12-15 repeat (1, 1, 0), (-1, 1, 0), (0, -1, 1), (0, -1, -1).
+float gradient_pbrt_v4(int hash, float x, float y, float z) {
+  const int h = hash & 15;
+  const float u = h < 8 || h == 12 || h == 13 ? x : y;
+  const float v = h < 4 || h == 12 || h == 13 ? y : z;
+  return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
+}
+
+}  // namespace
+
+float perlin_noise(Vec3 p) { return lattice_noise(p, gradient); }
+
+float perlin_noise_pbrt_v4(Vec3 p) { return lattice_noise(p, gradient_pbrt_v4); }
 
 // Ebert et al., "Texturing and Modeling" (3rd ed.), §2.6: fBm = sum_i omega^i noise(lambda^i p);
 // lambda slightly below 2 so that the octaves' lattices do not line up (pbrt-v4's 1.99).

@@ -13,6 +13,10 @@ namespace dermis {
 float perlin_noise(Vec3 p);
 inline float perlin_noise(float x, float y, float z = 0.5f) { return perlin_noise(Vec3(x, y, z)); }
 
+// pbrt-v4's Noise (util/noise.cpp): the same lattice, permutation and fade, with its own
+// gradients for hashes 12-15 (the cloud medium reads it, so that its clouds are pbrt-v4's).
+float perlin_noise_pbrt_v4(Vec3 p);
+
 // Sum over `octaves` octaves of omega^i noise(lambda^i p), lambda = 1.99 (pbrt-v4's FBm
 // with no filter footprint: every octave is used).
 float fbm(Vec3 p, float omega, int octaves);

@@ -5,8 +5,10 @@
 #include "dermis/core/warp.h"
 #include "dermis/geometry/shading_normal.h"
 #include "dermis/materials/fresnel.h"
+#include "dermis/materials/null_scattering.h"
 #include "dermis/render/path/direct_light.h"
 #include "dermis/render/path/emission.h"
+#include "dermis/render/path/grid_volume_vertex.h"
 #include "dermis/render/path/path_state.h"
 #include "dermis/render/path/sampler_regions.h"
 #include "dermis/render/path/subsurface_vertex.h"
@@ -48,10 +50,16 @@ RGB transmitted_irradiance(const RenderScene& sc, Vec3 p, Vec3 n, float eta, int
 
 RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float distance, int medium,
                          PathCounters& counters, const SampledWavelengths* wavelengths) {
-  // A medium's transmittance, at the path's wavelengths when it has them.
-  auto medium_tr = [&](int m, float d) {
-    return wavelengths ? scene_medium_at_wavelengths(sc, m, *wavelengths).transmittance(d)
-                       : sc.media[m].transmittance(d);
+  // A medium's transmittance over [t0, t1) of the ray from o along dir, at the path's
+  // wavelengths when it has them; a grid medium's by ratio tracking.
+  auto medium_tr = [&](int m, Vec3 o, float t0, float t1) {
+    if (sc.grid_medium_of(m) >= 0) {
+      const Ray segment{o + dir * t0, dir};
+      Rng rng = tracking_rng(t1 - t0, segment);
+      return ratio_tracking_transmittance(grid_medium_view(sc, m, wavelengths), segment, t1 - t0, rng);
+    }
+    return wavelengths ? scene_medium_at_wavelengths(sc, m, *wavelengths).transmittance(t1 - t0)
+                       : sc.media[m].transmittance(t1 - t0);
   };
   RGB tr(1);
   if (!sc.has_interfaces) {
@@ -59,7 +67,7 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
     const Ray shadow{origin, dir, distance};
     counters.count(shadow);
     if (sc.embree->occluded(shadow)) return RGB(0);
-    if (medium >= 0) tr = medium_tr(medium, distance);
+    if (medium >= 0) tr = medium_tr(medium, origin, 0, distance);
     return tr;
   }
   {
@@ -78,12 +86,12 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
         SurfaceHit hit;
         sc.embree->fill_hit(raw[i], shadow, hit);
         next = raw[i].t + surface_offset(hit.p);
-        if (medium >= 0) tr *= medium_tr(medium, hit.t - t_medium);
+        if (medium >= 0) tr *= medium_tr(medium, origin, t_medium, hit.t);
         if (tr.is_black()) return tr;
         medium = medium_after_crossing(sc.shapes[hit.shape], dir, hit.ng, medium);
         t_medium = hit.t;
       }
-      if (medium >= 0) tr *= medium_tr(medium, distance - t_medium);
+      if (medium >= 0) tr *= medium_tr(medium, origin, t_medium, distance);
       return tr;
     }
   }
@@ -95,12 +103,12 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
     counters.count(shadow);
     SurfaceHit hit;
     if (!sc.embree->intersect(shadow, hit)) {
-      if (medium >= 0) tr *= medium_tr(medium, remaining);
+      if (medium >= 0) tr *= medium_tr(medium, o, 0, remaining);
       return tr;
     }
     const Shape& s = sc.shapes[hit.shape];
     if (!sc.materials[s.material].is_interface()) return RGB(0);
-    if (medium >= 0) tr *= medium_tr(medium, hit.t);
+    if (medium >= 0) tr *= medium_tr(medium, o, 0, hit.t);
     if (tr.is_black()) return tr;
     medium = medium_after_crossing(s, dir, hit.ng, medium);
     Vec3 next = offset_ray_origin(hit.p, hit.ng, dir);

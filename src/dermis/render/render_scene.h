@@ -13,6 +13,7 @@
 #include "dermis/geometry/shape.h"
 #include "dermis/lights/light.h"
 #include "dermis/lights/light_selection.h"
+#include "dermis/materials/grid_medium.h"
 #include "dermis/materials/material.h"
 #include "dermis/materials/medium.h"
 #include "dermis/materials/texture.h"
@@ -63,6 +64,15 @@ struct RenderScene {
     float scale = 1;
   };
   std::vector<MediumSpectra> medium_spectra;
+  // The heterogeneous media of the file (uniformgrid, rgbgrid, cloud), and per medium of the
+  // file its entry there (-1: homogeneous). A grid medium's entry in `media` holds its
+  // coefficients per unit density (rgbgrid: the scale) and its g, which spectral rendering
+  // reads at a path's wavelengths as it reads any medium's (spectral_media.h grid_medium_view).
+  std::vector<GridMedium> grid_media;
+  std::vector<int> grid_of_medium;
+  int grid_medium_of(int m) const {
+    return m >= 0 && std::size_t(m) < grid_of_medium.size() ? grid_of_medium[std::size_t(m)] : -1;
+  }
   // Subsurface materials (Material::subsurface indexes both): the parameters as parsed,
   // and the methods made from them by preparation.
   std::vector<SubsurfaceParams> subsurface_params;

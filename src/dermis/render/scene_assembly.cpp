@@ -602,6 +602,32 @@ void group_subsurface_objects(RenderScene& sc) {
   }
 }
 
+// A grid medium of the file, its majorants computed.
+GridMedium make_grid_medium(const MediumDesc& d) {
+  GridMedium g;
+  g.kind = d.type == "rgbgrid" ? GridMedium::Kind::RGBGrid
+           : d.type == "cloud" ? GridMedium::Kind::Cloud
+                               : GridMedium::Kind::Density;
+  g.medium_from_world = d.medium_to_world.inverse();
+  g.p0 = d.p0;
+  g.p1 = d.p1;
+  auto grid = [&d](auto& out, const auto& values) {
+    if (values.empty()) return;
+    out.nx = d.nx;
+    out.ny = d.ny;
+    out.nz = d.nz;
+    out.values = values;
+  };
+  grid(g.density, d.density);
+  grid(g.sigma_a_grid, d.sigma_a_grid);
+  grid(g.sigma_s_grid, d.sigma_s_grid);
+  g.cloud_density = d.cloud_density;
+  g.wispiness = d.wispiness;
+  g.frequency = d.frequency;
+  g.build_majorants();
+  return g;
+}
+
 }  // namespace
 
 std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& diag, const LoadMonitor* monitor) {
@@ -622,8 +648,12 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
 
   for (const MediumDesc& m : desc.media) {
     // Emission (Le) is not rendered: the parser has warned about it, once.
-    sc->media.push_back(HomogeneousMedium::from_coefficients(m.sigma_a, m.sigma_s, m.scale, m.g));
+    const bool rgb_grid = m.type == "rgbgrid";  // its colours are in its grids
+    sc->media.push_back(HomogeneousMedium::from_coefficients(rgb_grid ? RGB(1) : m.sigma_a,
+                                                             rgb_grid ? RGB(1) : m.sigma_s, m.scale, m.g));
     sc->medium_spectra.push_back({m.sigma_a_data, m.sigma_s_data, m.scale});
+    sc->grid_of_medium.push_back(m.type == "homogeneous" ? -1 : int(sc->grid_media.size()));
+    if (m.type != "homogeneous") sc->grid_media.push_back(make_grid_medium(m));
   }
   const std::vector<int> subsurface_medium = resolve_subsurface_materials(desc, *sc);
   note_default_boundaries(desc, has_delta_lights(desc), diag);

@@ -25,4 +25,21 @@ HomogeneousMedium scene_medium_at_wavelengths(const RenderScene& sc, int medium,
   return v >= 0 ? volumetric_medium_at_wavelengths(sc, v, w) : file_medium_at_wavelengths(sc, medium, w);
 }
 
+GridMediumView grid_medium_view(const RenderScene& sc, int medium, const SampledWavelengths* w) {
+  const GridMedium& grid = sc.grid_media[std::size_t(sc.grid_medium_of(medium))];
+  const HomogeneousMedium& rgb = sc.media[std::size_t(medium)];
+  GridMediumView v;
+  v.grid = &grid;
+  v.g = rgb.g;
+  v.wavelengths = w;
+  if (grid.kind == GridMedium::Kind::RGBGrid) {  // the colours are the grid's, read per sample
+    v.sigma_a_unit = v.sigma_s_unit = RGB(sc.medium_spectra[std::size_t(medium)].scale);
+  } else {
+    const HomogeneousMedium unit = w ? scene_medium_at_wavelengths(sc, medium, *w) : rgb;
+    v.sigma_a_unit = unit.sigma_a;
+    v.sigma_s_unit = unit.sigma_s;
+  }
+  return v;
+}
+
 }  // namespace dermis

@@ -5,6 +5,7 @@
 // else from the spectra of their colours (materials/at_wavelengths.h).
 #pragma once
 
+#include "dermis/materials/grid_medium.h"
 #include "dermis/materials/medium.h"
 #include "dermis/render/render_scene.h"
 #include "dermis/spectral/sampled_wavelengths.h"
@@ -12,5 +13,9 @@
 namespace dermis {
 
 HomogeneousMedium scene_medium_at_wavelengths(const RenderScene& sc, int medium, const SampledWavelengths& w);
+
+// A grid medium (sc.grid_medium_of(medium) >= 0) as a path reads it: at its wavelengths when it
+// has them (w non-null), else in RGB.
+GridMediumView grid_medium_view(const RenderScene& sc, int medium, const SampledWavelengths* w);
 
 }  // namespace dermis

@@ -726,7 +726,7 @@ void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
   if (!pl.has("type")) throw SceneError(loc, fmt::format("MakeNamedMedium \"{}\" needs \"string type\"", name));
   std::string type = pl.get_string("type", "");
   require_known_type(TypedDirective::Medium, type, pl.find("type")->value_loc);
-  if (type != "homogeneous") {
+  if (type == "nanovdb") {
     s_.diagnostics.warn(
         loc, fmt::format("medium type \"{}\" is not supported; medium \"{}\" is treated as vacuum", type, name));
     pl.mark_all_used();
@@ -737,6 +737,13 @@ void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
   m.name = name;
   m.loc = loc;
   m.type = type;
+  if (type != "homogeneous") {
+    read_grid_medium(pl, m);
+    pl.warn_unused(s_.diagnostics, fmt::format("MakeNamedMedium \"{}\"", type));
+    media_[name] = int(s_.media.size());
+    s_.media.push_back(std::move(m));
+    return;
+  }
   const ParsedParam* preset = pl.find("preset");
   if (!preset) preset = pl.find("name");  // pbrt-v3 spelling
   if (preset) {

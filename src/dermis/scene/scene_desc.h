@@ -282,6 +282,14 @@ struct MediumDesc {
   float g = 0;
   RGB Le{0, 0, 0};     // emission: parsed, warned if non-zero
   std::string preset;  // "name" parameter if used (Jensen et al. 2001 table)
+  // The grid media (type "uniformgrid", "rgbgrid", "cloud"; materials/grid_medium.h), as
+  // pbrt-v4 reads them: sigma_a and sigma_s above are per unit density (uniformgrid, cloud).
+  Transform medium_to_world;      // the transformation current where the medium was made
+  Vec3 p0{0, 0, 0}, p1{1, 1, 1};  // the box, in the medium's space
+  int nx = 1, ny = 1, nz = 1;
+  std::vector<float> density;                             // uniformgrid: nx * ny * nz, x fastest
+  std::vector<RGB> sigma_a_grid, sigma_s_grid;            // rgbgrid (either may be empty: 1)
+  float cloud_density = 1, wispiness = 1, frequency = 5;  // cloud
   SourceLoc loc;
 };
 

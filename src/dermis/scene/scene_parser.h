@@ -123,6 +123,8 @@ class SceneParser {
   void light_source(const Token& d, TokenStream& ts);
   void area_light_source(const Token& d, TokenStream& ts);
   void make_named_medium(const Token& d, TokenStream& ts);
+  // parser_media.cpp: the parameters of a grid medium (uniformgrid, rgbgrid, cloud).
+  void read_grid_medium(const ParamList& pl, MediumDesc& m);
   void medium_interface(const Token& d, TokenStream& ts);
 
   SceneDesc& s_;

@@ -3,12 +3,14 @@
 #include "dermis/core/henyey_greenstein.h"
 #include "dermis/materials/free_flight.h"
 #include "dermis/render/path/direct_light.h"
+#include "dermis/render/path/grid_volume_vertex.h"
 #include "dermis/render/russian_roulette.h"
 
 namespace dermis {
 
 VertexOutcome shade_volume(PathContext& ctx, PathState& st, float t_hit) {
   const RenderScene& sc = ctx.sc;
+  if (sc.grid_medium_of(st.medium) >= 0) return shade_grid_volume(ctx, st, t_hit);
   Sampler& sampler = ctx.sampler;
   const HomogeneousMedium& m = st.medium_of(sc, st.medium);
   const MediumSegment segment = medium_segment(m, t_hit);

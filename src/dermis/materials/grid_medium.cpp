@@ -1,0 +1,176 @@
+#include "dermis/materials/grid_medium.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "dermis/materials/noise.h"
+#include "dermis/spectral/spectrum_at.h"
+
+namespace dermis {
+
+namespace {
+
+constexpr int kMajorantCells = 16;  // per axis, as pbrt-v4's grid media
+
+// pbrt-v4's DNoise (util/noise.cpp): the noise's gradient by forward differences of 0.01.
+Vec3 noise_gradient(Vec3 p) {
+  constexpr float delta = 0.01f;
+  const float n = perlin_noise_pbrt_v4(p);
+  return Vec3(perlin_noise_pbrt_v4(p + Vec3(delta, 0, 0)) - n, perlin_noise_pbrt_v4(p + Vec3(0, delta, 0)) - n,
+              perlin_noise_pbrt_v4(p + Vec3(0, 0, delta)) - n) /
+         delta;
+}
+
+}  // namespace
+
+float pbrt_v4_cloud_density(Vec3 p, float density, float wispiness, float frequency) {
+  // pbrt-v4 sec. 11.4.2 (CloudMedium::Density): the lookup point perturbed by two octaves of
+  // the noise's gradient, five octaves of noise, scaled down with height.
+  Vec3 pp = p * frequency;
+  if (wispiness > 0) {
+    float vomega = 0.05f * wispiness, vlambda = 10.0f;
+    for (int i = 0; i < 2; ++i) {
+      pp = pp + noise_gradient(pp * vlambda) * vomega;
+      vomega *= 0.5f;
+      vlambda *= 1.99f;
+    }
+  }
+  float d = 0, omega = 0.5f, lambda = 1.0f;
+  for (int i = 0; i < 5; ++i) {
+    d += omega * perlin_noise_pbrt_v4(pp * lambda);
+    omega *= 0.5f;
+    lambda *= 1.99f;
+  }
+  d = std::clamp((1 - p.y) * 4.5f * density * d, 0.0f, 1.0f);
+  d += 2 * std::max(0.0f, 0.5f - p.y);
+  return std::clamp(d, 0.0f, 1.0f);
+}
+
+Vec3 GridMedium::unit_point(Vec3 p_world) const {
+  const Vec3 p = medium_from_world.point(p_world);
+  return Vec3((p.x - p0.x) / (p1.x - p0.x), (p.y - p0.y) / (p1.y - p0.y), (p.z - p0.z) / (p1.z - p0.z));
+}
+
+float GridMedium::density_at(Vec3 unit) const {
+  if (kind == Kind::Cloud) {
+    const Vec3 p = p0 + Vec3(unit.x * (p1.x - p0.x), unit.y * (p1.y - p0.y), unit.z * (p1.z - p0.z));
+    return pbrt_v4_cloud_density(p, cloud_density, wispiness, frequency);
+  }
+  return density.lookup(unit);
+}
+
+void GridMedium::build_majorants() {
+  if (kind == Kind::Cloud) {  // the density never exceeds 1: one cell (pbrt-v4's homogeneous majorant)
+    majorant_res[0] = majorant_res[1] = majorant_res[2] = 1;
+    majorants.assign(1, {RGB(1), 1});
+    return;
+  }
+  for (int& r : majorant_res) r = kMajorantCells;
+  majorants.assign(std::size_t(kMajorantCells) * kMajorantCells * kMajorantCells, {});
+  auto biggest = [](const RGB& c) { return c.max(); };
+  auto channel_max = [](const VoxelGrid<RGB>& grid, Vec3 lo, Vec3 hi) {
+    if (grid.empty()) return RGB(1);
+    RGB m;
+    for (int c = 0; c < 3; ++c) m[c] = grid.max_over(lo, hi, [c](const RGB& v) { return v[c]; });
+    return m;
+  };
+  for (int z = 0; z < kMajorantCells; ++z)
+    for (int y = 0; y < kMajorantCells; ++y)
+      for (int x = 0; x < kMajorantCells; ++x) {
+        const Vec3 lo = Vec3(float(x), float(y), float(z)) / float(kMajorantCells);
+        const Vec3 hi = Vec3(float(x + 1), float(y + 1), float(z + 1)) / float(kMajorantCells);
+        MajorantCell& cell = majorants[(std::size_t(z) * kMajorantCells + std::size_t(y)) * kMajorantCells +
+                                       std::size_t(x)];
+        if (kind == Kind::Density) {
+          const float d = density.max_over(lo, hi, [](float v) { return v; });
+          cell = {RGB(d), d};
+        } else {
+          cell.rgb = channel_max(sigma_a_grid, lo, hi) + channel_max(sigma_s_grid, lo, hi);
+          const float a = sigma_a_grid.empty() ? 1 : 2 * sigma_a_grid.max_over(lo, hi, biggest);
+          const float s = sigma_s_grid.empty() ? 1 : 2 * sigma_s_grid.max_over(lo, hi, biggest);
+          cell.any_wavelength = a + s;
+        }
+      }
+}
+
+MediumCoefficients GridMediumView::at(Vec3 p_world) const {
+  const Vec3 u = grid->unit_point(p_world);
+  if (!(u.x >= 0 && u.x <= 1 && u.y >= 0 && u.y <= 1 && u.z >= 0 && u.z <= 1)) return {};
+  if (grid->kind != GridMedium::Kind::RGBGrid) {
+    const float d = grid->density_at(u);
+    return {sigma_a_unit * d, sigma_s_unit * d};
+  }
+  auto read = [&](const VoxelGrid<RGB>& g) {
+    if (g.empty()) return RGB(1);
+    if (!wavelengths) return g.lookup(u);
+    return g.lookup(u, [&](const RGB& c) { return unbounded_at(c, *wavelengths); });
+  };
+  return {read(grid->sigma_a_grid) * sigma_a_unit, read(grid->sigma_s_grid) * sigma_s_unit};
+}
+
+RGB GridMediumView::majorant(int cell) const {
+  const GridMedium::MajorantCell& c = grid->majorants[std::size_t(cell)];
+  if (grid->kind != GridMedium::Kind::RGBGrid) return (sigma_a_unit + sigma_s_unit) * c.rgb[0];
+  return (wavelengths ? RGB(c.any_wavelength) : c.rgb) * sigma_a_unit[0];
+}
+
+MajorantTraversal::MajorantTraversal(const GridMediumView& m, const Ray& ray, float t_max) : m_(&m) {
+  const GridMedium& g = *m.grid;
+  // The ray in the unit cube of the box (t unchanged: the direction is not renormalised).
+  const Vec3 o = g.unit_point(ray.o);
+  const Vec3 o_plus_d = g.unit_point(ray.o + ray.d);
+  const Vec3 d = o_plus_d - o;
+  float t0 = 0, t1 = t_max;
+  for (int a = 0; a < 3; ++a) {  // the slabs 0 <= o + t d <= 1
+    if (d[a] == 0) {
+      if (o[a] < 0 || o[a] > 1) return;
+      continue;
+    }
+    float ta = (0 - o[a]) / d[a], tb = (1 - o[a]) / d[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  if (!(t0 < t1)) return;
+  t_ = t0;
+  t_end_ = t1;
+  done_ = false;
+  const Vec3 start = o + d * t0;
+  for (int a = 0; a < 3; ++a) {
+    const int res = g.majorant_res[a];
+    const float c = start[a] * float(res);
+    cell_[a] = std::clamp(int(std::floor(c)), 0, res - 1);
+    if (d[a] == 0) {
+      step_[a] = 0;
+      next_t_[a] = delta_t_[a] = std::numeric_limits<float>::infinity();
+      continue;
+    }
+    const float inv = 1 / (d[a] * float(res));  // t per cell along axis a
+    step_[a] = d[a] > 0 ? 1 : -1;
+    const int boundary = d[a] > 0 ? cell_[a] + 1 : cell_[a];
+    next_t_[a] = t0 + (float(boundary) - c) * inv;
+    delta_t_[a] = std::abs(inv);
+  }
+}
+
+bool MajorantTraversal::next(MajorantSegment& s) {
+  if (done_) return false;
+  const GridMedium& g = *m_->grid;
+  const int axis = next_t_[0] < next_t_[1] ? (next_t_[0] < next_t_[2] ? 0 : 2) : (next_t_[1] < next_t_[2] ? 1 : 2);
+  const float t1 = std::min(next_t_[axis], t_end_);
+  s.t0 = t_;
+  s.t1 = t1;
+  s.sigma_maj = m_->majorant((cell_[2] * g.majorant_res[1] + cell_[1]) * g.majorant_res[0] + cell_[0]);
+  t_ = t1;
+  if (t1 >= t_end_) {
+    done_ = true;
+  } else {
+    cell_[axis] += step_[axis];
+    next_t_[axis] += delta_t_[axis];
+    if (cell_[axis] < 0 || cell_[axis] >= g.majorant_res[axis]) done_ = true;
+  }
+  return true;
+}
+
+}  // namespace dermis

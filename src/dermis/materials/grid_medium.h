@@ -1,0 +1,96 @@
+// pbrt-v4's heterogeneous media (pbrt-v4 sec. 11.4): a box [p0, p1] in the medium's own
+// space, placed in the world by the transform current where the medium was made, whose
+// coefficients vary inside it and are zero outside:
+// - Density ("uniformgrid"): sigma_a and sigma_s per unit density times a density grid;
+// - RGBGrid ("rgbgrid"): sigma_a and sigma_s each a grid of colours (absent: 1), times a scale;
+// - Cloud ("cloud"): sigma_a and sigma_s per unit density times pbrt-v4's procedural cloud
+//   density (sums of Perlin noise, falling off with height).
+// A coarse grid of majorants (16^3 cells, the largest coefficient reachable in each) bounds
+// the coefficients for delta and ratio tracking (null_scattering.h); GridMediumView is the
+// medium as one path reads it (its colours or its wavelengths) and MajorantTraversal walks a
+// ray's cells (Amanatides & Woo 1987).
+#pragma once
+
+#include <vector>
+
+#include "dermis/core/rgb.h"
+#include "dermis/core/transform.h"
+#include "dermis/geometry/ray.h"
+#include "dermis/materials/voxel_grid.h"
+#include "dermis/spectral/sampled_wavelengths.h"
+
+namespace dermis {
+
+struct GridMedium {
+  enum class Kind { Density, RGBGrid, Cloud };
+  Kind kind = Kind::Density;
+  Transform medium_from_world;
+  Vec3 p0{0, 0, 0}, p1{1, 1, 1};  // the box, in the medium's space (p0 < p1 on every axis)
+
+  VoxelGrid<float> density;                    // Density: the density grid
+  VoxelGrid<RGB> sigma_a_grid, sigma_s_grid;   // RGBGrid: the colours (empty: 1 everywhere)
+  float cloud_density = 1, wispiness = 1, frequency = 5;  // Cloud: pbrt-v4's parameters
+
+  // The coarse majorant grid, filled by build_majorants(): per cell, the largest density
+  // (Density, Cloud: the same in all three slots) or, for RGBGrid, the largest sigma_a +
+  // sigma_s per channel (`rgb`, before the scale) and a bound on it at any wavelength
+  // (`any_wavelength`: an unbounded colour's spectrum never exceeds twice its largest
+  // component, spectrum_at.h).
+  struct MajorantCell {
+    RGB rgb;
+    float any_wavelength = 0;
+  };
+  int majorant_res[3] = {1, 1, 1};
+  std::vector<MajorantCell> majorants;
+
+  void build_majorants();
+  // A point of the world in the box's unit cube (outside [0, 1]^3: outside the medium).
+  Vec3 unit_point(Vec3 p_world) const;
+  // The density at a point of the unit cube (Density, Cloud).
+  float density_at(Vec3 unit) const;
+};
+
+// pbrt-v4's CloudMedium::Density at a point of the medium's space.
+float pbrt_v4_cloud_density(Vec3 p, float density, float wispiness, float frequency);
+
+// The coefficients at a point, at a path's colours or wavelengths.
+struct MediumCoefficients {
+  RGB sigma_a, sigma_s;
+};
+
+// A grid medium as one path reads it.
+struct GridMediumView {
+  const GridMedium* grid = nullptr;
+  // Density, Cloud: sigma_a and sigma_s per unit density, scale applied, at the path's
+  // colours or wavelengths. RGBGrid: the scale in every slot.
+  RGB sigma_a_unit, sigma_s_unit;
+  float g = 0;
+  const SampledWavelengths* wavelengths = nullptr;  // RGBGrid: each colour read at these; null: RGB
+
+  MediumCoefficients at(Vec3 p_world) const;
+  // The majorant of cell i, per slot.
+  RGB majorant(int cell) const;
+};
+
+// One stretch [t0, t1) of a ray inside one majorant cell.
+struct MajorantSegment {
+  float t0 = 0, t1 = 0;
+  RGB sigma_maj;
+};
+
+// The majorant cells a ray crosses within [0, t_max), in order (3D DDA).
+class MajorantTraversal {
+ public:
+  MajorantTraversal(const GridMediumView& m, const Ray& ray, float t_max);
+  // The next stretch; false when the ray has left the box or reached t_max.
+  bool next(MajorantSegment& s);
+
+ private:
+  const GridMediumView* m_;
+  float t_ = 0, t_end_ = 0;
+  int cell_[3] = {0, 0, 0}, step_[3] = {0, 0, 0};
+  float next_t_[3] = {0, 0, 0}, delta_t_[3] = {0, 0, 0};
+  bool done_ = true;
+};
+
+}  // namespace dermis

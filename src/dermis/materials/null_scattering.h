@@ -1,0 +1,41 @@
+// Free flights and transmittance in a heterogeneous medium by null collisions: the medium
+// is filled up to its majorant with a fictitious "null" medium that scatters straight on, so
+// that tentative collisions come from a piecewise-homogeneous exponential (the majorant's,
+// cell by cell: grid_medium.h MajorantTraversal) and each is an absorption, a real scattering
+// or a null collision (delta tracking, Woodcock et al. 1965; the null-scattering path
+// integral, Miller et al. 2019).
+//
+// Chromatic media: the collisions follow one channel's majorant and event probabilities,
+// the channel chosen per flight in proportion to the throughput times a preference, and the
+// weight is the one-sample balance heuristic over the channels, each channel's density of
+// the sampled sequence of tentative collisions and events being computable in the
+// null-scattering path space (Miller et al. 2019 sec. 5, the spectral MIS of pbrt-v4's
+// volpath): every channel stays unbiased whatever channel drew the flight.
+#pragma once
+
+#include "dermis/core/rgb.h"
+#include "dermis/core/rng.h"
+#include "dermis/materials/grid_medium.h"
+
+namespace dermis {
+
+struct NullScatteringFlight {
+  bool valid = false;      // false: the path ends here (absorbed, or nothing carries on)
+  bool scattered = false;  // a real scattering event at distance t, before t_max
+  float t = 0;
+  RGB weight;  // multiplies the throughput
+  int null_collisions = 0;
+};
+
+// beta: the path throughput and `preference` a per-channel factor (both choose the channel);
+// u_channel uniform in [0, 1); rng draws the distances and events.
+NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, const Ray& ray, float t_max,
+                                                   const RGB& beta, const RGB& preference, float u_channel,
+                                                   Rng& rng);
+
+// An unbiased estimate of the transmittance along [0, t_max) in every channel by ratio
+// tracking (Cramer 1978; Novak et al. 2014 sec. 4.2) against the largest channel's majorant,
+// with Russian roulette once it falls below 5 % (as pbrt-v4's TraceTransmittance).
+RGB ratio_tracking_transmittance(const GridMediumView& m, const Ray& ray, float t_max, Rng& rng);
+
+}  // namespace dermis

@@ -1,0 +1,66 @@
+#include "dermis/render/path/grid_volume_vertex.h"
+
+#include <bit>
+
+#include "dermis/core/henyey_greenstein.h"
+#include "dermis/materials/null_scattering.h"
+#include "dermis/render/path/direct_light.h"
+#include "dermis/render/russian_roulette.h"
+#include "dermis/render/spectral_media.h"
+
+namespace dermis {
+
+Rng tracking_rng(float u, const Ray& ray) {
+  auto bits = [](Vec3 v) {
+    return mix64(std::bit_cast<uint32_t>(v.x) ^ (uint64_t(std::bit_cast<uint32_t>(v.y)) << 21) ^
+                 (uint64_t(std::bit_cast<uint32_t>(v.z)) << 42));
+  };
+  return Rng(std::bit_cast<uint32_t>(u), bits(ray.o), bits(ray.d));
+}
+
+VertexOutcome shade_grid_volume(PathContext& ctx, PathState& st, float t_hit) {
+  const RenderScene& sc = ctx.sc;
+  Sampler& sampler = ctx.sampler;
+  const GridMediumView m = grid_medium_view(sc, st.medium, st.wavelengths);
+  // The flight's channel follows the throughput times the medium's preference for channels
+  // of little absorption (medium.h), which a density scales alike everywhere; an rgbgrid's
+  // albedo varies from sample to sample: no preference.
+  const RGB preference = m.grid->kind == GridMedium::Kind::RGBGrid
+                             ? RGB(1)
+                             : HomogeneousMedium::from_coefficients(m.sigma_a_unit, m.sigma_s_unit, 1, m.g)
+                                   .channel_preference;
+  const Vec2 u_flight = sampler.get2d();
+  Rng rng = tracking_rng(u_flight.y, st.ray);
+  const NullScatteringFlight flight =
+      sample_null_scattering_flight(m, st.ray, t_hit, st.beta, preference, u_flight.x, rng);
+  if (!flight.valid) return VertexOutcome::kStop;
+  st.beta *= flight.weight;
+  if (!st.beta.is_finite() || st.beta.is_black()) return VertexOutcome::kStop;
+  if (!flight.scattered) return VertexOutcome::kPassThrough;  // to the surface (or to infinity)
+
+  // A scattering event in the medium.
+  if (!first_vertex_survives(ctx, st)) return VertexOutcome::kStop;
+  const Vec3 p = st.ray.o + st.ray.d * flight.t;
+  if (st.depth++ >= sc.settings.max_depth) return VertexOutcome::kStop;
+  const float g = m.g;
+  const bool sees_lights = sc.medium_sees_lights[st.medium];
+  if (sees_lights) {
+    const Vec3 wo = -st.ray.d;
+    st.L += st.beta * estimate_direct(sc, p, Vec3(0, 0, 0), st.medium, sampler, ctx.counters, ctx.start.wavelengths,
+                                      [&](Vec3 wi) {
+                                        const float ph = henyey_greenstein(dot(-wo, wi), g);
+                                        return std::pair{RGB(ph), ph};
+                                      });
+  }
+  // Sample the phase function about the propagation direction (weight 1).
+  const Vec2 u_phase = sampler.get2d();
+  const float cos_theta = sample_henyey_greenstein_cos(u_phase.x, g);
+  const Vec3 wi = direction_about(st.ray.d, cos_theta, u_phase.y);
+  st.camera_chain = false;
+  st.after_scatter(Ray{p, wi}, henyey_greenstein(cos_theta, g), p, Vec3(0, 0, 0), SkyRule::Sampled, false);
+  if (!survives_roulette(ctx, st, sees_lights ? kMediumRouletteThreshold : kSurfaceRouletteThreshold))
+    return VertexOutcome::kStop;
+  return VertexOutcome::kContinue;
+}
+
+}  // namespace dermis

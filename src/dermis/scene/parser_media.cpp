@@ -1,0 +1,125 @@
+// The parameters of pbrt-v4's grid media (media.cpp GridMedium::Create,
+// RGBGridMedium::Create, CloudMedium::Create), read into a MediumDesc; MakeNamedMedium
+// itself is in parser_appearance.cpp.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "dermis/scene/scene_parser.h"
+#include "dermis/scene/spectra.h"
+
+namespace dermis {
+
+namespace {
+
+// A coefficient given as a colour or a spectrum, or `def`.
+RGB coefficient_param(const ParamList& pl, const char* name, RGB def, Diagnostics& diag) {
+  const ParsedParam* p = pl.find(name);
+  return p ? spectrum_param_rgb(*p, diag, SpectrumType::Unbounded) : def;
+}
+
+// The grid's values of parameter `name` (`arity` numbers each): their count must be the
+// grid's, and each number finite and at least zero.
+std::vector<double> grid_values(const ParamList& pl, const MediumDesc& m, const char* name,
+                                std::initializer_list<const char*> types, std::size_t arity) {
+  std::vector<double> v = pl.get_numbers(name, types, arity);
+  if (v.empty()) return v;
+  const ParsedParam& p = *pl.find(name);
+  const std::size_t expected = std::size_t(m.nx) * std::size_t(m.ny) * std::size_t(m.nz);
+  if (v.size() / arity != expected)
+    throw SceneError(p.value_loc, fmt::format("medium \"{}\": \"{}\" has {} values; the grid nx x ny x nz = {} x {} x "
+                                              "{} needs {}",
+                                              m.name, name, v.size() / arity, m.nx, m.ny, m.nz, expected));
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!(v[i] >= 0) || !std::isfinite(v[i]))
+      throw SceneError(p.value_at(i), fmt::format("medium \"{}\": \"{}\" must be finite and at least 0 (value {} of "
+                                                  "the grid is {})",
+                                                  m.name, name, i / arity, v[i]));
+  return v;
+}
+
+std::vector<RGB> colours(const std::vector<double>& v) {
+  std::vector<RGB> out(v.size() / 3);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = RGB(float(v[3 * i]), float(v[3 * i + 1]), float(v[3 * i + 2]));
+  return out;
+}
+
+}  // namespace
+
+void SceneParser::read_grid_medium(const ParamList& pl, MediumDesc& m) {
+  m.medium_to_world = gs_.ctm;
+  // The box: pbrt-v4's Bounds3f(p0, p1), corners in any order, but with a volume.
+  const Vec3 a = pl.get_vec3("p0", {"point3"}).value_or(m.p0), b = pl.get_vec3("p1", {"point3"}).value_or(m.p1);
+  for (int k = 0; k < 3; ++k)
+    if (!(a[k] != b[k]) || !std::isfinite(a[k]) || !std::isfinite(b[k])) {
+      const ParsedParam* p = pl.find("p1") ? pl.find("p1") : pl.find("p0");
+      throw SceneError(p ? p->value_loc : m.loc,
+                       fmt::format("medium \"{}\": the box p0 ({} {} {}) to p1 ({} {} {}) has no volume (equal or "
+                                   "non-finite {} coordinates)",
+                                   m.name, a.x, a.y, a.z, b.x, b.y, b.z, "xyz"[k]));
+    }
+  m.p0 = min(a, b);
+  m.p1 = max(a, b);
+  m.g = pl.get_float("g", 0);
+  if (!(m.g > -1 && m.g < 1)) throw SceneError(pl.find("g")->value_loc, fmt::format("g must be in (-1, 1), got {}", m.g));
+
+  if (m.type == "cloud") {
+    m.sigma_a = coefficient_param(pl, "sigma_a", RGB(1), s_.diagnostics);
+    m.sigma_s = coefficient_param(pl, "sigma_s", RGB(1), s_.diagnostics);
+    m.sigma_a_data = spectrum_data(pl, "sigma_a", SpectrumType::Unbounded);
+    m.sigma_s_data = spectrum_data(pl, "sigma_s", SpectrumType::Unbounded);
+    m.cloud_density = pl.get_float("density", 1);
+    m.wispiness = pl.get_float("wispiness", 1);
+    m.frequency = pl.get_float("frequency", 5);
+    for (const char* name : {"density", "wispiness", "frequency"})
+      if (const ParsedParam* p = pl.find(name); p && !std::isfinite(pl.get_float(name, 0)))
+        throw SceneError(p->value_loc, fmt::format("medium \"{}\": \"{}\" must be finite", m.name, name));
+  } else {
+    for (auto [name, n] : {std::pair{"nx", &m.nx}, {"ny", &m.ny}, {"nz", &m.nz}}) {
+      *n = pl.get_int(name, 1);
+      if (*n < 1)
+        throw SceneError(pl.find(name)->value_loc,
+                         fmt::format("medium \"{}\": \"{}\" must be at least 1, got {}", m.name, name, *n));
+    }
+    if (double(m.nx) * double(m.ny) * double(m.nz) > double(std::numeric_limits<int32_t>::max()))
+      throw SceneError(pl.find("nx")->value_loc,
+                       fmt::format("medium \"{}\": a grid of {} x {} x {} is too large", m.name, m.nx, m.ny, m.nz));
+    m.scale = pl.get_float("scale", 1);
+    if (!(m.scale >= 0) || !std::isfinite(m.scale))
+      throw SceneError(pl.find("scale")->value_loc, "scale must be finite and not negative");
+  }
+  if (m.type == "uniformgrid") {
+    const std::vector<double> d = grid_values(pl, m, "density", {"float"}, 1);
+    if (d.empty())
+      throw SceneError(m.loc, fmt::format("uniformgrid medium \"{}\" needs \"float density\" (nx x ny x nz values)",
+                                          m.name));
+    m.density.assign(d.begin(), d.end());
+    m.sigma_a = coefficient_param(pl, "sigma_a", RGB(1), s_.diagnostics);
+    m.sigma_s = coefficient_param(pl, "sigma_s", RGB(1), s_.diagnostics);
+    m.sigma_a_data = spectrum_data(pl, "sigma_a", SpectrumType::Unbounded);
+    m.sigma_s_data = spectrum_data(pl, "sigma_s", SpectrumType::Unbounded);
+  } else if (m.type == "rgbgrid") {
+    m.sigma_a_grid = colours(grid_values(pl, m, "sigma_a", {"rgb"}, 3));
+    m.sigma_s_grid = colours(grid_values(pl, m, "sigma_s", {"rgb"}, 3));
+    if (m.sigma_a_grid.empty() && m.sigma_s_grid.empty())
+      throw SceneError(m.loc, fmt::format("rgbgrid medium \"{}\" needs \"rgb sigma_a\" and/or \"rgb sigma_s\" (nx x "
+                                          "ny x nz colours each)",
+                                          m.name));
+  }
+  if (m.type != "rgbgrid")
+    for (auto [name, v] : {std::pair{"sigma_a", m.sigma_a}, {"sigma_s", m.sigma_s}})
+      if (v[0] < 0 || v[1] < 0 || v[2] < 0)
+        throw SceneError(pl.find(name) ? pl.find(name)->value_loc : m.loc,
+                         fmt::format("medium \"{}\": \"{}\" must not be negative", m.name, name));
+  for (const char* emission : {"Le", "Lescale", "temperature", "temperaturecutoff", "temperatureoffset",
+                               "temperaturescale"})
+    if (const ParsedParam* p = pl.find(emission)) {
+      p->used = true;
+      s_.diagnostics.warn(p->param.loc,
+                          fmt::format("medium \"{}\": emission (\"{}\") is not rendered yet", m.name, emission));
+    }
+}
+
+}  // namespace dermis

@@ -1,0 +1,79 @@
+// pbrt-v4's grid media as the parser records them, and their errors.
+#include <gtest/gtest.h>
+
+#include "dermis/scene/parser.h"
+#include "dermis/scene/scene_test_util.h"
+
+namespace dermis {
+namespace {
+
+using test::has_warning;
+using test::parse_world;
+
+TEST(ParserGridMedia, UniformgridRgbgridAndCloud) {
+  SceneDesc s = parse_world(
+      "Translate 1 2 3\n"
+      "MakeNamedMedium \"smoke\" \"string type\" \"uniformgrid\" \"integer nx\" 3 \"integer ny\" 2 \"integer nz\" 1\n"
+      "  \"float density\" [0 1 2 3 4 5] \"point3 p0\" [1 1 1] \"point3 p1\" [0 2 -1] \"rgb sigma_a\" [1 2 3]\n"
+      "  \"float scale\" 2 \"float g\" 0.5\n"
+      "MakeNamedMedium \"tint\" \"string type\" \"rgbgrid\" \"integer nx\" 2\n"
+      "  \"rgb sigma_s\" [1 2 3 4 5 6]\n"
+      "MakeNamedMedium \"sky\" \"string type\" \"cloud\" \"float wispiness\" 0.5 \"spectrum sigma_s\" [400 1 700 2]\n");
+  ASSERT_EQ(s.media.size(), 3u);
+  const MediumDesc& smoke = s.media[0];
+  EXPECT_EQ(smoke.type, "uniformgrid");
+  EXPECT_EQ(smoke.nx, 3);
+  EXPECT_EQ(smoke.ny, 2);
+  EXPECT_EQ(smoke.nz, 1);
+  EXPECT_EQ(smoke.density, (std::vector<float>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(smoke.p0, Vec3(0, 1, -1));  // the corners in any order, as pbrt-v4's Bounds3f
+  EXPECT_EQ(smoke.p1, Vec3(1, 2, 1));
+  EXPECT_EQ(smoke.sigma_a, RGB(1, 2, 3));
+  EXPECT_EQ(smoke.sigma_s, RGB(1, 1, 1));  // pbrt-v4's default
+  EXPECT_FLOAT_EQ(smoke.scale, 2);
+  EXPECT_FLOAT_EQ(smoke.g, 0.5f);
+  EXPECT_EQ(smoke.medium_to_world.point(Vec3(0, 0, 0)), Vec3(1, 2, 3));
+  const MediumDesc& tint = s.media[1];
+  EXPECT_TRUE(tint.sigma_a_grid.empty());
+  EXPECT_EQ(tint.sigma_s_grid, (std::vector<RGB>{RGB(1, 2, 3), RGB(4, 5, 6)}));
+  const MediumDesc& sky = s.media[2];
+  EXPECT_EQ(sky.type, "cloud");
+  EXPECT_FLOAT_EQ(sky.wispiness, 0.5f);
+  EXPECT_FLOAT_EQ(sky.frequency, 5);
+  EXPECT_GE(sky.sigma_s_data, 0);
+  EXPECT_FALSE(has_warning(s, "medium"));
+  EXPECT_FALSE(has_warning(s, "unused"));
+}
+
+TEST(ParserGridMedia, EmissionIsNotRenderedYetAndSaysSo) {
+  SceneDesc s = parse_world(
+      "MakeNamedMedium \"fire\" \"string type\" \"uniformgrid\" \"float density\" [1] \"rgb Le\" [1 0.5 0]\n");
+  EXPECT_TRUE(has_warning(s, "test.pbrt:2:72: warning: medium \"fire\": emission (\"Le\") is not rendered yet"));
+}
+
+TEST(ParserGridMedia, BadGridsAreErrorsAtTheValue) {
+  auto error_at = [](const std::string& body, int line, int column, const std::string& what) {
+    try {
+      parse_world(body);
+      ADD_FAILURE() << "no error for " << body;
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.loc().line, line) << e.what();
+      EXPECT_EQ(e.loc().column, column) << e.what();
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  const std::string grid = "MakeNamedMedium \"m\" \"string type\" \"uniformgrid\" ";
+  error_at(grid + "\"integer nx\" 2 \"float density\" [1 2 3]\n", 2, 80, "\"density\" has 3 values; the grid nx x ny");
+  error_at(grid + "\"integer nx\" 3 \"float density\" [1 -2 3]\n", 2, 83, "must be finite and at least 0 (value 1");
+  error_at(grid + "\"float density\" [1]\n\"point3 p0\" [0 0 0] \"point3 p1\" [1 0 1]\n", 3, 33, "has no volume");
+  error_at(grid + "\"integer nx\" 2\n", 2, 1, "needs \"float density\"");
+  error_at(grid + "\"integer nx\" 0 \"float density\" [1]\n", 2, 62, "\"nx\" must be at least 1");
+  error_at(grid + "\"float density\" [1] \"rgb sigma_a\" [1 -1 1]\n", 2, 83, "\"sigma_a\" must not be negative");
+  error_at("MakeNamedMedium \"m\" \"string type\" \"rgbgrid\" \"integer nx\" 2\n", 2, 1,
+           "needs \"rgb sigma_a\" and/or \"rgb sigma_s\"");
+  error_at("MakeNamedMedium \"m\" \"string type\" \"rgbgrid\" \"rgb sigma_a\" [1 2 3 4 5 6]\n", 2, 59,
+           "\"sigma_a\" has 2 values");
+}
+
+}  // namespace
+}  // namespace dermis
