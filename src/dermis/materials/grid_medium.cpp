@@ -80,8 +80,8 @@ void GridMedium::build_majorants() {
       for (int x = 0; x < kMajorantCells; ++x) {
         const Vec3 lo = Vec3(float(x), float(y), float(z)) / float(kMajorantCells);
         const Vec3 hi = Vec3(float(x + 1), float(y + 1), float(z + 1)) / float(kMajorantCells);
-        MajorantCell& cell = majorants[(std::size_t(z) * kMajorantCells + std::size_t(y)) * kMajorantCells +
-                                       std::size_t(x)];
+        MajorantCell& cell =
+            majorants[(std::size_t(z) * kMajorantCells + std::size_t(y)) * kMajorantCells + std::size_t(x)];
         if (kind == Kind::Density) {
           const float d = density.max_over(lo, hi, [](float v) { return v; });
           cell = {RGB(d), d};
@@ -99,14 +99,20 @@ MediumCoefficients GridMediumView::at(Vec3 p_world) const {
   if (!(u.x >= 0 && u.x <= 1 && u.y >= 0 && u.y <= 1 && u.z >= 0 && u.z <= 1)) return {};
   if (grid->kind != GridMedium::Kind::RGBGrid) {
     const float d = grid->density_at(u);
-    return {sigma_a_unit * d, sigma_s_unit * d};
+    return {sigma_a_unit * d, sigma_s_unit * d, emissive ? Le_unit * grid->le_scale.lookup(u) : RGB(0)};
   }
   auto read = [&](const VoxelGrid<RGB>& g) {
     if (g.empty()) return RGB(1);
     if (!wavelengths) return g.lookup(u);
     return g.lookup(u, [&](const RGB& c) { return unbounded_at(c, *wavelengths); });
   };
-  return {read(grid->sigma_a_grid) * sigma_a_unit, read(grid->sigma_s_grid) * sigma_s_unit};
+  RGB Le;
+  if (emissive) {
+    Le = (wavelengths ? grid->le_grid.lookup(u, [&](const RGB& c) { return illuminant_at(c, *wavelengths); })
+                      : grid->le_grid.lookup(u)) *
+         grid->le_grid_scale;
+  }
+  return {read(grid->sigma_a_grid) * sigma_a_unit, read(grid->sigma_s_grid) * sigma_s_unit, Le};
 }
 
 RGB GridMediumView::majorant(int cell) const {

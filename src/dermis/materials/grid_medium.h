@@ -27,9 +27,20 @@ struct GridMedium {
   Transform medium_from_world;
   Vec3 p0{0, 0, 0}, p1{1, 1, 1};  // the box, in the medium's space (p0 < p1 on every axis)
 
-  VoxelGrid<float> density;                    // Density: the density grid
-  VoxelGrid<RGB> sigma_a_grid, sigma_s_grid;   // RGBGrid: the colours (empty: 1 everywhere)
+  VoxelGrid<float> density;                               // Density: the density grid
+  VoxelGrid<RGB> sigma_a_grid, sigma_s_grid;              // RGBGrid: the colours (empty: 1 everywhere)
   float cloud_density = 1, wispiness = 1, frequency = 5;  // Cloud: pbrt-v4's parameters
+
+  // Emission (pbrt-v4's Le). Density: the colour `Le` (luminance 1 where given as a spectrum,
+  // whose samples are RenderScene::spectra[Le_data]) times the grid `le_scale` (absent in the
+  // file: one sample of 1, which pbrt-v4's interpolation makes a tent, 1 at the centre, 1/8 at
+  // the corners). RGBGrid: the grid of colours `le_grid` times `le_grid_scale`.
+  RGB Le;
+  int Le_data = -1;
+  VoxelGrid<float> le_scale;
+  VoxelGrid<RGB> le_grid;
+  float le_grid_scale = 1;
+  bool emissive() const { return kind == Kind::RGBGrid ? !le_grid.empty() && le_grid_scale > 0 : Le.max() > 0; }
 
   // The coarse majorant grid, filled by build_majorants(): per cell, the largest density
   // (Density, Cloud: the same in all three slots) or, for RGBGrid, the largest sigma_a +
@@ -56,6 +67,7 @@ float pbrt_v4_cloud_density(Vec3 p, float density, float wispiness, float freque
 // The coefficients at a point, at a path's colours or wavelengths.
 struct MediumCoefficients {
   RGB sigma_a, sigma_s;
+  RGB Le;  // emitted radiance (zero unless the view reads emission)
 };
 
 // A grid medium as one path reads it.
@@ -66,6 +78,10 @@ struct GridMediumView {
   RGB sigma_a_unit, sigma_s_unit;
   float g = 0;
   const SampledWavelengths* wavelengths = nullptr;  // RGBGrid: each colour read at these; null: RGB
+  // Emission: read at all (false: Le stays zero); Density: the colour of Le at the path's
+  // colours or wavelengths (the le_scale grid multiplies it).
+  bool emissive = false;
+  RGB Le_unit;
 
   MediumCoefficients at(Vec3 p_world) const;
   // The majorant of cell i, per slot.

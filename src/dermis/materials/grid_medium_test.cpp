@@ -16,11 +16,11 @@ TEST(VoxelGrid, ReadsAsPbrtV4sSampledGrid) {
   EXPECT_FLOAT_EQ(g.lookup(Vec3(0.625f, 0.75f, 0.5f)), 30);  // sample (2, 1, 0): x fastest
   EXPECT_FLOAT_EQ(g.lookup(Vec3(0.25f, 0.25f, 0.5f)), 1.5f);
   EXPECT_FLOAT_EQ(g.lookup(Vec3(0.125f, 0.5f, 0.5f)), 5.5f);
-  EXPECT_FLOAT_EQ(g.lookup(Vec3(0.0f, 0.25f, 0.5f)), 0.5f);      // half way to the zero outside
-  EXPECT_FLOAT_EQ(g.lookup(Vec3(0.125f, 0.25f, 0.0f)), 0.5f);    // likewise along z (one sample)
-  EXPECT_FLOAT_EQ(g.lookup(Vec3(1.2f, 0.25f, 0.5f)), 0.0f);      // beyond the grid
+  EXPECT_FLOAT_EQ(g.lookup(Vec3(0.0f, 0.25f, 0.5f)), 0.5f);    // half way to the zero outside
+  EXPECT_FLOAT_EQ(g.lookup(Vec3(0.125f, 0.25f, 0.0f)), 0.5f);  // likewise along z (one sample)
+  EXPECT_FLOAT_EQ(g.lookup(Vec3(1.2f, 0.25f, 0.5f)), 0.0f);    // beyond the grid
   auto value = [](float v) { return v; };
-  EXPECT_FLOAT_EQ(g.max_over(Vec3(0, 0, 0), Vec3(0.1f, 0.2f, 1), value), 1);  // only sample (0, 0) reaches it
+  EXPECT_FLOAT_EQ(g.max_over(Vec3(0, 0, 0), Vec3(0.1f, 0.2f, 1), value), 1);   // only sample (0, 0) reaches it
   EXPECT_FLOAT_EQ(g.max_over(Vec3(0, 0, 0), Vec3(0.2f, 0.3f, 1), value), 20);  // samples (0..1, 0..1)
 }
 

@@ -18,8 +18,7 @@ void renormalise(RGB& a) {
 }  // namespace
 
 NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, const Ray& ray, float t_max,
-                                                   const RGB& beta, const RGB& preference, float u_channel,
-                                                   Rng& rng) {
+                                                   const RGB& beta, const RGB& preference, float u_channel, Rng& rng) {
   NullScatteringFlight f;
   RGB q;
   float qsum = 0;
@@ -47,6 +46,12 @@ NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, cons
       const RGB tr = exp(seg.sigma_maj * -step);
       const MediumCoefficients k = m.at(ray.o + ray.d * t);
       ++f.null_collisions;
+      if (m.emissive) {
+        // sigma_a Le at a tentative collision, whatever its event: channel k's density of the
+        // collision is a[k] T_k m_k, its integrand a[k] T_k sigma_a,k Le_k (Miller et al. 2019 eq. 18).
+        const float pdf = mixture(a * tr * seg.sigma_maj);
+        if (pdf > 0) f.emitted += a * tr * k.sigma_a * k.Le / pdf;
+      }
       const float u = rng.uniform();
       const float p_absorb = k.sigma_a[c] / majorant, p_scatter = k.sigma_s[c] / majorant;
       if (u < p_absorb) return f;  // absorbed: the path ends

@@ -24,14 +24,16 @@ struct NullScatteringFlight {
   bool scattered = false;  // a real scattering event at distance t, before t_max
   float t = 0;
   RGB weight;  // multiplies the throughput
+  // The medium's emission met on the way (pbrt-v4's, at every tentative collision, weighed
+  // like the flight): multiplied by the throughput before the flight, it adds to the radiance.
+  RGB emitted;
   int null_collisions = 0;
 };
 
 // beta: the path throughput and `preference` a per-channel factor (both choose the channel);
 // u_channel uniform in [0, 1); rng draws the distances and events.
 NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, const Ray& ray, float t_max,
-                                                   const RGB& beta, const RGB& preference, float u_channel,
-                                                   Rng& rng);
+                                                   const RGB& beta, const RGB& preference, float u_channel, Rng& rng);
 
 // An unbiased estimate of the transmittance along [0, t_max) in every channel by ratio
 // tracking (Cramer 1978; Novak et al. 2014 sec. 4.2) against the largest channel's majorant,

@@ -59,23 +59,23 @@ Estimate estimate(int n, const std::function<RGB()>& f) {
 
 void expect_within_4_sigma(const Estimate& e, const double expected[3], const char* what) {
   for (int c = 0; c < 3; ++c)
-    EXPECT_LE(std::abs(e.mean[c] - expected[c]), 4 * e.se[c] + 1e-7) << what << " channel " << c << ": " << e.mean[c]
-                                                                       << " vs " << expected[c];
+    EXPECT_LE(std::abs(e.mean[c] - expected[c]), 4 * e.se[c] + 1e-7)
+        << what << " channel " << c << ": " << e.mean[c] << " vs " << expected[c];
 }
 
 // Ratio tracking's estimate of the transmittance, against exp(-optical depth), along the
 // axis and along oblique rays that end inside the box.
 TEST(NullScattering, RatioTrackingMatchesTheOpticalDepth) {
   Fixture f;
-  const Ray rays[] = {{Vec3(-1, 0.5f, 0.5f), Vec3(1, 0, 0)}, {Vec3(-0.5f, -0.3f, 0.1f), normalize(Vec3(1, 0.6f, 0.3f))}};
+  const Ray rays[] = {{Vec3(-1, 0.5f, 0.5f), Vec3(1, 0, 0)},
+                      {Vec3(-0.5f, -0.3f, 0.1f), normalize(Vec3(1, 0.6f, 0.3f))}};
   const float t_maxes[] = {std::numeric_limits<float>::infinity(), 1.6f};
   for (int r = 0; r < 2; ++r) {
     const float t_end = std::isinf(t_maxes[r]) ? 10.0f : t_maxes[r];
     const RGB tau = optical_depth(f.view, rays[r], t_end);
     const double expected[3] = {std::exp(-tau[0]), std::exp(-tau[1]), std::exp(-tau[2])};
     Rng rng(11, uint64_t(r));
-    const Estimate e =
-        estimate(200000, [&] { return ratio_tracking_transmittance(f.view, rays[r], t_maxes[r], rng); });
+    const Estimate e = estimate(200000, [&] { return ratio_tracking_transmittance(f.view, rays[r], t_maxes[r], rng); });
     expect_within_4_sigma(e, expected, "transmittance");
   }
 }
@@ -139,9 +139,8 @@ TEST(NullScattering, EdgeCases) {
   const Ray ray{Vec3(-1, 0.5f, 0.5f), Vec3(1, 0, 0)};
   Rng rng(14, 1);
   for (int i = 0; i < 1000; ++i) {
-    const NullScatteringFlight fl =
-        sample_null_scattering_flight(f.view, ray, std::numeric_limits<float>::infinity(), RGB(0, 1, 0), RGB(1),
-                                      0.5f, rng);
+    const NullScatteringFlight fl = sample_null_scattering_flight(f.view, ray, std::numeric_limits<float>::infinity(),
+                                                                  RGB(0, 1, 0), RGB(1), 0.5f, rng);
     ASSERT_TRUE(fl.valid);
     ASSERT_FALSE(fl.scattered);
     ASSERT_EQ(fl.weight[1], 1.0f);

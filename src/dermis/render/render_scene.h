@@ -64,6 +64,15 @@ struct RenderScene {
     float scale = 1;
   };
   std::vector<MediumSpectra> medium_spectra;
+  // Per homogeneous medium of the file: its emission (pbrt-v4's Le x Lescale; a grid
+  // medium's is its GridMedium's), and Le's spectrum where given as one (an index into
+  // `spectra`, at luminance 1: times `scale`).
+  struct MediumEmission {
+    RGB Le;
+    int data = -1;
+    float scale = 1;
+  };
+  std::vector<MediumEmission> medium_emission;
   // The heterogeneous media of the file (uniformgrid, rgbgrid, cloud), and per medium of the
   // file its entry there (-1: homogeneous). A grid medium's entry in `media` holds its
   // coefficients per unit density (rgbgrid: the scale) and its g, which spectral rendering

@@ -621,6 +621,18 @@ GridMedium make_grid_medium(const MediumDesc& d) {
   grid(g.density, d.density);
   grid(g.sigma_a_grid, d.sigma_a_grid);
   grid(g.sigma_s_grid, d.sigma_s_grid);
+  grid(g.le_grid, d.Le_grid);
+  // pbrt-v4 does not divide an rgbgrid's Le by its photometric value as it does every other
+  // emission's (media.cpp RGBGridMedium::Create): its radiance is CIE_Y_integral times that of
+  // the same colour elsewhere.
+  constexpr float kPbrtV4CieYIntegral = 106.856895f;
+  g.le_grid_scale = d.Lescale * kPbrtV4CieYIntegral;
+  g.Le = d.type == "uniformgrid" ? d.Le : RGB(0);
+  g.Le_data = d.Le_data;
+  if (d.le_scale_grid.empty())
+    g.le_scale = {1, 1, 1, {1.0f}};  // pbrt-v4's default: one sample (a tent over the box)
+  else
+    grid(g.le_scale, d.le_scale_grid);
   g.cloud_density = d.cloud_density;
   g.wispiness = d.wispiness;
   g.frequency = d.frequency;
@@ -652,6 +664,10 @@ std::unique_ptr<RenderScene> assemble_scene(const SceneDesc& desc, Diagnostics& 
     sc->media.push_back(HomogeneousMedium::from_coefficients(rgb_grid ? RGB(1) : m.sigma_a,
                                                              rgb_grid ? RGB(1) : m.sigma_s, m.scale, m.g));
     sc->medium_spectra.push_back({m.sigma_a_data, m.sigma_s_data, m.scale});
+    if (m.type == "homogeneous")
+      sc->medium_emission.push_back({m.Le * m.Lescale, m.Le_data, m.Lescale});
+    else
+      sc->medium_emission.push_back({});
     sc->grid_of_medium.push_back(m.type == "homogeneous" ? -1 : int(sc->grid_media.size()));
     if (m.type != "homogeneous") sc->grid_media.push_back(make_grid_medium(m));
   }

@@ -2,6 +2,7 @@
 
 #include "dermis/materials/at_wavelengths.h"
 #include "dermis/render/volumetric_texture.h"
+#include "dermis/spectral/spectrum_at.h"
 
 namespace dermis {
 
@@ -25,7 +26,14 @@ HomogeneousMedium scene_medium_at_wavelengths(const RenderScene& sc, int medium,
   return v >= 0 ? volumetric_medium_at_wavelengths(sc, v, w) : file_medium_at_wavelengths(sc, medium, w);
 }
 
-GridMediumView grid_medium_view(const RenderScene& sc, int medium, const SampledWavelengths* w) {
+RGB homogeneous_emission(const RenderScene& sc, int medium, const SampledWavelengths* w) {
+  if (medium < 0 || std::size_t(medium) >= sc.medium_emission.size()) return RGB(0);
+  const RenderScene::MediumEmission& e = sc.medium_emission[std::size_t(medium)];
+  if (!w || e.Le.is_black()) return e.Le;
+  return e.data >= 0 ? tabulated_at(sc.spectra[std::size_t(e.data)], *w) * e.scale : illuminant_at(e.Le, *w);
+}
+
+GridMediumView grid_medium_view(const RenderScene& sc, int medium, const SampledWavelengths* w, bool emission) {
   const GridMedium& grid = sc.grid_media[std::size_t(sc.grid_medium_of(medium))];
   const HomogeneousMedium& rgb = sc.media[std::size_t(medium)];
   GridMediumView v;
@@ -39,6 +47,11 @@ GridMediumView grid_medium_view(const RenderScene& sc, int medium, const Sampled
     v.sigma_a_unit = unit.sigma_a;
     v.sigma_s_unit = unit.sigma_s;
   }
+  v.emissive = emission && grid.emissive();
+  if (v.emissive && grid.kind != GridMedium::Kind::RGBGrid)
+    v.Le_unit = !w                  ? grid.Le
+                : grid.Le_data >= 0 ? tabulated_at(sc.spectra[std::size_t(grid.Le_data)], *w)
+                                    : illuminant_at(grid.Le, *w);
   return v;
 }
 

@@ -16,6 +16,11 @@ HomogeneousMedium scene_medium_at_wavelengths(const RenderScene& sc, int medium,
 
 // A grid medium (sc.grid_medium_of(medium) >= 0) as a path reads it: at its wavelengths when it
 // has them (w non-null), else in RGB.
-GridMediumView grid_medium_view(const RenderScene& sc, int medium, const SampledWavelengths* w);
+// The emission of a homogeneous medium of the file (zero for any other): at the path's
+// wavelengths when it has them (w non-null).
+RGB homogeneous_emission(const RenderScene& sc, int medium, const SampledWavelengths* w);
+
+// With `emission`, the view reads the medium's emission too (Le).
+GridMediumView grid_medium_view(const RenderScene& sc, int medium, const SampledWavelengths* w, bool emission = false);
 
 }  // namespace dermis

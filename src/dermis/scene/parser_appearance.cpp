@@ -775,9 +775,14 @@ void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
       throw SceneError(loc, fmt::format("medium \"{}\": sigma_a and sigma_s must not be negative", name));
   m.scale = pl.get_float("scale", 1);
   if (m.scale < 0) throw SceneError(pl.find("scale")->value_loc, "scale must not be negative");
-  m.Le = rgb_param(pl, "Le", RGB(0), s_.diagnostics, SpectrumType::Illuminant) * pl.get_float("Lescale", 1);
-  if (!m.Le.is_black())
-    s_.diagnostics.warn(loc, fmt::format("medium \"{}\": emission Le is recorded but not rendered", name));
+  // Emission: pbrt-v4's Le (a spectrum at luminance 1) times Lescale.
+  m.Lescale = pl.get_float("Lescale", 1);
+  m.Le = rgb_param(pl, "Le", RGB(0), s_.diagnostics, SpectrumType::Illuminant);
+  m.Le_data = spectrum_data(pl, "Le", SpectrumType::Illuminant);
+  for (auto [what, v] : {std::pair{"Le", m.Le}, {"Lescale", RGB(m.Lescale)}})
+    if (!(std::min({v[0], v[1], v[2]}) >= 0) || !std::isfinite(v.max()))
+      throw SceneError(pl.find(what)->value_loc,
+                       fmt::format("medium \"{}\": \"{}\" must be finite and not negative", name, what));
   pl.warn_unused(s_.diagnostics, "MakeNamedMedium \"homogeneous\"");
   media_[name] = int(s_.media.size());
   s_.media.push_back(std::move(m));

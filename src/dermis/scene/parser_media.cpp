@@ -48,6 +48,38 @@ std::vector<RGB> colours(const std::vector<double>& v) {
 
 }  // namespace
 
+void SceneParser::read_grid_emission(const ParamList& pl, MediumDesc& m) {
+  if (m.type == "uniformgrid") {
+    if (const ParsedParam* le = pl.find("Le")) {
+      m.Le = spectrum_param_rgb(*le, s_.diagnostics, SpectrumType::Illuminant);
+      m.Le_data = spectrum_data(pl, "Le", SpectrumType::Illuminant);
+      if (!(std::min({m.Le[0], m.Le[1], m.Le[2]}) >= 0) || !std::isfinite(m.Le.max()))
+        throw SceneError(le->value_loc, fmt::format("medium \"{}\": \"Le\" must be finite and not negative", m.name));
+      if (pl.find("temperature"))
+        throw SceneError(
+            pl.find("temperature")->param.loc,
+            fmt::format("medium \"{}\": both \"Le\" and \"temperature\" given (pbrt-v4 takes one)", m.name));
+    }
+    const std::vector<double> scale = grid_values(pl, m, "Lescale", {"float"}, 1);
+    m.le_scale_grid.assign(scale.begin(), scale.end());
+  } else if (m.type == "rgbgrid") {
+    m.Le_grid = colours(grid_values(pl, m, "Le", {"rgb"}, 3));
+    if (!m.Le_grid.empty() && m.sigma_a_grid.empty())
+      throw SceneError(pl.find("Le")->value_loc,
+                       fmt::format("rgbgrid medium \"{}\": \"Le\" needs \"rgb sigma_a\" (pbrt-v4)", m.name));
+    m.Lescale = pl.get_float("Lescale", 1);
+    if (!(m.Lescale >= 0) || !std::isfinite(m.Lescale))
+      throw SceneError(pl.find("Lescale")->value_loc, "Lescale must be finite and not negative");
+  }
+  for (const char* emission : {"temperature", "temperaturecutoff", "temperatureoffset", "temperaturescale"})
+    if (const ParsedParam* p = pl.find(emission)) {
+      p->used = true;
+      s_.diagnostics.warn(
+          p->param.loc,
+          fmt::format("medium \"{}\": emission by temperature (\"{}\") is not rendered yet", m.name, emission));
+    }
+}
+
 void SceneParser::read_grid_medium(const ParamList& pl, MediumDesc& m) {
   m.medium_to_world = gs_.ctm;
   // The box: pbrt-v4's Bounds3f(p0, p1), corners in any order, but with a volume.
@@ -63,7 +95,8 @@ void SceneParser::read_grid_medium(const ParamList& pl, MediumDesc& m) {
   m.p0 = min(a, b);
   m.p1 = max(a, b);
   m.g = pl.get_float("g", 0);
-  if (!(m.g > -1 && m.g < 1)) throw SceneError(pl.find("g")->value_loc, fmt::format("g must be in (-1, 1), got {}", m.g));
+  if (!(m.g > -1 && m.g < 1))
+    throw SceneError(pl.find("g")->value_loc, fmt::format("g must be in (-1, 1), got {}", m.g));
 
   if (m.type == "cloud") {
     m.sigma_a = coefficient_param(pl, "sigma_a", RGB(1), s_.diagnostics);
@@ -93,8 +126,8 @@ void SceneParser::read_grid_medium(const ParamList& pl, MediumDesc& m) {
   if (m.type == "uniformgrid") {
     const std::vector<double> d = grid_values(pl, m, "density", {"float"}, 1);
     if (d.empty())
-      throw SceneError(m.loc, fmt::format("uniformgrid medium \"{}\" needs \"float density\" (nx x ny x nz values)",
-                                          m.name));
+      throw SceneError(m.loc,
+                       fmt::format("uniformgrid medium \"{}\" needs \"float density\" (nx x ny x nz values)", m.name));
     m.density.assign(d.begin(), d.end());
     m.sigma_a = coefficient_param(pl, "sigma_a", RGB(1), s_.diagnostics);
     m.sigma_s = coefficient_param(pl, "sigma_s", RGB(1), s_.diagnostics);
@@ -113,13 +146,7 @@ void SceneParser::read_grid_medium(const ParamList& pl, MediumDesc& m) {
       if (v[0] < 0 || v[1] < 0 || v[2] < 0)
         throw SceneError(pl.find(name) ? pl.find(name)->value_loc : m.loc,
                          fmt::format("medium \"{}\": \"{}\" must not be negative", m.name, name));
-  for (const char* emission : {"Le", "Lescale", "temperature", "temperaturecutoff", "temperatureoffset",
-                               "temperaturescale"})
-    if (const ParsedParam* p = pl.find(emission)) {
-      p->used = true;
-      s_.diagnostics.warn(p->param.loc,
-                          fmt::format("medium \"{}\": emission (\"{}\") is not rendered yet", m.name, emission));
-    }
+  read_grid_emission(pl, m);
 }
 
 }  // namespace dermis

@@ -45,10 +45,27 @@ TEST(ParserGridMedia, UniformgridRgbgridAndCloud) {
   EXPECT_FALSE(has_warning(s, "unused"));
 }
 
-TEST(ParserGridMedia, EmissionIsNotRenderedYetAndSaysSo) {
+TEST(ParserGridMedia, Emission) {
   SceneDesc s = parse_world(
-      "MakeNamedMedium \"fire\" \"string type\" \"uniformgrid\" \"float density\" [1] \"rgb Le\" [1 0.5 0]\n");
-  EXPECT_TRUE(has_warning(s, "test.pbrt:2:72: warning: medium \"fire\": emission (\"Le\") is not rendered yet"));
+      "MakeNamedMedium \"fire\" \"string type\" \"uniformgrid\" \"integer nx\" 2 \"float density\" [1 1]\n"
+      "  \"rgb Le\" [1 0.5 0] \"float Lescale\" [0 3]\n"
+      "MakeNamedMedium \"glow\" \"string type\" \"rgbgrid\" \"rgb sigma_a\" [1 1 1] \"rgb Le\" [0 1 2] \"float "
+      "Lescale\" 4\n"
+      "MakeNamedMedium \"hot\" \"string type\" \"uniformgrid\" \"float density\" [1] \"float temperature\" [2000]\n");
+  EXPECT_EQ(s.media[0].Le, RGB(1, 0.5f, 0));
+  EXPECT_EQ(s.media[0].le_scale_grid, (std::vector<float>{0, 3}));
+  EXPECT_EQ(s.media[1].Le_grid, (std::vector<RGB>{RGB(0, 1, 2)}));
+  EXPECT_FLOAT_EQ(s.media[1].Lescale, 4);
+  EXPECT_TRUE(has_warning(s,
+                          "test.pbrt:5:71: warning: medium \"hot\": emission by temperature (\"temperature\") is not "
+                          "rendered yet"));
+  EXPECT_THROW(
+      parse_world("MakeNamedMedium \"m\" \"string type\" \"rgbgrid\" \"rgb sigma_s\" [1 1 1] \"rgb Le\" [1 1 1]\n"),
+      SceneError);  // pbrt-v4: Le needs sigma_a
+  EXPECT_THROW(
+      parse_world("MakeNamedMedium \"m\" \"string type\" \"uniformgrid\" \"integer nx\" 2 \"float density\" [1 1] "
+                  "\"float Lescale\" [1]\n"),
+      SceneError);  // a count that is not the grid's
 }
 
 TEST(ParserGridMedia, BadGridsAreErrorsAtTheValue) {

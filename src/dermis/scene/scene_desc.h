@@ -280,7 +280,7 @@ struct MediumDesc {
   int sigma_a_data = -1, sigma_s_data = -1;
   float scale = 1;
   float g = 0;
-  RGB Le{0, 0, 0};     // emission: parsed, warned if non-zero
+  RGB Le{0, 0, 0};     // emission's colour (luminance 1 where given as a spectrum), before Lescale
   std::string preset;  // "name" parameter if used (Jensen et al. 2001 table)
   // The grid media (type "uniformgrid", "rgbgrid", "cloud"; materials/grid_medium.h), as
   // pbrt-v4 reads them: sigma_a and sigma_s above are per unit density (uniformgrid, cloud).
@@ -290,6 +290,13 @@ struct MediumDesc {
   std::vector<float> density;                             // uniformgrid: nx * ny * nz, x fastest
   std::vector<RGB> sigma_a_grid, sigma_s_grid;            // rgbgrid (either may be empty: 1)
   float cloud_density = 1, wispiness = 1, frequency = 5;  // cloud
+  // Emission: homogeneous: Le above (luminance 1 where a spectrum, whose samples are
+  // SceneDesc::spectra[Le_data]) times Lescale; uniformgrid: Le times the grid le_scale_grid
+  // (empty: none given); rgbgrid: the colours Le_grid times Lescale.
+  int Le_data = -1;
+  std::vector<float> le_scale_grid;
+  std::vector<RGB> Le_grid;
+  float Lescale = 1;
   SourceLoc loc;
 };
 

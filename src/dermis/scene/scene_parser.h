@@ -125,6 +125,7 @@ class SceneParser {
   void make_named_medium(const Token& d, TokenStream& ts);
   // parser_media.cpp: the parameters of a grid medium (uniformgrid, rgbgrid, cloud).
   void read_grid_medium(const ParamList& pl, MediumDesc& m);
+  void read_grid_emission(const ParamList& pl, MediumDesc& m);
   void medium_interface(const Token& d, TokenStream& ts);
 
   SceneDesc& s_;

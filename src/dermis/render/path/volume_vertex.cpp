@@ -5,6 +5,7 @@
 #include "dermis/render/path/direct_light.h"
 #include "dermis/render/path/grid_volume_vertex.h"
 #include "dermis/render/russian_roulette.h"
+#include "dermis/render/spectral_media.h"
 
 namespace dermis {
 
@@ -14,6 +15,14 @@ VertexOutcome shade_volume(PathContext& ctx, PathState& st, float t_hit) {
   Sampler& sampler = ctx.sampler;
   const HomogeneousMedium& m = st.medium_of(sc, st.medium);
   const MediumSegment segment = medium_segment(m, t_hit);
+  if (st.depth < sc.settings.max_depth) {
+    // The medium's emission over the whole segment in closed form, whatever the flight does:
+    // int_0^t_max T(t) sigma_a Le dt = sigma_a Le (1 - T(t_max)) / sigma_t (pbrt-v4 sec. 11.1.1, eq. 11.6).
+    const RGB Le = homogeneous_emission(sc, st.medium, st.wavelengths);
+    for (int c = 0; c < 3; ++c)
+      if (Le[c] > 0 && m.sigma_t[c] > 0)
+        st.L[c] += st.beta[c] * m.sigma_a[c] * Le[c] * segment.captured[c] / m.sigma_t[c];
+  }
   // The free flight's channel and distance, jointly stratified.
   const Vec2 u_flight = sampler.get2d();
   // Direct light in-scattered anywhere on the segment, at a point drawn for it alone
