@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "dermis/materials/noise.h"
+#include "dermis/spectral/blackbody.h"
 #include "dermis/spectral/spectrum_at.h"
 
 namespace dermis {
@@ -99,7 +100,7 @@ MediumCoefficients GridMediumView::at(Vec3 p_world) const {
   if (!(u.x >= 0 && u.x <= 1 && u.y >= 0 && u.y <= 1 && u.z >= 0 && u.z <= 1)) return {};
   if (grid->kind != GridMedium::Kind::RGBGrid) {
     const float d = grid->density_at(u);
-    return {sigma_a_unit * d, sigma_s_unit * d, emissive ? Le_unit * grid->le_scale.lookup(u) : RGB(0)};
+    return {sigma_a_unit * d, sigma_s_unit * d, emissive ? density_emission(u) : RGB(0)};
   }
   auto read = [&](const VoxelGrid<RGB>& g) {
     if (g.empty()) return RGB(1);
@@ -113,6 +114,19 @@ MediumCoefficients GridMediumView::at(Vec3 p_world) const {
          grid->le_grid_scale;
   }
   return {read(grid->sigma_a_grid) * sigma_a_unit, read(grid->sigma_s_grid) * sigma_s_unit, Le};
+}
+
+RGB GridMediumView::density_emission(Vec3 u) const {
+  const float scale = grid->le_scale.lookup(u);
+  if (!(scale > 0)) return RGB(0);
+  if (grid->temperature.empty()) return Le_unit * scale;
+  // pbrt-v4's GridMedium::SamplePoint: the temperature offset and scaled, no emission at 100 K or below.
+  const float kelvin = (grid->temperature.lookup(u) - grid->temperature_offset) * grid->temperature_scale;
+  if (!(kelvin > 100)) return RGB(0);
+  if (!wavelengths) return normalized_blackbody_rgb(kelvin) * scale;
+  RGB Le;
+  for (int i = 0; i < 3; ++i) Le[i] = normalized_blackbody(wavelengths->lambda[std::size_t(i)], kelvin) * scale;
+  return Le;
 }
 
 RGB GridMediumView::majorant(int cell) const {

@@ -37,10 +37,17 @@ struct GridMedium {
   // the corners). RGBGrid: the grid of colours `le_grid` times `le_grid_scale`.
   RGB Le;
   int Le_data = -1;
+  // Density: or a blackbody at the temperature (temperature - offset) x scale, normalised to 1
+  // at its peak (pbrt-v4's BlackbodySpectrum), times le_scale; none at 100 K or below.
+  VoxelGrid<float> temperature;
+  float temperature_offset = 0, temperature_scale = 1;
   VoxelGrid<float> le_scale;
   VoxelGrid<RGB> le_grid;
   float le_grid_scale = 1;
-  bool emissive() const { return kind == Kind::RGBGrid ? !le_grid.empty() && le_grid_scale > 0 : Le.max() > 0; }
+  bool emissive() const {
+    if (kind == Kind::RGBGrid) return !le_grid.empty() && le_grid_scale > 0;
+    return !temperature.empty() || Le.max() > 0;
+  }
 
   // The coarse majorant grid, filled by build_majorants(): per cell, the largest density
   // (Density, Cloud: the same in all three slots) or, for RGBGrid, the largest sigma_a +
@@ -84,6 +91,8 @@ struct GridMediumView {
   RGB Le_unit;
 
   MediumCoefficients at(Vec3 p_world) const;
+  // Density, Cloud: the emission at a point of the unit cube (Le or the temperature's blackbody, times le_scale).
+  RGB density_emission(Vec3 unit) const;
   // The majorant of cell i, per slot.
   RGB majorant(int cell) const;
 };

@@ -9,6 +9,7 @@
 #include "dermis/core/rng.h"
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
+#include "dermis/spectral/blackbody.h"
 #include "support/pixel_statistics.h"
 
 namespace dermis {
@@ -37,6 +38,14 @@ std::string random_densities(int nx, int ny, int nz, float high, uint64_t seed) 
   std::string s = fmt::format("\"integer nx\" {} \"integer ny\" {} \"integer nz\" {} \"float density\" [", nx, ny, nz);
   for (int i = 0; i < nx * ny * nz; ++i) s += fmt::format(" {}", rng.uniform() < 0.3f ? 0.0f : high * rng.uniform());
   return s + " ]";
+}
+
+// The chord of the unit sphere along pixel (x, y)'s centre ray.
+float sphere_chord(const RenderScene& sc, int x, int y) {
+  const Ray r = sc.camera.generate_ray({float(x) + 0.5f, float(y) + 0.5f}, {0.5f, 0.5f});
+  const Vec3 d = normalize(r.d);
+  const float b = dot(r.o, d), disc = b * b - (dot(r.o, r.o) - 1);
+  return disc > 0 ? 2 * std::sqrt(disc) : 0;
 }
 
 // The per-pixel difference of two renders within 4 standard errors of the difference.
@@ -148,10 +157,7 @@ TEST(GridMediaRender, EmissionAlongTheChords) {
       int failures = 0;
       for (int y = 0; y < st.height; ++y)
         for (int x = 0; x < st.width; ++x) {
-          const Ray r = sc->camera.generate_ray({float(x) + 0.5f, float(y) + 0.5f}, {0.5f, 0.5f});
-          const Vec3 d = normalize(r.d);
-          const float b = dot(r.o, d), disc = b * b - (dot(r.o, r.o) - 1);
-          const float chord = disc > 0 ? 2 * std::sqrt(disc) : 0;  // through the unit sphere
+          const float chord = sphere_chord(*sc, x, y);
           const float tr = std::exp(-sigma_a * chord);
           const std::size_t p = std::size_t(y) * std::size_t(st.width) + std::size_t(x);
           for (int c = 0; c < 3; ++c) {
@@ -164,6 +170,39 @@ TEST(GridMediaRender, EmissionAlongTheChords) {
         }
       EXPECT_EQ(failures, 0) << medium;
     }
+}
+
+// A grid's temperature emits pbrt-v4's blackbody (normalised to 1 at its peak) at
+// (temperature - cutoff) x scale, times Lescale: along the chords of an absorbing sphere,
+// Lescale B(T) (1 - e^(-sigma_a c)) + sky e^(-sigma_a c), B(T) the film's colour of the
+// blackbody (spectral/blackbody.h), within 4 sigma plus 1e-3 of the value (the colour table's
+// interpolation in RGB; spectrally the film's own sum).
+TEST(GridMediaRender, TemperatureEmitsABlackbody) {
+  constexpr float sigma_a = 0.7f, sky = 0.2f;
+  const RGB B = normalized_blackbody_rgb((1900 - 300) * 1.5f);
+  const auto sc = scene_from(medium_sphere(
+      "\"string type\" \"uniformgrid\" \"point3 p0\" [-2.1 -2.1 -2.1] \"point3 p1\" [2.1 2.1 2.1] \"integer nx\" 2 "
+      "\"integer ny\" 2 \"integer nz\" 2 \"float density\" [1 1 1 1 1 1 1 1] \"float temperature\" [1900 1900 1900 "
+      "1900 1900 1900 1900 1900] \"float temperaturecutoff\" 300 \"float temperaturescale\" 1.5 \"float Lescale\" [3 3 "
+      "3 "
+      "3 3 3 3 3] \"rgb sigma_a\" [0.7 0.7 0.7] \"rgb sigma_s\" [0 0 0]",
+      "0.2 0.2 0.2"));
+  for (bool spectral : {false, true}) {
+    const testing::PixelStatistics st = testing::pixel_statistics(*sc, 256, 7, {}, spectral);
+    int failures = 0;
+    for (int y = 0; y < st.height; ++y)
+      for (int x = 0; x < st.width; ++x) {
+        const float tr = std::exp(-sigma_a * sphere_chord(*sc, x, y));
+        const std::size_t p = std::size_t(y) * std::size_t(st.width) + std::size_t(x);
+        for (int c = 0; c < 3; ++c) {
+          const float expected = 3 * B[c] * (1 - tr) + sky * tr;
+          if (std::abs(st.mean[p][c] - expected) > 4 * st.stderr_[p][c] + 1e-3f * expected && failures++ < 5)
+            ADD_FAILURE() << (spectral ? "spectral " : "RGB ") << "pixel " << x << "," << y << " channel " << c << ": "
+                          << st.mean[p][c] << " vs " << expected;
+        }
+      }
+    EXPECT_EQ(failures, 0);
+  }
 }
 
 }  // namespace

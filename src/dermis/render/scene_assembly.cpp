@@ -629,6 +629,9 @@ GridMedium make_grid_medium(const MediumDesc& d) {
   g.le_grid_scale = d.Lescale * kPbrtV4CieYIntegral;
   g.Le = d.type == "uniformgrid" ? d.Le : RGB(0);
   g.Le_data = d.Le_data;
+  grid(g.temperature, d.temperature);
+  g.temperature_offset = d.temperature_offset;
+  g.temperature_scale = d.temperature_scale;
   if (d.le_scale_grid.empty())
     g.le_scale = {1, 1, 1, {1.0f}};  // pbrt-v4's default: one sample (a tent over the box)
   else

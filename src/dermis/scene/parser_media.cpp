@@ -62,6 +62,14 @@ void SceneParser::read_grid_emission(const ParamList& pl, MediumDesc& m) {
     }
     const std::vector<double> scale = grid_values(pl, m, "Lescale", {"float"}, 1);
     m.le_scale_grid.assign(scale.begin(), scale.end());
+    const std::vector<double> kelvin = grid_values(pl, m, "temperature", {"float"}, 1);
+    m.temperature.assign(kelvin.begin(), kelvin.end());
+    // pbrt-v4 reads "temperaturecutoff" as the offset where "temperatureoffset" is absent.
+    m.temperature_offset = pl.get_float("temperatureoffset", pl.get_float("temperaturecutoff", 0));
+    m.temperature_scale = pl.get_float("temperaturescale", 1);
+    for (const char* name : {"temperatureoffset", "temperaturecutoff", "temperaturescale"})
+      if (const ParsedParam* p = pl.find(name); p && !std::isfinite(pl.get_float(name, 0)))
+        throw SceneError(p->value_loc, fmt::format("medium \"{}\": \"{}\" must be finite", m.name, name));
   } else if (m.type == "rgbgrid") {
     m.Le_grid = colours(grid_values(pl, m, "Le", {"rgb"}, 3));
     if (!m.Le_grid.empty() && m.sigma_a_grid.empty())
@@ -71,13 +79,6 @@ void SceneParser::read_grid_emission(const ParamList& pl, MediumDesc& m) {
     if (!(m.Lescale >= 0) || !std::isfinite(m.Lescale))
       throw SceneError(pl.find("Lescale")->value_loc, "Lescale must be finite and not negative");
   }
-  for (const char* emission : {"temperature", "temperaturecutoff", "temperatureoffset", "temperaturescale"})
-    if (const ParsedParam* p = pl.find(emission)) {
-      p->used = true;
-      s_.diagnostics.warn(
-          p->param.loc,
-          fmt::format("medium \"{}\": emission by temperature (\"{}\") is not rendered yet", m.name, emission));
-    }
 }
 
 void SceneParser::read_grid_medium(const ParamList& pl, MediumDesc& m) {

@@ -51,14 +51,16 @@ TEST(ParserGridMedia, Emission) {
       "  \"rgb Le\" [1 0.5 0] \"float Lescale\" [0 3]\n"
       "MakeNamedMedium \"glow\" \"string type\" \"rgbgrid\" \"rgb sigma_a\" [1 1 1] \"rgb Le\" [0 1 2] \"float "
       "Lescale\" 4\n"
-      "MakeNamedMedium \"hot\" \"string type\" \"uniformgrid\" \"float density\" [1] \"float temperature\" [2000]\n");
+      "MakeNamedMedium \"hot\" \"string type\" \"uniformgrid\" \"float density\" [1] \"float temperature\" [2000]\n"
+      "  \"float temperaturecutoff\" 100 \"float temperaturescale\" 2\n");
   EXPECT_EQ(s.media[0].Le, RGB(1, 0.5f, 0));
   EXPECT_EQ(s.media[0].le_scale_grid, (std::vector<float>{0, 3}));
   EXPECT_EQ(s.media[1].Le_grid, (std::vector<RGB>{RGB(0, 1, 2)}));
   EXPECT_FLOAT_EQ(s.media[1].Lescale, 4);
-  EXPECT_TRUE(has_warning(s,
-                          "test.pbrt:5:71: warning: medium \"hot\": emission by temperature (\"temperature\") is not "
-                          "rendered yet"));
+  EXPECT_EQ(s.media[2].temperature, (std::vector<float>{2000}));
+  EXPECT_FLOAT_EQ(s.media[2].temperature_offset, 100);  // pbrt-v4's alias of temperatureoffset
+  EXPECT_FLOAT_EQ(s.media[2].temperature_scale, 2);
+  EXPECT_FALSE(has_warning(s, "unused"));
   EXPECT_THROW(
       parse_world("MakeNamedMedium \"m\" \"string type\" \"rgbgrid\" \"rgb sigma_s\" [1 1 1] \"rgb Le\" [1 1 1]\n"),
       SceneError);  // pbrt-v4: Le needs sigma_a

@@ -295,6 +295,8 @@ struct MediumDesc {
   // (empty: none given); rgbgrid: the colours Le_grid times Lescale.
   int Le_data = -1;
   std::vector<float> le_scale_grid;
+  std::vector<float> temperature;  // uniformgrid: nx * ny * nz (empty: none), emitting as a blackbody
+  float temperature_offset = 0, temperature_scale = 1;
   std::vector<RGB> Le_grid;
   float Lescale = 1;
   SourceLoc loc;

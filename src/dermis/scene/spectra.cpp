@@ -10,6 +10,7 @@
 
 #include "dermis/scene/scene_parser.h"
 #include "dermis/scene/spectrum_file.h"
+#include "dermis/spectral/blackbody.h"
 #include "dermis/spectral/cie_observer.h"
 #include "dermis/spectral/named_spectra_data.h"
 #include "dermis/spectral/piecewise_linear.h"
@@ -57,13 +58,6 @@ double relative_luminance(std::span<const double> lambda, std::span<const double
     y += o.y[i];
   }
   return sy / y;
-}
-
-// Planck's law, spectral radiance per unit wavelength (lambda in nm), up to a constant.
-double planck(double lambda_nm, double kelvin) {
-  const double c = 299792458.0, h = 6.62607015e-34, kb = 1.380649e-23;
-  double l = lambda_nm * 1e-9;
-  return 2 * h * c * c / (std::pow(l, 5) * (std::exp(h * c / (l * kb * kelvin)) - 1));
 }
 
 // Mean of a piecewise-linear function over [a, b] nm (midpoint rule at 0.1 nm: exact to ~1e-6
