@@ -123,9 +123,10 @@ RGB GridMediumView::density_emission(Vec3 u) const {
   // pbrt-v4's GridMedium::SamplePoint: the temperature offset and scaled, no emission at 100 K or below.
   const float kelvin = (grid->temperature.lookup(u) - grid->temperature_offset) * grid->temperature_scale;
   if (!(kelvin > 100)) return RGB(0);
-  if (!wavelengths) return normalized_blackbody_rgb(kelvin) * scale;
+  const float s = scale * grid->blackbody_scale;
+  if (!wavelengths) return normalized_blackbody_rgb(kelvin) * s;
   RGB Le;
-  for (int i = 0; i < 3; ++i) Le[i] = normalized_blackbody(wavelengths->lambda[std::size_t(i)], kelvin) * scale;
+  for (int i = 0; i < 3; ++i) Le[i] = normalized_blackbody(wavelengths->lambda[std::size_t(i)], kelvin) * s;
   return Le;
 }
 

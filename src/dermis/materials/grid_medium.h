@@ -41,6 +41,7 @@ struct GridMedium {
   // at its peak (pbrt-v4's BlackbodySpectrum), times le_scale; none at 100 K or below.
   VoxelGrid<float> temperature;
   float temperature_offset = 0, temperature_scale = 1;
+  float blackbody_scale = 1;  // the blackbody's radiance per unit of its normalised spectrum
   VoxelGrid<float> le_scale;
   VoxelGrid<RGB> le_grid;
   float le_grid_scale = 1;

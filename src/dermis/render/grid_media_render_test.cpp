@@ -10,6 +10,7 @@
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
 #include "dermis/spectral/blackbody.h"
+#include "dermis/spectral/cie_observer.h"
 #include "support/pixel_statistics.h"
 
 namespace dermis {
@@ -141,7 +142,7 @@ TEST(GridMediaRender, EmissionAlongTheChords) {
       "\"float density\" [1 1 1 1 1 1 1 1] \"float Lescale\" [2 2 2 2 2 2 2 2] \"rgb Le\" [1 0.5 0.25] "
       "\"rgb sigma_a\" [0.7 0.7 0.7] \"rgb sigma_s\" [0 0 0]";
   std::string a, s0, le;
-  constexpr double y_integral = 106.856895;
+  constexpr double y_integral = kPbrtV4CieYIntegral;
   for (int i = 0; i < 8; ++i)
     a += " 0.7 0.7 0.7", s0 += " 0 0 0",
         le += fmt::format(" {} {} {}", 1 / y_integral, 0.5 / y_integral, 0.25 / y_integral);
@@ -175,11 +176,11 @@ TEST(GridMediaRender, EmissionAlongTheChords) {
 // A grid's temperature emits pbrt-v4's blackbody (normalised to 1 at its peak) at
 // (temperature - cutoff) x scale, times Lescale: along the chords of an absorbing sphere,
 // Lescale B(T) (1 - e^(-sigma_a c)) + sky e^(-sigma_a c), B(T) the film's colour of the
-// blackbody (spectral/blackbody.h), within 4 sigma plus 1e-3 of the value (the colour table's
-// interpolation in RGB; spectrally the film's own sum).
+// blackbody (spectral/blackbody.h) times pbrt-v4's CIE_Y_integral (cie_observer.h), within 4 sigma plus 1e-3 of the
+// value (the colour table's interpolation in RGB; spectrally the film's own sum).
 TEST(GridMediaRender, TemperatureEmitsABlackbody) {
   constexpr float sigma_a = 0.7f, sky = 0.2f;
-  const RGB B = normalized_blackbody_rgb((1900 - 300) * 1.5f);
+  const RGB B = normalized_blackbody_rgb((1900 - 300) * 1.5f) * kPbrtV4CieYIntegral;
   const auto sc = scene_from(medium_sphere(
       "\"string type\" \"uniformgrid\" \"point3 p0\" [-2.1 -2.1 -2.1] \"point3 p1\" [2.1 2.1 2.1] \"integer nx\" 2 "
       "\"integer ny\" 2 \"integer nz\" 2 \"float density\" [1 1 1 1 1 1 1 1] \"float temperature\" [1900 1900 1900 "

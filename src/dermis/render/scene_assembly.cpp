@@ -12,6 +12,7 @@
 #include "dermis/render/scene_extent.h"
 #include "dermis/scene/shape_tessellation.h"
 #include "dermis/scene/subsurface_params.h"
+#include "dermis/spectral/cie_observer.h"
 
 namespace dermis {
 
@@ -622,11 +623,11 @@ GridMedium make_grid_medium(const MediumDesc& d) {
   grid(g.sigma_a_grid, d.sigma_a_grid);
   grid(g.sigma_s_grid, d.sigma_s_grid);
   grid(g.le_grid, d.Le_grid);
-  // pbrt-v4 does not divide an rgbgrid's Le by its photometric value as it does every other
-  // emission's (media.cpp RGBGridMedium::Create): its radiance is CIE_Y_integral times that of
-  // the same colour elsewhere.
-  constexpr float kPbrtV4CieYIntegral = 106.856895f;
+  // pbrt-v4 divides neither an rgbgrid's Le nor a temperature's blackbody by its photometric
+  // value, as it does every other emission (media.cpp): they record kPbrtV4CieYIntegral times
+  // their colour (cie_observer.h).
   g.le_grid_scale = d.Lescale * kPbrtV4CieYIntegral;
+  g.blackbody_scale = kPbrtV4CieYIntegral;
   g.Le = d.type == "uniformgrid" ? d.Le : RGB(0);
   g.Le_data = d.Le_data;
   grid(g.temperature, d.temperature);

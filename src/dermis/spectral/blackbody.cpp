@@ -61,7 +61,8 @@ RGB normalized_blackbody_rgb(float kelvin) {
   const double f = x - i;
   std::array<double, 3> xyz;
   for (int c = 0; c < 3; ++c)
-    xyz[std::size_t(c)] = std::exp(t[std::size_t(i)][std::size_t(c)] * (1 - f) + t[std::size_t(i) + 1][std::size_t(c)] * f);
+    xyz[std::size_t(c)] =
+        std::exp(t[std::size_t(i)][std::size_t(c)] * (1 - f) + t[std::size_t(i) + 1][std::size_t(c)] * f);
   const auto rgb = xyz_to_linear_srgb(xyz[0], xyz[1], xyz[2]);
   return RGB(float(rgb[0]), float(rgb[1]), float(rgb[2]));
 }

@@ -18,6 +18,13 @@ struct CieTables {
 };
 const CieTables& cie_tables();
 
+// pbrt-v4's CIE_Y_integral, the integral of y over 360-830 nm. pbrt-v4's film records a
+// spectral radiance L as the integral of {x, y, z} L (its lights' spectra are divided by the
+// integral of y times theirs, so that they record their colour); the few emissions it does not
+// so divide (an rgbgrid's Le, a grid's blackbody by temperature) record CIE_Y_integral times
+// what Dermis' film, which divides by the integral of y, would record.
+inline constexpr float kPbrtV4CieYIntegral = 106.856895f;
+
 // A table of CieTables read at a wavelength, linearly between its nanometres (0 outside).
 float cie_table_at(const std::array<double, CieTables::kSamples>& table, float lambda_nm);
 
