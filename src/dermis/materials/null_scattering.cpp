@@ -1,5 +1,6 @@
 #include "dermis/materials/null_scattering.h"
 
+#include <bit>
 #include <cmath>
 
 #include "dermis/materials/free_flight.h"
@@ -42,6 +43,10 @@ NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, cons
     while (majorant > 0) {
       const float step = exponential_quantile(rng.uniform()) / majorant;
       if (!(t + step < seg.t1)) break;
+      if (!(t + step > t) || f.null_collisions >= kMaxTentativeCollisions) {
+        f.stalled = true;
+        return f;
+      }
       t += step;
       const RGB tr = exp(seg.sigma_maj * -step);
       const MediumCoefficients k = m.at(ray.o + ray.d * t);
@@ -80,16 +85,22 @@ NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, cons
   return f;
 }
 
-RGB ratio_tracking_transmittance(const GridMediumView& m, const Ray& ray, float t_max, Rng& rng) {
+RGB ratio_tracking_transmittance(const GridMediumView& m, const Ray& ray, float t_max, Rng& rng, bool* stalled) {
   RGB tr(1);
+  int collisions = 0;
   MajorantTraversal cells(m, ray, t_max);
   MajorantSegment seg;
   while (cells.next(seg)) {
     const float majorant = seg.sigma_maj.max();
     if (!(majorant > 0)) continue;
     for (float t = seg.t0;;) {
-      t += exponential_quantile(rng.uniform()) / majorant;
-      if (!(t < seg.t1)) break;
+      const float next = t + exponential_quantile(rng.uniform()) / majorant;
+      if (!(next < seg.t1)) break;
+      if (!(next > t) || ++collisions >= kMaxTentativeCollisions) {
+        if (stalled) *stalled = true;
+        return RGB(0);
+      }
+      t = next;
       const MediumCoefficients k = m.at(ray.o + ray.d * t);
       for (int j = 0; j < 3; ++j) tr[j] *= std::max(1 - (k.sigma_a[j] + k.sigma_s[j]) / majorant, 0.0f);
       if (tr.max() < 0.05f) {  // Russian roulette
@@ -99,6 +110,14 @@ RGB ratio_tracking_transmittance(const GridMediumView& m, const Ray& ray, float 
     }
   }
   return tr;
+}
+
+Rng tracking_rng(float u, const Ray& ray) {
+  auto bits = [](Vec3 v) {
+    return mix64(std::bit_cast<uint32_t>(v.x) ^ (uint64_t(std::bit_cast<uint32_t>(v.y)) << 21) ^
+                 (uint64_t(std::bit_cast<uint32_t>(v.z)) << 42));
+  };
+  return Rng(std::bit_cast<uint32_t>(u), bits(ray.o), bits(ray.d));
 }
 
 }  // namespace dermis

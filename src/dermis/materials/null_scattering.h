@@ -28,7 +28,14 @@ struct NullScatteringFlight {
   // like the flight): multiplied by the throughput before the flight, it adds to the radiance.
   RGB emitted;
   int null_collisions = 0;
+  // Stopped without an outcome: the tracking stopped advancing (a majorant so large that a
+  // step vanishes against the distance) or met kMaxTentativeCollisions; valid is false. The
+  // caller counts it (PathCounters::truncated).
+  bool stalled = false;
 };
+
+// The most tentative collisions one flight or one transmittance estimate takes.
+inline constexpr int kMaxTentativeCollisions = 1 << 24;
 
 // beta: the path throughput and `preference` a per-channel factor (both choose the channel);
 // u_channel uniform in [0, 1); rng draws the distances and events.
@@ -38,6 +45,13 @@ NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, cons
 // An unbiased estimate of the transmittance along [0, t_max) in every channel by ratio
 // tracking (Cramer 1978; Novak et al. 2014 sec. 4.2) against the largest channel's majorant,
 // with Russian roulette once it falls below 5 % (as pbrt-v4's TraceTransmittance).
-RGB ratio_tracking_transmittance(const GridMediumView& m, const Ray& ray, float t_max, Rng& rng);
+// `stalled` (when given) is set where the tracking stopped as a flight's does (the estimate is
+// then 0).
+RGB ratio_tracking_transmittance(const GridMediumView& m, const Ray& ray, float t_max, Rng& rng,
+                                 bool* stalled = nullptr);
+
+// The random numbers of a medium's tracking: a stream from one sample number and the ray
+// (pbrt-v4 seeds its tracking alike), so that an image does not depend on the thread count.
+Rng tracking_rng(float u, const Ray& ray);
 
 }  // namespace dermis

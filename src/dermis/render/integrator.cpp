@@ -8,7 +8,6 @@
 #include "dermis/materials/null_scattering.h"
 #include "dermis/render/path/direct_light.h"
 #include "dermis/render/path/emission.h"
-#include "dermis/render/path/grid_volume_vertex.h"
 #include "dermis/render/path/path_state.h"
 #include "dermis/render/path/sampler_regions.h"
 #include "dermis/render/path/subsurface_vertex.h"
@@ -56,7 +55,11 @@ RGB shadow_transmittance(const RenderScene& sc, Vec3 origin, Vec3 dir, float dis
     if (sc.grid_medium_of(m) >= 0) {
       const Ray segment{o + dir * t0, dir};
       Rng rng = tracking_rng(t1 - t0, segment);
-      return ratio_tracking_transmittance(grid_medium_view(sc, m, wavelengths), segment, t1 - t0, rng);
+      bool stalled = false;
+      const RGB tr =
+          ratio_tracking_transmittance(grid_medium_view(sc, m, wavelengths), segment, t1 - t0, rng, &stalled);
+      if (stalled) ++counters.truncated;
+      return tr;
     }
     return wavelengths ? scene_medium_at_wavelengths(sc, m, *wavelengths).transmittance(t1 - t0)
                        : sc.media[m].transmittance(t1 - t0);

@@ -10,8 +10,9 @@
 namespace dermis {
 
 struct PathCounters {
-  uint64_t rays = 0;       // closest-hit and shadow rays traced
-  uint64_t truncated = 0;  // paths stopped by the interface-crossing guard or a walk's step cap
+  uint64_t rays = 0;  // closest-hit and shadow rays traced
+  uint64_t truncated =
+      0;  // paths stopped by the interface-crossing guard, a walk's step cap or a stalled medium tracking
   // When set, every ray traced (closest-hit, shadow, probe and walk rays) is appended
   // here; benchmarks replay them.
   std::vector<Ray>* recorded_rays = nullptr;

@@ -1,7 +1,5 @@
 #include "dermis/render/path/grid_volume_vertex.h"
 
-#include <bit>
-
 #include "dermis/core/henyey_greenstein.h"
 #include "dermis/materials/null_scattering.h"
 #include "dermis/render/path/direct_light.h"
@@ -9,14 +7,6 @@
 #include "dermis/render/spectral_media.h"
 
 namespace dermis {
-
-Rng tracking_rng(float u, const Ray& ray) {
-  auto bits = [](Vec3 v) {
-    return mix64(std::bit_cast<uint32_t>(v.x) ^ (uint64_t(std::bit_cast<uint32_t>(v.y)) << 21) ^
-                 (uint64_t(std::bit_cast<uint32_t>(v.z)) << 42));
-  };
-  return Rng(std::bit_cast<uint32_t>(u), bits(ray.o), bits(ray.d));
-}
 
 VertexOutcome shade_grid_volume(PathContext& ctx, PathState& st, float t_hit) {
   const RenderScene& sc = ctx.sc;
@@ -34,6 +24,7 @@ VertexOutcome shade_grid_volume(PathContext& ctx, PathState& st, float t_hit) {
   const NullScatteringFlight flight =
       sample_null_scattering_flight(m, st.ray, t_hit, st.beta, preference, u_flight.x, rng);
   if (st.depth < sc.settings.max_depth) st.L += st.beta * flight.emitted;  // as pbrt-v4, below the depth limit
+  if (flight.stalled) ++ctx.counters.truncated;
   if (!flight.valid) return VertexOutcome::kStop;
   st.beta *= flight.weight;
   if (!st.beta.is_finite() || st.beta.is_black()) return VertexOutcome::kStop;

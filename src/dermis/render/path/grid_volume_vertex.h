@@ -13,8 +13,4 @@ namespace dermis {
 // scattered and goes on along st.ray; kPassThrough: it reached t_hit; kStop: it ended.
 VertexOutcome shade_grid_volume(PathContext& ctx, PathState& st, float t_hit);
 
-// The random numbers of a medium's tracking: a stream from one sample number and the ray
-// (pbrt-v4 seeds its tracking alike), so that an image does not depend on the thread count.
-Rng tracking_rng(float u, const Ray& ray);
-
 }  // namespace dermis
