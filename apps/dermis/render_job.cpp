@@ -622,10 +622,12 @@ int write_and_report(const RenderArgs& a, const RenderJob& job, ProcessGroup& gr
     fmt::print(stderr, "dermis: warning: {} samples were NaN or infinite; they were dropped (counted as zero)\n",
                r.nonfinite);
   if (r.truncated > 0)
-    fmt::print(stderr,
-               "dermis: warning: {} paths were truncated (random-walk step cap or interface-crossing guard); their "
-               "energy is missing from the image\n",
-               r.truncated);
+    fmt::print(
+        stderr,
+        "dermis: warning: {} paths were truncated (random-walk step cap, interface-crossing guard or a grid medium's "
+        "tracking cap); their "
+        "energy is missing from the image\n",
+        r.truncated);
   if (!a.checkpoint.empty() && !a.quiet)
     fmt::print(stderr, "dermis: checkpoint {} holds {}..{} samples per pixel (continue with --resume {})\n",
                a.checkpoint, r.min_spp, r.max_spp, a.checkpoint);

@@ -43,7 +43,7 @@ NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, cons
     while (majorant > 0) {
       const float step = exponential_quantile(rng.uniform()) / majorant;
       if (!(t + step < seg.t1)) break;
-      if (!(t + step > t) || f.null_collisions >= kMaxTentativeCollisions) {
+      if (f.null_collisions >= kMaxTentativeCollisions) {
         f.stalled = true;
         return f;
       }
@@ -96,7 +96,7 @@ RGB ratio_tracking_transmittance(const GridMediumView& m, const Ray& ray, float 
     for (float t = seg.t0;;) {
       const float next = t + exponential_quantile(rng.uniform()) / majorant;
       if (!(next < seg.t1)) break;
-      if (!(next > t) || ++collisions >= kMaxTentativeCollisions) {
+      if (++collisions >= kMaxTentativeCollisions) {
         if (stalled) *stalled = true;
         return RGB(0);
       }

@@ -28,9 +28,9 @@ struct NullScatteringFlight {
   // like the flight): multiplied by the throughput before the flight, it adds to the radiance.
   RGB emitted;
   int null_collisions = 0;
-  // Stopped without an outcome: the tracking stopped advancing (a majorant so large that a
-  // step vanishes against the distance) or met kMaxTentativeCollisions; valid is false. The
-  // caller counts it (PathCounters::truncated).
+  // Stopped without an outcome at kMaxTentativeCollisions (a majorant so large that steps
+  // vanish against the distance: float t stops advancing); valid is false. The caller counts
+  // it (PathCounters::truncated).
   bool stalled = false;
 };
 
@@ -45,8 +45,8 @@ NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, cons
 // An unbiased estimate of the transmittance along [0, t_max) in every channel by ratio
 // tracking (Cramer 1978; Novak et al. 2014 sec. 4.2) against the largest channel's majorant,
 // with Russian roulette once it falls below 5 % (as pbrt-v4's TraceTransmittance).
-// `stalled` (when given) is set where the tracking stopped as a flight's does (the estimate is
-// then 0).
+// `stalled` (when given) is set where the tracking stopped at kMaxTentativeCollisions (the
+// estimate is then 0).
 RGB ratio_tracking_transmittance(const GridMediumView& m, const Ray& ray, float t_max, Rng& rng,
                                  bool* stalled = nullptr);
 

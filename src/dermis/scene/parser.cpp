@@ -121,7 +121,10 @@ std::vector<Token> SceneParser::read_scene_file(const std::string& path, const S
     throw SceneError({path, 1, 1}, fmt::format("could not read scene file '{}': {}", path, why));
   }
   loading.finish();
-  return tokenize(text, from ? canonical : path);
+  LoadStage parsing(monitor_, "parsing " + fs::path(canonical).filename().string());
+  std::vector<Token> tokens = tokenize(text, from ? canonical : path, &parsing);
+  parsing.finish();
+  return tokens;
 }
 
 void SceneParser::parse_file(const std::string& path, const SourceLoc* from) {

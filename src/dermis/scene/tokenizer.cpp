@@ -33,11 +33,16 @@ bool is_separator(char c) {
 
 class Lexer {
  public:
-  Lexer(const std::string& text, const std::string& file) : s_(text), file_(file) {}
+  Lexer(const std::string& text, const std::string& file, LoadStage* stage) : s_(text), file_(file), stage_(stage) {}
 
   std::vector<Token> run() {
     std::vector<Token> out;
     while (i_ < s_.size()) {
+      // Progress and Ctrl-C in a long file (a grid medium's millions of values), every 64 Ki tokens.
+      if (stage_ && out.size() >= next_report_) {
+        stage_->update(double(i_) / double(s_.size()));
+        next_report_ = out.size() + 0x10000;
+      }
       char c = s_[i_];
       if (c == '\n') {
         advance();
@@ -168,13 +173,17 @@ class Lexer {
 
   const std::string& s_;
   std::string file_;
+  LoadStage* stage_;
+  std::size_t next_report_ = 0x10000;
   size_t i_ = 0;
   int line_ = 1, col_ = 1;
 };
 
 }  // namespace
 
-std::vector<Token> tokenize(const std::string& text, const std::string& file) { return Lexer(text, file).run(); }
+std::vector<Token> tokenize(const std::string& text, const std::string& file, LoadStage* stage) {
+  return Lexer(text, file, stage).run();
+}
 
 }  // namespace dermis
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "dermis/core/load_monitor.h"
 #include "dermis/scene/diagnostics.h"
 #include "dermis/scene/file_access.h"
 
@@ -28,7 +29,8 @@ const char* token_kind_name(Token::Kind kind);
 // or '.', parsed completely by strtod and required to be finite; '[' and ']' are tokens;
 // everything else that starts with a letter or '_' is an identifier.
 // Throws SceneError at the offending character on malformed input.
-std::vector<Token> tokenize(const std::string& text, const std::string& file);
+// `stage` (if given) reports how far it is and stops it on Ctrl-C (throws Interrupted).
+std::vector<Token> tokenize(const std::string& text, const std::string& file, LoadStage* stage = nullptr);
 
 }  // namespace dermis
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+
 namespace dermis {
 namespace {
 
@@ -78,6 +80,30 @@ TEST(Tokenizer, Errors) {
   expect_error("Scale 1 1e39 1", 1, 9, "beyond the range of 32-bit floats");
   expect_error("Translate 0 -3.5e38 0", 1, 13, "beyond the range of 32-bit floats");
   expect_error("Shape @", 1, 7, "unexpected character '@'");
+}
+
+// A long text (a grid medium's values) reports its progress as it goes and stops, throwing
+// Interrupted, once the monitor's cancel flag is set.
+TEST(Tokenizer, LongTextShowsProgressAndStopsOnCancel) {
+  std::string text = "MakeNamedMedium \"m\" \"float density\" [";
+  for (int i = 0; i < 400000; ++i) text += " 0.5";
+  text += " ]";
+  std::vector<double> fractions;
+  std::atomic<bool> cancel = false;
+  LoadMonitor monitor;
+  monitor.progress = [&](const std::string&, double f) { fractions.push_back(f); };
+  monitor.cancel = &cancel;
+  {
+    LoadStage stage(&monitor, "parsing");
+    EXPECT_EQ(tokenize(text, "f.pbrt", &stage).size(), 400005u);  // 5 besides the values
+  }
+  ASSERT_GE(fractions.size(), 5u);  // 0, then every 64 Ki tokens
+  for (std::size_t i = 1; i < fractions.size(); ++i) EXPECT_GT(fractions[i], fractions[i - 1]);
+  monitor.progress = [&](const std::string&, double f) {
+    if (f > 0.3) cancel = true;
+  };
+  LoadStage stage(&monitor, "parsing");
+  EXPECT_THROW(tokenize(text, "f.pbrt", &stage), Interrupted);
 }
 
 }  // namespace
