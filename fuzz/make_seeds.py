@@ -46,6 +46,12 @@ AttributeBegin
   ObjectEnd
   ObjectInstance "o"
   MakeNamedMedium "fog" "string type" "homogeneous" "rgb sigma_a" [1 1 1] "rgb sigma_s" [1 1 1]
+  MakeNamedMedium "smoke" "string type" "uniformgrid" "integer nx" 2 "integer ny" 1 "integer nz" 2
+    "float density" [0 1 2 3] "float Lescale" [1 0 1 0] "rgb Le" [1 0.5 0] "point3 p0" [-1 -1 -1] "point3 p1" [1 1 1]
+  MakeNamedMedium "fire" "string type" "uniformgrid" "float density" [1] "float temperature" [2000]
+    "float temperaturecutoff" 100 "float temperaturescale" 2
+  MakeNamedMedium "tint" "string type" "rgbgrid" "integer nx" 2 "rgb sigma_a" [1 2 3 4 5 6] "rgb Le" [1 1 1 0 0 0]
+  MakeNamedMedium "sky" "string type" "cloud" "float wispiness" 0.5 "float frequency" 3
   MediumInterface "fog" ""
   AreaLightSource "diffuse" "rgb L" [1 1 1]
   Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 2]

@@ -15,6 +15,7 @@ packages=(
   python3-dev pybind11-dev python3-pytest
   libopenmpi-dev openmpi-bin
   libcpp-httplib-dev
+  libnanovdb-dev
 )
 
 missing=()

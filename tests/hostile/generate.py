@@ -136,7 +136,8 @@ DIRECTIVES = {  # directive: (a valid use, uses that must be refused)
                         ["AreaLightSource", 'AreaLightSource "diffuse" "rgb L" [-1 0 0]']),
     "MakeNamedMedium": ('MakeNamedMedium "f" "string type" "homogeneous"',
                         ["MakeNamedMedium", 'MakeNamedMedium "f"', 'MakeNamedMedium "f" "string type" "plasma"',
-                        ('MakeNamedMedium "f" "string type" "nanovdb"', 0),
+                        'MakeNamedMedium "f" "string type" "nanovdb"',
+                        'MakeNamedMedium "f" "string type" "nanovdb" "string filename" "none.nvdb"',
                         # grid media (docs/scene-format.md): the count, the values, the box
                         ('MakeNamedMedium "f" "string type" "uniformgrid" "float density" [1]', 0),
                         ('MakeNamedMedium "f" "string type" "cloud"', 0),
@@ -165,6 +166,13 @@ for d, (good, bads) in DIRECTIVES.items():
         # (text, 0): ignored or approximated with a warning (docs/scene-format.md), not refused
         text, ex = bad if isinstance(bad, tuple) else (bad, 2)
         world(text + "\n", f"directive_{d}_bad{i}", ex)
+
+# nanovdb media reading files that are not .nvdb volumes (tests/hostile/: no NanoVDB writer
+# here; valid files are made by the C++ tests)
+NVDB = 'MakeNamedMedium "f" "string type" "nanovdb" "string filename" "v.nvdb"\nMediumInterface "f" ""\nShape "sphere"\n'
+for i, data in enumerate([b"", b"NanoVDB0" + b"\0" * 8, b"\x4e\x61\x6e\x6f\x56\x44\x42\x30" * 40, bytes(range(256)) * 8]):
+    case(f"nanovdb_file_bad{i}", {"scene.pbrt": HEAD + LIGHT + NVDB, "v.nvdb": data}, 2)
+case("nanovdb_file_directory", {"scene.pbrt": HEAD + LIGHT + NVDB.replace("v.nvdb", "d"), "d/x": "x"}, 2)
 
 # Options before WorldBegin
 OPTIONS = ['Camera', 'Camera 1', 'Camera "fisheye"', ('Camera "orthographic"', 0), 'Film "film"',

@@ -12,7 +12,8 @@ namespace dermis {
 
 namespace {
 
-constexpr int kMajorantCells = 16;  // per axis, as pbrt-v4's grid media
+constexpr int kMajorantCells = 16;         // per axis, as pbrt-v4's grid media
+constexpr int kNanoVdbMajorantCells = 64;  // per axis, as pbrt-v4's NanoVDBMedium
 
 // pbrt-v4's DNoise (util/noise.cpp): the noise's gradient by forward differences of 0.01.
 Vec3 noise_gradient(Vec3 p) {
@@ -53,18 +54,39 @@ Vec3 GridMedium::unit_point(Vec3 p_world) const {
   return Vec3((p.x - p0.x) / (p1.x - p0.x), (p.y - p0.y) / (p1.y - p0.y), (p.z - p0.z) / (p1.z - p0.z));
 }
 
+Vec3 GridMedium::medium_point(Vec3 unit) const {
+  return p0 + Vec3(unit.x * (p1.x - p0.x), unit.y * (p1.y - p0.y), unit.z * (p1.z - p0.z));
+}
+
 float GridMedium::density_at(Vec3 unit) const {
-  if (kind == Kind::Cloud) {
-    const Vec3 p = p0 + Vec3(unit.x * (p1.x - p0.x), unit.y * (p1.y - p0.y), unit.z * (p1.z - p0.z));
-    return pbrt_v4_cloud_density(p, cloud_density, wispiness, frequency);
+  switch (kind) {
+    case Kind::Cloud:
+      return pbrt_v4_cloud_density(medium_point(unit), cloud_density, wispiness, frequency);
+    case Kind::NanoVDB:
+      return vdb_density->value(medium_point(unit));
+    default:
+      return density.lookup(unit);
   }
-  return density.lookup(unit);
 }
 
 void GridMedium::build_majorants() {
   if (kind == Kind::Cloud) {  // the density never exceeds 1: one cell (pbrt-v4's homogeneous majorant)
     majorant_res[0] = majorant_res[1] = majorant_res[2] = 1;
     majorants.assign(1, {RGB(1), 1});
+    return;
+  }
+  if (kind == Kind::NanoVDB) {
+    const int n = kNanoVdbMajorantCells;
+    for (int& r : majorant_res) r = n;
+    majorants.assign(std::size_t(n) * n * n, {});
+    for (int z = 0; z < n; ++z)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          const Vec3 lo = medium_point(Vec3(float(x), float(y), float(z)) / float(n));
+          const Vec3 hi = medium_point(Vec3(float(x + 1), float(y + 1), float(z + 1)) / float(n));
+          const float d = vdb_density->max_over(lo, hi);
+          majorants[(std::size_t(z) * n + std::size_t(y)) * n + std::size_t(x)] = {RGB(d), d};
+        }
     return;
   }
   for (int& r : majorant_res) r = kMajorantCells;
@@ -117,11 +139,14 @@ MediumCoefficients GridMediumView::at(Vec3 p_world) const {
 }
 
 RGB GridMediumView::density_emission(Vec3 u) const {
-  const float scale = grid->le_scale.lookup(u);
+  const bool vdb = grid->kind == GridMedium::Kind::NanoVDB;
+  const float scale = vdb ? grid->vdb_le_scale : grid->le_scale.lookup(u);
   if (!(scale > 0)) return RGB(0);
-  if (grid->temperature.empty()) return Le_unit * scale;
-  // pbrt-v4's GridMedium::SamplePoint: the temperature offset and scaled, no emission at 100 K or below.
-  const float kelvin = (grid->temperature.lookup(u) - grid->temperature_offset) * grid->temperature_scale;
+  if (!vdb && grid->temperature.empty()) return Le_unit * scale;
+  // pbrt-v4's GridMedium::SamplePoint and NanoVDBMedium::SamplePoint: the temperature offset
+  // and scaled, no emission at 100 K or below.
+  const float t = vdb ? grid->vdb_temperature->value(grid->medium_point(u)) : grid->temperature.lookup(u);
+  const float kelvin = (t - grid->temperature_offset) * grid->temperature_scale;
   if (!(kelvin > 100)) return RGB(0);
   const float s = scale * grid->blackbody_scale;
   if (!wavelengths) return normalized_blackbody_rgb(kelvin) * s;

@@ -11,18 +11,20 @@
 // ray's cells (Amanatides & Woo 1987).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "dermis/core/rgb.h"
 #include "dermis/core/transform.h"
 #include "dermis/geometry/ray.h"
+#include "dermis/materials/nanovdb_grid.h"
 #include "dermis/materials/voxel_grid.h"
 #include "dermis/spectral/sampled_wavelengths.h"
 
 namespace dermis {
 
 struct GridMedium {
-  enum class Kind { Density, RGBGrid, Cloud };
+  enum class Kind { Density, RGBGrid, Cloud, NanoVDB };
   Kind kind = Kind::Density;
   Transform medium_from_world;
   Vec3 p0{0, 0, 0}, p1{1, 1, 1};  // the box, in the medium's space (p0 < p1 on every axis)
@@ -30,6 +32,10 @@ struct GridMedium {
   VoxelGrid<float> density;                               // Density: the density grid
   VoxelGrid<RGB> sigma_a_grid, sigma_s_grid;              // RGBGrid: the colours (empty: 1 everywhere)
   float cloud_density = 1, wispiness = 1, frequency = 5;  // Cloud: pbrt-v4's parameters
+  // NanoVDB: the density grid and the optional temperature grid of an .nvdb file, in the
+  // medium's space (the box is the union of their world boxes), and the emission's scale.
+  std::shared_ptr<const NanoVdbGrid> vdb_density, vdb_temperature;
+  float vdb_le_scale = 1;
 
   // Emission (pbrt-v4's Le). Density: the colour `Le` (luminance 1 where given as a spectrum,
   // whose samples are RenderScene::spectra[Le_data]) times the grid `le_scale` (absent in the
@@ -47,6 +53,7 @@ struct GridMedium {
   float le_grid_scale = 1;
   bool emissive() const {
     if (kind == Kind::RGBGrid) return !le_grid.empty() && le_grid_scale > 0;
+    if (kind == Kind::NanoVDB) return vdb_temperature && vdb_le_scale > 0;
     return !temperature.empty() || Le.max() > 0;
   }
 
@@ -65,8 +72,10 @@ struct GridMedium {
   void build_majorants();
   // A point of the world in the box's unit cube (outside [0, 1]^3: outside the medium).
   Vec3 unit_point(Vec3 p_world) const;
-  // The density at a point of the unit cube (Density, Cloud).
+  // The density at a point of the unit cube (Density, Cloud, NanoVDB), and the point of the
+  // medium's space it stands for.
   float density_at(Vec3 unit) const;
+  Vec3 medium_point(Vec3 unit) const;
 };
 
 // pbrt-v4's CloudMedium::Density at a point of the medium's space.

@@ -2,8 +2,10 @@
 // ratio tracking, spectral MIS (path/grid_volume_vertex.h).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 #include "dermis/core/rng.h"
@@ -11,6 +13,7 @@
 #include "dermis/scene/parser.h"
 #include "dermis/spectral/blackbody.h"
 #include "dermis/spectral/cie_observer.h"
+#include "support/nanovdb_files.h"
 #include "support/pixel_statistics.h"
 
 namespace dermis {
@@ -93,6 +96,23 @@ TEST(GridMediaRender, ConstantGridIsTheHomogeneousMedium) {
   for (bool spectral : {false, true})
     expect_same_image(testing::pixel_statistics(*gridded, 512, 1, {}, spectral),
                       testing::pixel_statistics(*homogeneous, 512, 2, {}, spectral));
+}
+
+// A nanovdb medium (an .nvdb file of constant density 1 over [-2, 2]^3, voxels of 0.25)
+// renders as the homogeneous medium, as the constant uniformgrid does.
+TEST(GridMediaRender, ConstantNanoVdbIsTheHomogeneousMedium) {
+  const std::string file = ::testing::TempDir() + "dermis_constant_" + std::to_string(::getpid()) + ".nvdb";
+  std::vector<nanovdb::GridHandle<>> grids;
+  grids.push_back(testing::nvdb_grid("density", 16, 0.25, -2.0, [](int, int, int) { return 1.0f; }));
+  testing::write_nvdb(file, std::move(grids));
+  const auto vdb = scene_from(
+      medium_sphere(fmt::format("\"string type\" \"nanovdb\" \"string filename\" \"{}\" {}", file, kCoefficients),
+                    "0.5 0.5 0.5", kSun));
+  std::filesystem::remove(file);
+  const auto homogeneous =
+      scene_from(medium_sphere(fmt::format("\"string type\" \"homogeneous\" {}", kCoefficients), "0.5 0.5 0.5", kSun));
+  ASSERT_EQ(vdb->grid_media.size(), 1u);
+  expect_same_image(testing::pixel_statistics(*vdb, 512, 8, {}), testing::pixel_statistics(*homogeneous, 512, 9, {}));
 }
 
 // The white furnace: a non-absorbing, chromatic, strongly varying grid medium (densities

@@ -726,13 +726,6 @@ void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
   if (!pl.has("type")) throw SceneError(loc, fmt::format("MakeNamedMedium \"{}\" needs \"string type\"", name));
   std::string type = pl.get_string("type", "");
   require_known_type(TypedDirective::Medium, type, pl.find("type")->value_loc);
-  if (type == "nanovdb") {
-    s_.diagnostics.warn(
-        loc, fmt::format("medium type \"{}\" is not supported; medium \"{}\" is treated as vacuum", type, name));
-    pl.mark_all_used();
-    media_[name] = -1;
-    return;
-  }
   MediumDesc m;
   m.name = name;
   m.loc = loc;

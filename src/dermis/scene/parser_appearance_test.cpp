@@ -330,11 +330,11 @@ TEST(ParserMedia, PresetsExplicitCoefficientsAndInterfaces) {
       "MakeNamedMedium \"milk\" \"string type\" \"homogeneous\" \"string name\" \"Wholemilk\"\n"
       "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [0.1 0.2 0.3]\n"
       "  \"rgb sigma_s\" [1 2 3] \"float g\" 0.7\n"
-      "MakeNamedMedium \"cloud\" \"string type\" \"nanovdb\" \"string filename\" \"c.nvdb\"\n"
+      "MakeNamedMedium \"cloud\" \"string type\" \"cloud\"\n"
       "MediumInterface \"skin\" \"fog\"\nShape \"sphere\"\n"
       "MediumInterface \"cloud\"\nShape \"sphere\"\n"
       "MediumInterface \"milk\"\nShape \"sphere\"\n");
-  ASSERT_EQ(s.media.size(), 3u);
+  ASSERT_EQ(s.media.size(), 4u);
   const MediumDesc& skin = s.media[0];
   EXPECT_EQ(skin.preset, "Skin1");
   // Jensen et al. 2001, Table 2, Skin1: sigma_s' = (0.74, 0.88, 1.01), sigma_a = (0.032, 0.17, 0.48) mm^-1.
@@ -347,11 +347,10 @@ TEST(ParserMedia, PresetsExplicitCoefficientsAndInterfaces) {
   expect_rgb(s.media[2].sigma_a, RGB(0.1f, 0.2f, 0.3f));
   expect_rgb(s.media[2].sigma_s, RGB(1, 2, 3));
   EXPECT_FLOAT_EQ(s.media[2].g, 0.7f);
-  EXPECT_TRUE(has_warning(s, "test.pbrt:6:1: warning: medium type \"nanovdb\" is not supported"));
   EXPECT_EQ(s.shapes[0].inside_medium, 0);
   EXPECT_EQ(s.shapes[0].outside_medium, 2);
   EXPECT_TRUE(s.shapes[0].has_medium_interface);
-  EXPECT_EQ(s.shapes[1].inside_medium, -1);  // unsupported medium: vacuum
+  EXPECT_EQ(s.shapes[1].inside_medium, 3);  // one name: inside and outside
   EXPECT_FALSE(s.shapes[1].has_medium_interface);
   EXPECT_EQ(s.shapes[2].inside_medium, 1);  // one name: inside and outside
   EXPECT_EQ(s.shapes[2].outside_medium, 1);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "dermis/scene/scene_parser.h"
@@ -46,6 +47,43 @@ std::vector<RGB> colours(const std::vector<double>& v) {
   return out;
 }
 
+// The box: pbrt-v4's Bounds3f(p0, p1), corners in any order, but with a volume.
+void read_grid_box(const ParamList& pl, MediumDesc& m) {
+  const Vec3 a = pl.get_vec3("p0", {"point3"}).value_or(m.p0), b = pl.get_vec3("p1", {"point3"}).value_or(m.p1);
+  for (int k = 0; k < 3; ++k)
+    if (!(a[k] != b[k]) || !std::isfinite(a[k]) || !std::isfinite(b[k])) {
+      const ParsedParam* p = pl.find("p1") ? pl.find("p1") : pl.find("p0");
+      throw SceneError(p ? p->value_loc : m.loc,
+                       fmt::format("medium \"{}\": the box p0 ({} {} {}) to p1 ({} {} {}) has no volume (equal or "
+                                   "non-finite {} coordinates)",
+                                   m.name, a.x, a.y, a.z, b.x, b.y, b.z, "xyz"[k]));
+    }
+  m.p0 = min(a, b);
+  m.p1 = max(a, b);
+}
+
+void read_grid_resolution(const ParamList& pl, MediumDesc& m) {
+  for (auto [name, n] : {std::pair{"nx", &m.nx}, {"ny", &m.ny}, {"nz", &m.nz}}) {
+    *n = pl.get_int(name, 1);
+    if (*n < 1)
+      throw SceneError(pl.find(name)->value_loc,
+                       fmt::format("medium \"{}\": \"{}\" must be at least 1, got {}", m.name, name, *n));
+  }
+  if (double(m.nx) * double(m.ny) * double(m.nz) > double(std::numeric_limits<int32_t>::max()))
+    throw SceneError(pl.find("nx")->value_loc,
+                     fmt::format("medium \"{}\": a grid of {} x {} x {} is too large", m.name, m.nx, m.ny, m.nz));
+}
+
+// A temperature's offset and scale (pbrt-v4 reads "temperaturecutoff" as the offset where
+// "temperatureoffset" is absent).
+void read_temperature_mapping(const ParamList& pl, MediumDesc& m) {
+  m.temperature_offset = pl.get_float("temperatureoffset", pl.get_float("temperaturecutoff", 0));
+  m.temperature_scale = pl.get_float("temperaturescale", 1);
+  for (const char* name : {"temperatureoffset", "temperaturecutoff", "temperaturescale"})
+    if (const ParsedParam* p = pl.find(name); p && !std::isfinite(pl.get_float(name, 0)))
+      throw SceneError(p->value_loc, fmt::format("medium \"{}\": \"{}\" must be finite", m.name, name));
+}
+
 }  // namespace
 
 void SceneParser::read_grid_emission(const ParamList& pl, MediumDesc& m) {
@@ -64,12 +102,7 @@ void SceneParser::read_grid_emission(const ParamList& pl, MediumDesc& m) {
     m.le_scale_grid.assign(scale.begin(), scale.end());
     const std::vector<double> kelvin = grid_values(pl, m, "temperature", {"float"}, 1);
     m.temperature.assign(kelvin.begin(), kelvin.end());
-    // pbrt-v4 reads "temperaturecutoff" as the offset where "temperatureoffset" is absent.
-    m.temperature_offset = pl.get_float("temperatureoffset", pl.get_float("temperaturecutoff", 0));
-    m.temperature_scale = pl.get_float("temperaturescale", 1);
-    for (const char* name : {"temperatureoffset", "temperaturecutoff", "temperaturescale"})
-      if (const ParsedParam* p = pl.find(name); p && !std::isfinite(pl.get_float(name, 0)))
-        throw SceneError(p->value_loc, fmt::format("medium \"{}\": \"{}\" must be finite", m.name, name));
+    read_temperature_mapping(pl, m);
   } else if (m.type == "rgbgrid") {
     m.Le_grid = colours(grid_values(pl, m, "Le", {"rgb"}, 3));
     if (!m.Le_grid.empty() && m.sigma_a_grid.empty())
@@ -83,58 +116,46 @@ void SceneParser::read_grid_emission(const ParamList& pl, MediumDesc& m) {
 
 void SceneParser::read_grid_medium(const ParamList& pl, MediumDesc& m) {
   m.medium_to_world = gs_.ctm;
-  // The box: pbrt-v4's Bounds3f(p0, p1), corners in any order, but with a volume.
-  const Vec3 a = pl.get_vec3("p0", {"point3"}).value_or(m.p0), b = pl.get_vec3("p1", {"point3"}).value_or(m.p1);
-  for (int k = 0; k < 3; ++k)
-    if (!(a[k] != b[k]) || !std::isfinite(a[k]) || !std::isfinite(b[k])) {
-      const ParsedParam* p = pl.find("p1") ? pl.find("p1") : pl.find("p0");
-      throw SceneError(p ? p->value_loc : m.loc,
-                       fmt::format("medium \"{}\": the box p0 ({} {} {}) to p1 ({} {} {}) has no volume (equal or "
-                                   "non-finite {} coordinates)",
-                                   m.name, a.x, a.y, a.z, b.x, b.y, b.z, "xyz"[k]));
-    }
-  m.p0 = min(a, b);
-  m.p1 = max(a, b);
   m.g = pl.get_float("g", 0);
   if (!(m.g > -1 && m.g < 1))
     throw SceneError(pl.find("g")->value_loc, fmt::format("g must be in (-1, 1), got {}", m.g));
-
-  if (m.type == "cloud") {
+  if (m.type != "rgbgrid") {  // coefficients per unit density
     m.sigma_a = coefficient_param(pl, "sigma_a", RGB(1), s_.diagnostics);
     m.sigma_s = coefficient_param(pl, "sigma_s", RGB(1), s_.diagnostics);
     m.sigma_a_data = spectrum_data(pl, "sigma_a", SpectrumType::Unbounded);
     m.sigma_s_data = spectrum_data(pl, "sigma_s", SpectrumType::Unbounded);
+    for (auto [name, v] : {std::pair{"sigma_a", m.sigma_a}, {"sigma_s", m.sigma_s}})
+      if (v[0] < 0 || v[1] < 0 || v[2] < 0)
+        throw SceneError(pl.find(name) ? pl.find(name)->value_loc : m.loc,
+                         fmt::format("medium \"{}\": \"{}\" must not be negative", m.name, name));
+  }
+  if (m.type != "cloud") {  // pbrt-v4's cloud has no scale
+    m.scale = pl.get_float("scale", 1);
+    if (!(m.scale >= 0) || !std::isfinite(m.scale))
+      throw SceneError(pl.find("scale")->value_loc, "scale must be finite and not negative");
+  }
+  if (m.type == "nanovdb") {
+    read_nanovdb_medium(pl, m);
+    return;
+  }
+  read_grid_box(pl, m);
+  if (m.type == "cloud") {
     m.cloud_density = pl.get_float("density", 1);
     m.wispiness = pl.get_float("wispiness", 1);
     m.frequency = pl.get_float("frequency", 5);
     for (const char* name : {"density", "wispiness", "frequency"})
       if (const ParsedParam* p = pl.find(name); p && !std::isfinite(pl.get_float(name, 0)))
         throw SceneError(p->value_loc, fmt::format("medium \"{}\": \"{}\" must be finite", m.name, name));
-  } else {
-    for (auto [name, n] : {std::pair{"nx", &m.nx}, {"ny", &m.ny}, {"nz", &m.nz}}) {
-      *n = pl.get_int(name, 1);
-      if (*n < 1)
-        throw SceneError(pl.find(name)->value_loc,
-                         fmt::format("medium \"{}\": \"{}\" must be at least 1, got {}", m.name, name, *n));
-    }
-    if (double(m.nx) * double(m.ny) * double(m.nz) > double(std::numeric_limits<int32_t>::max()))
-      throw SceneError(pl.find("nx")->value_loc,
-                       fmt::format("medium \"{}\": a grid of {} x {} x {} is too large", m.name, m.nx, m.ny, m.nz));
-    m.scale = pl.get_float("scale", 1);
-    if (!(m.scale >= 0) || !std::isfinite(m.scale))
-      throw SceneError(pl.find("scale")->value_loc, "scale must be finite and not negative");
+    return;
   }
+  read_grid_resolution(pl, m);
   if (m.type == "uniformgrid") {
     const std::vector<double> d = grid_values(pl, m, "density", {"float"}, 1);
     if (d.empty())
       throw SceneError(m.loc,
                        fmt::format("uniformgrid medium \"{}\" needs \"float density\" (nx x ny x nz values)", m.name));
     m.density.assign(d.begin(), d.end());
-    m.sigma_a = coefficient_param(pl, "sigma_a", RGB(1), s_.diagnostics);
-    m.sigma_s = coefficient_param(pl, "sigma_s", RGB(1), s_.diagnostics);
-    m.sigma_a_data = spectrum_data(pl, "sigma_a", SpectrumType::Unbounded);
-    m.sigma_s_data = spectrum_data(pl, "sigma_s", SpectrumType::Unbounded);
-  } else if (m.type == "rgbgrid") {
+  } else {
     m.sigma_a_grid = colours(grid_values(pl, m, "sigma_a", {"rgb"}, 3));
     m.sigma_s_grid = colours(grid_values(pl, m, "sigma_s", {"rgb"}, 3));
     if (m.sigma_a_grid.empty() && m.sigma_s_grid.empty())
@@ -142,12 +163,24 @@ void SceneParser::read_grid_medium(const ParamList& pl, MediumDesc& m) {
                                           "ny x nz colours each)",
                                           m.name));
   }
-  if (m.type != "rgbgrid")
-    for (auto [name, v] : {std::pair{"sigma_a", m.sigma_a}, {"sigma_s", m.sigma_s}})
-      if (v[0] < 0 || v[1] < 0 || v[2] < 0)
-        throw SceneError(pl.find(name) ? pl.find(name)->value_loc : m.loc,
-                         fmt::format("medium \"{}\": \"{}\" must not be negative", m.name, name));
   read_grid_emission(pl, m);
+}
+
+void SceneParser::read_nanovdb_medium(const ParamList& pl, MediumDesc& m) {
+  const ParsedParam* file = pl.find("filename");
+  if (!file)
+    throw SceneError(m.loc, fmt::format("nanovdb medium \"{}\" needs \"string filename\" (an .nvdb file)", m.name));
+  m.filename = scene_path(pl.get_string("filename", ""), file->value_loc, "NanoVDB");
+  m.filename_loc = file->value_loc;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(m.filename, ec))
+    throw SceneError(file->value_loc, fmt::format("nanovdb medium: could not read '{}': no such file", m.filename));
+  m.grid_name = pl.get_string("gridname", m.grid_name);
+  m.temperature_name = pl.get_string("temperaturename", m.temperature_name);
+  m.Lescale = pl.get_float("Lescale", 1);
+  if (!(m.Lescale >= 0) || !std::isfinite(m.Lescale))
+    throw SceneError(pl.find("Lescale")->value_loc, "Lescale must be finite and not negative");
+  read_temperature_mapping(pl, m);
 }
 
 }  // namespace dermis

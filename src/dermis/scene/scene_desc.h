@@ -296,7 +296,12 @@ struct MediumDesc {
   int Le_data = -1;
   std::vector<float> le_scale_grid;
   std::vector<float> temperature;  // uniformgrid: nx * ny * nz (empty: none), emitting as a blackbody
-  float temperature_offset = 0, temperature_scale = 1;
+  float temperature_offset = 0, temperature_scale = 1;  // uniformgrid, nanovdb
+  // nanovdb: the .nvdb file (its float grids grid_name, the density, and temperature_name,
+  // optional), read when the scene is assembled; errors point at the file name's value.
+  std::string filename;
+  SourceLoc filename_loc;
+  std::string grid_name = "density", temperature_name = "temperature";
   std::vector<RGB> Le_grid;
   float Lescale = 1;
   SourceLoc loc;

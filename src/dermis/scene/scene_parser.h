@@ -126,6 +126,7 @@ class SceneParser {
   // parser_media.cpp: the parameters of a grid medium (uniformgrid, rgbgrid, cloud).
   void read_grid_medium(const ParamList& pl, MediumDesc& m);
   void read_grid_emission(const ParamList& pl, MediumDesc& m);
+  void read_nanovdb_medium(const ParamList& pl, MediumDesc& m);
   void medium_interface(const Token& d, TokenStream& ts);
 
   SceneDesc& s_;
