@@ -15,7 +15,7 @@ namespace dermis::testing {
 
 // One grid `name` over the voxels [0, n)^3, voxel (i, j, k) at world (i, j, k) * voxel + origin.
 inline nanovdb::GridHandle<> nvdb_grid(const std::string& name, int n, double voxel, double origin,
-                                      const std::function<float(int, int, int)>& value) {
+                                       const std::function<float(int, int, int)>& value) {
   nanovdb::GridBuilder<float> builder(0.0f, nanovdb::GridClass::FogVolume);
   builder.setStats(nanovdb::StatsMode::All);
   builder.setChecksum(nanovdb::ChecksumMode::Full);

@@ -243,8 +243,7 @@ struct NanoVdbGrid::Impl {
 NanoVdbGrid::NanoVdbGrid(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 NanoVdbGrid::~NanoVdbGrid() = default;
 
-std::shared_ptr<const NanoVdbGrid> NanoVdbGrid::load(const std::string& path, const std::string& name,
-                                                     bool optional) {
+std::shared_ptr<const NanoVdbGrid> NanoVdbGrid::load(const std::string& path, const std::string& name, bool optional) {
   auto impl = std::make_unique<Impl>();
   try {
     check_file_headers(path);
@@ -255,13 +254,13 @@ std::shared_ptr<const NanoVdbGrid> NanoVdbGrid::load(const std::string& path, co
   if (!impl->handle) {
     if (optional) return nullptr;
     std::string names;
-    for (const auto& m : nanovdb::io::readGridMetaData(path)) names += (names.empty() ? "\"" : ", \"") + m.gridName + "\"";
+    for (const auto& m : nanovdb::io::readGridMetaData(path))
+      names += (names.empty() ? "\"" : ", \"") + m.gridName + "\"";
     throw std::runtime_error("no grid named \"" + name + "\" (the file has " + (names.empty() ? "none" : names) + ")");
   }
   check_structure(impl->handle);
   impl->grid = reinterpret_cast<const FloatGrid*>(impl->handle.data());
-  if (const std::string why = nanovdb::GridValidator<float>::check(*impl->grid, true); !why.empty())
-    throw corrupt(why);
+  if (const std::string why = nanovdb::GridValidator<float>::check(*impl->grid, true); !why.empty()) throw corrupt(why);
   check_values(*impl->grid);
   return std::shared_ptr<const NanoVdbGrid>(new NanoVdbGrid(std::move(impl)));
 }

@@ -118,8 +118,9 @@ TEST_F(NanoVdbFiles, BadFilesAreErrors) {
     EXPECT_THROW(NanoVdbGrid::load(path("changed.nvdb"), "density"), std::runtime_error) << at;  // the checksum
   }
   error(write_grids("negative.nvdb", [](int i, int, int) { return i == 3 ? -1.0f : 1.0f; }), "density", "negative");
-  error(write_grids("nan.nvdb", [](int i, int, int) { return i == 3 ? std::numeric_limits<float>::quiet_NaN() : 1.0f; }),
-        "density", "NaN");
+  error(
+      write_grids("nan.nvdb", [](int i, int, int) { return i == 3 ? std::numeric_limits<float>::quiet_NaN() : 1.0f; }),
+      "density", "NaN");
 }
 
 }  // namespace
