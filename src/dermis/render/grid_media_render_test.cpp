@@ -5,10 +5,12 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
 #include "dermis/core/rng.h"
+#include "dermis/render/renderer.h"
 #include "dermis/render/scene_preparation.h"
 #include "dermis/scene/parser.h"
 #include "dermis/spectral/blackbody.h"
@@ -223,6 +225,26 @@ TEST(GridMediaRender, TemperatureEmitsABlackbody) {
         }
       }
     EXPECT_EQ(failures, 0);
+  }
+}
+
+// Tracking draws its numbers from the sample and the ray (null_scattering.h tracking_rng):
+// the same seed gives the same image whatever the thread count, RGB and spectral.
+TEST(GridMediaRender, SameSeedSameImageWhateverTheThreadCount) {
+  const auto sc = scene_from(medium_sphere("\"string type\" \"uniformgrid\" " + random_densities(5, 4, 3, 6, 2) +
+                                               " \"point3 p0\" [-1 -1 -1] \"point3 p1\" [1 1 1] " + kCoefficients,
+                                           "0.5 0.5 0.5", kSun));
+  for (bool spectral : {false, true}) {
+    RenderOptions o;
+    o.spp = 8;
+    o.seed = 5;
+    o.spectral = spectral;
+    o.threads = 1;
+    const RenderResult a = render_image(*sc, o);
+    o.threads = 2;
+    const RenderResult b = render_image(*sc, o);
+    ASSERT_EQ(a.rgb.size(), b.rgb.size());
+    EXPECT_EQ(0, std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float))) << spectral;
   }
 }
 

@@ -3,6 +3,7 @@
 #include "dermis/core/henyey_greenstein.h"
 #include "dermis/materials/null_scattering.h"
 #include "dermis/render/path/direct_light.h"
+#include "dermis/render/path/volume_vertex.h"
 #include "dermis/render/russian_roulette.h"
 #include "dermis/render/spectral_media.h"
 
@@ -44,15 +45,7 @@ VertexOutcome shade_grid_volume(PathContext& ctx, PathState& st, float t_hit) {
                                         return std::pair{RGB(ph), ph};
                                       });
   }
-  // Sample the phase function about the propagation direction (weight 1).
-  const Vec2 u_phase = sampler.get2d();
-  const float cos_theta = sample_henyey_greenstein_cos(u_phase.x, g);
-  const Vec3 wi = direction_about(st.ray.d, cos_theta, u_phase.y);
-  st.camera_chain = false;
-  st.after_scatter(Ray{p, wi}, henyey_greenstein(cos_theta, g), p, Vec3(0, 0, 0), SkyRule::Sampled, false);
-  if (!survives_roulette(ctx, st, sees_lights ? kMediumRouletteThreshold : kSurfaceRouletteThreshold))
-    return VertexOutcome::kStop;
-  return VertexOutcome::kContinue;
+  return scatter_by_phase(ctx, st, p, g, sees_lights);
 }
 
 }  // namespace dermis

@@ -69,8 +69,12 @@ VertexOutcome shade_volume(PathContext& ctx, PathState& st, float t_hit) {
   const Vec3 p = st.ray.o + st.ray.d * flight.t;
   if (st.depth++ >= sc.settings.max_depth) return VertexOutcome::kStop;
   const float g = m.g;
+  return scatter_by_phase(ctx, st, p, g, sees_lights);
+}
+
+VertexOutcome scatter_by_phase(PathContext& ctx, PathState& st, Vec3 p, float g, bool sees_lights) {
   // Sample the phase function about the propagation direction (weight 1).
-  const Vec2 u_phase = sampler.get2d();
+  const Vec2 u_phase = ctx.sampler.get2d();
   const float cos_theta = sample_henyey_greenstein_cos(u_phase.x, g);
   const Vec3 wi = direction_about(st.ray.d, cos_theta, u_phase.y);
   st.camera_chain = false;

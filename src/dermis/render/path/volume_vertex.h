@@ -12,4 +12,8 @@ namespace dermis {
 // scattered and goes on along st.ray; kPassThrough: it reached t_hit; kStop: it ended.
 VertexOutcome shade_volume(PathContext& ctx, PathState& st, float t_hit);
 
+// After a scattering event at p in a medium of Henyey-Greenstein g (next-event estimation
+// done): the phase function sampled for the way on, and the roulette. kContinue or kStop.
+VertexOutcome scatter_by_phase(PathContext& ctx, PathState& st, Vec3 p, float g, bool sees_lights);
+
 }  // namespace dermis
