@@ -1,8 +1,6 @@
 #include "dermis/render/path/grid_volume_vertex.h"
 
-#include "dermis/core/henyey_greenstein.h"
 #include "dermis/materials/null_scattering.h"
-#include "dermis/render/path/direct_light.h"
 #include "dermis/render/path/volume_vertex.h"
 #include "dermis/render/russian_roulette.h"
 #include "dermis/render/spectral_media.h"
@@ -37,14 +35,7 @@ VertexOutcome shade_grid_volume(PathContext& ctx, PathState& st, float t_hit) {
   if (st.depth++ >= sc.settings.max_depth) return VertexOutcome::kStop;
   const float g = m.g;
   const bool sees_lights = sc.medium_sees_lights[st.medium];
-  if (sees_lights) {
-    const Vec3 wo = -st.ray.d;
-    st.L += st.beta * estimate_direct(sc, p, Vec3(0, 0, 0), st.medium, sampler, ctx.counters, ctx.start.wavelengths,
-                                      [&](Vec3 wi) {
-                                        const float ph = henyey_greenstein(dot(-wo, wi), g);
-                                        return std::pair{RGB(ph), ph};
-                                      });
-  }
+  if (sees_lights) st.L += st.beta * direct_by_phase(ctx, st, p, g);
   return scatter_by_phase(ctx, st, p, g, sees_lights);
 }
 

@@ -44,14 +44,7 @@ VertexOutcome shade_volume(PathContext& ctx, PathState& st, float t_hit) {
   if (sees_lights && st.depth < sc.settings.max_depth) {
     const SegmentPoint sp = sample_segment_point(m, segment, st.beta, u_segment_channel, u_flight.y);
     if (sp.valid) {
-      const Vec3 wo = -st.ray.d;
-      const float g = m.g;
-      st.L += st.beta * sp.weight *
-              estimate_direct(sc, st.ray.o + st.ray.d * sp.t, Vec3(0, 0, 0), st.medium, sampler, ctx.counters,
-                              ctx.start.wavelengths, [&](Vec3 wi) {
-                                float ph = henyey_greenstein(dot(-wo, wi), g);
-                                return std::pair{RGB(ph), ph};
-                              });
+      st.L += st.beta * sp.weight * direct_by_phase(ctx, st, st.ray.o + st.ray.d * sp.t, m.g);
     } else {
       sampler.get2d();  // the light sample's two dimensions, so that those after it do not shift
     }
@@ -70,6 +63,15 @@ VertexOutcome shade_volume(PathContext& ctx, PathState& st, float t_hit) {
   if (st.depth++ >= sc.settings.max_depth) return VertexOutcome::kStop;
   const float g = m.g;
   return scatter_by_phase(ctx, st, p, g, sees_lights);
+}
+
+RGB direct_by_phase(PathContext& ctx, const PathState& st, Vec3 p, float g) {
+  const Vec3 wo = -st.ray.d;
+  return estimate_direct(ctx.sc, p, Vec3(0, 0, 0), st.medium, ctx.sampler, ctx.counters, ctx.start.wavelengths,
+                         [&](Vec3 wi) {
+                           const float ph = henyey_greenstein(dot(-wo, wi), g);
+                           return std::pair{RGB(ph), ph};
+                         });
 }
 
 VertexOutcome scatter_by_phase(PathContext& ctx, PathState& st, Vec3 p, float g, bool sees_lights) {
