@@ -109,7 +109,16 @@ DIRECTIVES = {  # directive: (a valid use, uses that must be refused)
                                         'Material "diffuse" "rgb reflectance" "red"',
                                         'Material "subsurface" "string method" "psychic"',
                                         'Material "subsurface" "rgb mfp" [-1 -1 -1]',
-                                        'Material "subsurface" "float eta" "x"']),
+                                        'Material "subsurface" "float eta" "x"',
+                                        # a heterogeneous interior (docs/materials.md): the name, the method
+                                        ('MakeNamedMedium "g" "string type" "uniformgrid" "float density" [1 0.5] '
+                                         '"integer nx" 2 Material "subsurface" "string interior" "g"', 0),
+                                        'Material "subsurface" "string interior" "nowhere"',
+                                        'Material "subsurface" "string interior" 3',
+                                        'MakeNamedMedium "g" "string type" "uniformgrid" "float density" [1] '
+                                        'Material "subsurface" "string interior" "g" "string method" "disk"',
+                                        'MakeNamedMedium "g" "string type" "homogeneous" '
+                                        'Material "subsurface" "string interior" "g" "float scale" 2']),
     "MakeNamedMaterial": ('MakeNamedMaterial "m" "string type" "diffuse"',
                           ["MakeNamedMaterial", 'MakeNamedMaterial "m"', 'MakeNamedMaterial "m" "string type" 5']),
     "NamedMaterial": ('MakeNamedMaterial "m" "string type" "diffuse" NamedMaterial "m"',

@@ -313,7 +313,8 @@ void note_default_boundaries(const SceneDesc& desc, bool delta_lights, Diagnosti
 // Subsurface materials: the parameters now, the methods at preparation. The
 // `volumetric` method is the brute-force reference: the material becomes a smooth
 // dielectric filled with the homogeneous medium it describes, rendered by the
-// volumetric path tracer itself (its coefficients too are resolved at preparation).
+// volumetric path tracer itself (its coefficients too are resolved at preparation), or
+// with its grid interior medium.
 // Returns, per material, the medium inside it (-1: none).
 std::vector<int> resolve_subsurface_materials(const SceneDesc& desc, RenderScene& sc) {
   std::vector<int> subsurface_medium(sc.materials.size(), -1);
@@ -338,6 +339,10 @@ std::vector<int> resolve_subsurface_materials(const SceneDesc& desc, RenderScene
     // subsurface/boundary_roughness.h).
     m.roughness_texture[0] = m.roughness_texture[1] = sp.roughness_texture;
     m.remap_roughness = sp.remap_roughness;
+    if (sp.interior_medium >= 0) {  // a grid medium fills it (SubsurfaceParams::interior)
+      subsurface_medium[i] = sp.interior_medium;
+      continue;
+    }
     subsurface_medium[i] = int(sc.media.size());
     sc.volumetric_media.push_back({sp, subsurface_medium[i], {}, {}});
     sc.media.push_back(HomogeneousMedium{});

@@ -245,6 +245,8 @@ void SceneParser::finish(const std::string& main_file, const std::string& name) 
     }
   }
 
+  resolve_subsurface_interiors();
+
   if (open_object_ >= 0)
     throw SceneError(s_.objects[open_object_].loc,
                      fmt::format("ObjectBegin \"{}\" has no matching ObjectEnd", s_.objects[open_object_].name));

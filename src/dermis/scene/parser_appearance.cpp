@@ -327,6 +327,8 @@ MaterialDesc SceneParser::build_material(const std::string& type, const ParamLis
         texture = spectrum_or_texture(pl, p.param.name, RGB(1.0f)).texture;
       return texture;
     });
+    if (!m.subsurface.interior.empty())
+      m.subsurface.interior_medium = medium_reference(m.subsurface.interior, m.subsurface.interior_loc);
     m.eta = m.subsurface.eta;
   } else if (type == "hair") {
     // pbrt-v4's hair BSDF (Chiang et al. 2016) is not implemented: one warning, and a
@@ -781,23 +783,24 @@ void SceneParser::make_named_medium(const Token& d, TokenStream& ts) {
   s_.media.push_back(std::move(m));
 }
 
+// pbrt-v4 looks media up by name when the scene is built: a medium may be defined after
+// the MediumInterface (or the material's "interior") that names it. Unknown names wait as
+// pending references (resolved, or reported at this name, by finish()).
+int SceneParser::medium_reference(const std::string& name, const SourceLoc& at) {
+  if (name.empty()) return -1;
+  auto it = media_.find(name);
+  if (it != media_.end()) return it->second;
+  pending_media_.push_back({name, at});
+  return kFirstPendingMedium - int(pending_media_.size() - 1);
+}
+
 void SceneParser::medium_interface(const Token& d, TokenStream& ts) {
   const SourceLoc loc = ts.loc(d);
   SourceLoc in_loc, out_loc;
   std::string inside = string_arg(ts, d, &in_loc), outside = inside;
   out_loc = in_loc;
   if (const Token* t = ts.peek(); t && t->kind == Token::Kind::String) outside = string_arg(ts, d, &out_loc);
-  // pbrt-v4 looks media up by name when the scene is built: a medium may be defined after
-  // the MediumInterface that names it. Unknown names wait as pending references (resolved,
-  // or reported at this name, by finish()).
-  auto lookup = [&](const std::string& name, const SourceLoc& at) {
-    if (name.empty()) return -1;
-    auto it = media_.find(name);
-    if (it != media_.end()) return it->second;
-    pending_media_.push_back({name, at});
-    return kFirstPendingMedium - int(pending_media_.size() - 1);
-  };
-  int in = lookup(inside, in_loc), out = lookup(outside, out_loc);
+  const int in = medium_reference(inside, in_loc), out = medium_reference(outside, out_loc);
   if (open_object_ >= 0) {
     s_.diagnostics.warn(loc, "MediumInterface inside ObjectBegin/ObjectEnd ignored (instanced shapes get no media)");
     return;

@@ -184,3 +184,49 @@ void SceneParser::read_nanovdb_medium(const ParamList& pl, MediumDesc& m) {
 }
 
 }  // namespace dermis
+
+namespace dermis {
+
+void SceneParser::resolve_subsurface_interiors() {
+  for (MaterialDesc& md : s_.materials) {
+    SubsurfaceParams& sp = md.subsurface;
+    if (md.type != MaterialDesc::Type::Subsurface || sp.interior.empty()) continue;
+    sp.interior_medium = resolve_medium(sp.interior_medium);
+    const MediumDesc& m = s_.media[std::size_t(sp.interior_medium)];
+    if (m.type == "homogeneous") {
+      // The medium's coefficients, as if given on the material (scale, spectra and g too):
+      // every method takes them.
+      if (m.Le.max() > 0)
+        s_.diagnostics.warn(sp.interior_loc, fmt::format("subsurface: the emission of medium \"{}\" is not rendered "
+                                                         "inside a subsurface material (its coefficients are)",
+                                                         m.name));
+      sp.sigma_a = m.sigma_a * m.scale;
+      sp.sigma_s = m.sigma_s * m.scale;
+      sp.scale = m.scale;
+      sp.g = m.g;
+      auto data = [&](int i) {
+        return i >= 0 ? std::make_shared<const std::vector<float>>(s_.spectra[std::size_t(i)]) : nullptr;
+      };
+      sp.sigma_a_spectrum = data(m.sigma_a_data);
+      sp.sigma_s_spectrum = data(m.sigma_s_data);
+      for (int c = 0; c < 3; ++c)
+        if (!((*sp.sigma_a)[c] + (*sp.sigma_s)[c] > 0))
+          throw SceneError(sp.interior_loc,
+                           fmt::format("subsurface: medium \"{}\" has sigma_a + sigma_s = 0 in a channel: nothing "
+                                       "for light to meet inside (give it a positive extinction, or no subsurface)",
+                                       m.name));
+      sp.interior_medium = -1;
+      continue;
+    }
+    using M = SubsurfaceParams::Method;
+    if (sp.method != M::RandomWalk && sp.method != M::Volumetric)
+      throw SceneError(sp.interior_loc,
+                       fmt::format("subsurface: the grid medium \"{}\" (\"{}\") varies inside the object, which the "
+                                   "\"{}\" method cannot follow (it takes one homogeneous medium): use \"method\" "
+                                   "\"randomwalk\" or \"volumetric\", or a homogeneous interior",
+                                   m.name, m.type, to_string(sp.method)));
+    sp.g = m.g;
+  }
+}
+
+}  // namespace dermis

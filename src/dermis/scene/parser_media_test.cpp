@@ -94,5 +94,49 @@ TEST(ParserGridMedia, BadGridsAreErrorsAtTheValue) {
            "\"sigma_a\" has 2 values");
 }
 
+// A subsurface material's "interior" names a medium: a homogeneous one's coefficients (scale
+// applied), spectra and g become the material's; a grid one's index is kept for the random
+// walk and the volumetric reference, whatever comes first.
+TEST(ParserSubsurfaceInterior, HomogeneousCopiedGridKept) {
+  SceneDesc s = parse_world(
+      "MakeNamedMedium \"jade\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [1 2 3] \"rgb sigma_s\" [4 5 6]\n"
+      "  \"float scale\" 2 \"float g\" 0.25\n"
+      "Material \"subsurface\" \"string interior\" \"jade\"\n"
+      "Material \"subsurface\" \"string interior\" \"veins\" \"string method\" \"volumetric\"\n"
+      "MakeNamedMedium \"veins\" \"string type\" \"uniformgrid\" \"float density\" [1] \"float g\" -0.5\n");
+  ASSERT_EQ(s.materials.size(), 2u);
+  const SubsurfaceParams& jade = s.materials[0].subsurface;
+  EXPECT_EQ(jade.interior_medium, -1);
+  EXPECT_EQ(*jade.sigma_a, RGB(2, 4, 6));
+  EXPECT_EQ(*jade.sigma_s, RGB(8, 10, 12));
+  EXPECT_FLOAT_EQ(jade.g, 0.25f);
+  EXPECT_EQ(jade.boundary, SubsurfaceParams::Boundary::Dielectric);  // coefficients: the physical object
+  const SubsurfaceParams& veins = s.materials[1].subsurface;
+  EXPECT_EQ(veins.interior_medium, 1);
+  EXPECT_FLOAT_EQ(veins.g, -0.5f);
+}
+
+TEST(ParserSubsurfaceInterior, ErrorsAtTheName) {
+  auto error_at = [](const std::string& body, int line, int column, const std::string& what) {
+    try {
+      parse_world(body);
+      ADD_FAILURE() << "no error for " << body;
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.loc().line, line) << e.what();
+      EXPECT_EQ(e.loc().column, column) << e.what();
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  const std::string grid = "MakeNamedMedium \"g\" \"string type\" \"uniformgrid\" \"float density\" [1]\n";
+  error_at("Material \"subsurface\" \"string interior\" \"nowhere\"\n", 2, 41, "unknown medium \"nowhere\"");
+  error_at(grid + "Material \"subsurface\" \"string interior\" \"g\" \"string method\" \"disk\"\n", 3, 41,
+           "the \"disk\" method cannot follow");
+  error_at(grid + "Material \"subsurface\" \"string interior\" \"g\" \"rgb sigma_a\" [1 1 1]\n", 3, 1,
+           "or \"interior\", not several");
+  error_at(grid + "Material \"subsurface\" \"string interior\" \"g\" \"float scale\" 2\n", 3, 45,
+           "\"scale\" does not apply beside \"interior\"");
+  error_at("Material \"subsurface\" \"string interior\" [\"a\" \"b\"]\n", 2, 41, "\"interior\" needs one string");
+}
+
 }  // namespace
 }  // namespace dermis

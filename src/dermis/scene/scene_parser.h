@@ -59,6 +59,9 @@ class SceneParser {
   };
   static constexpr int kFirstPendingMedium = -2;
   int resolve_medium(int index) const;
+  // The medium a name at `at` refers to: its index, or a pending reference (resolved by
+  // finish()); -1 for the empty name (vacuum).
+  int medium_reference(const std::string& name, const SourceLoc& at);
   struct PendingInstance {
     std::string name;
     size_t index;  // into s_.instances
@@ -127,6 +130,9 @@ class SceneParser {
   void read_grid_medium(const ParamList& pl, MediumDesc& m);
   void read_grid_emission(const ParamList& pl, MediumDesc& m);
   void read_nanovdb_medium(const ParamList& pl, MediumDesc& m);
+  // The subsurface materials' "interior" media, once every medium is defined: a homogeneous
+  // one's coefficients copied into the material, a grid one kept (SubsurfaceParams::interior).
+  void resolve_subsurface_interiors();
   void medium_interface(const Token& d, TokenStream& ts);
 
   SceneDesc& s_;

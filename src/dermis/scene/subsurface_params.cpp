@@ -62,6 +62,9 @@ constexpr SubsurfaceParameter kParameters[] = {
     {"sigma_a", "rgb | texture", "0.0011 0.0024 0.014", "absorption coefficient per scene unit"},
     {"sigma_s", "rgb | texture", "2.55 3.21 3.77", "scattering coefficient per scene unit"},
     {"name", "string", "none", "a measured medium of Jensen et al. 2001, Table 2 (per mm)"},
+    {"interior", "string", "none",
+     "a named medium (MakeNamedMedium) filling the object: homogeneous, or a grid medium followed by the random walk "
+     "and the volumetric reference"},
     {"scale", "float", "1",
      "multiplies the coefficients and mfp, as pbrt-v4 does (or a float texture: per entry point)"},
     {"eta", "float", "1.33", "index of refraction of the boundary, in [1, 3]"},
@@ -165,6 +168,7 @@ namespace {
 struct GivenParameters {
   float scale = 1;
   const ParsedParam *sigma_a = nullptr, *sigma_s = nullptr, *reflectance = nullptr, *mfp = nullptr, *name = nullptr;
+  const ParsedParam *interior = nullptr, *scale_param = nullptr;
   const ParsedParam* entry = nullptr;
   const ParsedParam* normal_axis = nullptr;
   bool profile_given = false;
@@ -193,7 +197,14 @@ GivenParameters read_each_parameter(const ParamList& pl, Diagnostics& diag, cons
       g.mfp = &p;
     else if (n == "name")
       g.name = &p;
-    else if (n == "scale") {
+    else if (n == "interior") {
+      if (p.type != "string" || p.param.strings.size() != 1 || p.param.strings[0].empty())
+        throw SceneError(p.value_loc, "\"interior\" needs one string: the name of a MakeNamedMedium");
+      g.interior = &p;
+      s.interior = p.param.strings[0];
+      s.interior_loc = p.value_loc;
+    } else if (n == "scale") {
+      g.scale_param = &p;
       if (p.type == "texture")
         s.scale_texture = texture_index_of(p, true);
       else
@@ -360,11 +371,18 @@ void read_medium(const GivenParameters& g, const SourceLoc& loc, Diagnostics& di
     texture = texture_index_of(p, false);
     return stand_in;
   };
-  int ways = (g.name != nullptr) + (g.sigma_a || g.sigma_s) + (g.reflectance || g.mfp);
+  int ways = (g.name != nullptr) + (g.sigma_a || g.sigma_s) + (g.reflectance || g.mfp) + (g.interior != nullptr);
   if (ways > 1)
-    throw SceneError(
-        loc,
-        "subsurface: give either \"name\", or \"sigma_a\" + \"sigma_s\", or \"reflectance\" + \"mfp\", not several");
+    throw SceneError(loc,
+                     "subsurface: give either \"name\", or \"sigma_a\" + \"sigma_s\", or \"reflectance\" + \"mfp\", or "
+                     "\"interior\", not several");
+  // An interior medium: its own "scale" and "g" apply (the parser copies a homogeneous one's
+  // coefficients in; a grid medium's stay with it). Until then, and for a grid medium, the
+  // coefficients below are pbrt-v4's milk: a stand-in for what needs one medium per material.
+  if (g.interior && g.scale_param)
+    throw SceneError(g.scale_param->param.loc,
+                     "subsurface: \"scale\" does not apply beside \"interior\" (give the medium's own \"scale\" in "
+                     "its MakeNamedMedium)");
   if (g.name) {
     if (g.name->param.strings.size() != 1) throw SceneError(g.name->value_loc, "\"name\" needs one string");
     auto preset = find_medium_preset(g.name->param.strings[0]);

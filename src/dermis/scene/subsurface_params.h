@@ -112,6 +112,16 @@ struct SubsurfaceParams {
   // Materials with the same non-empty group form one subsurface object with every shape
   // that uses them; otherwise the object is the shapes sharing this material (pbrt-v4).
   std::string group;
+  // "interior": a named medium (MakeNamedMedium) fills the object instead of the
+  // coefficients above (docs/materials.md, "A heterogeneous interior"). The parser resolves
+  // the name: a homogeneous medium's coefficients, g and spectra are copied above (and
+  // interior_medium stays -1); a grid medium's index into SceneDesc::media (the renderer's
+  // medium of the same index) is kept in interior_medium, and the random walk follows it by
+  // null collisions (render/subsurface/heterogeneous_walk.h), the volumetric reference
+  // fills the object with it. The other methods refuse a grid medium.
+  std::string interior;
+  SourceLoc interior_loc;
+  int interior_medium = -1;
   SourceLoc loc;
 
   // The medium was given by its coefficients (sigma_a + sigma_s, a named medium, or none:

@@ -11,6 +11,7 @@
 #include "dermis/render/path/surface_vertex.h"
 #include "dermis/render/path_splitting.h"
 #include "dermis/render/russian_roulette.h"
+#include "dermis/render/spectral_media.h"
 #include "dermis/render/subsurface/object_tracer.h"
 
 namespace dermis {
@@ -224,6 +225,13 @@ VertexOutcome SubsurfaceVertex::exit() {
                         exit_light_none_};
   if (offered_inside) entry.lights_from_inside = &lights_inside;
   entry.wavelengths = ctx_.start.wavelengths;
+  // A grid interior (SubsurfaceParams::interior): the walk reads it at the path's colours or
+  // wavelengths, its emission included.
+  std::optional<GridMediumView> interior;
+  if (const int m = sm_.params.interior_medium; m >= 0 && sc.grid_medium_of(m) >= 0) {
+    interior = grid_medium_view(sc, m, ctx_.start.wavelengths, true);
+    entry.interior = &*interior;
+  }
   if (first_entry_ && ctx_.start.subsurface_record && ctx_.start.subsurface_record->material < 0)
     ctx_.start.subsurface_record->material = mat_.subsurface;
   // The probes' exits at the camera's first entry are one stratified sequence of the

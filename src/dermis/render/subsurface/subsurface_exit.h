@@ -17,6 +17,8 @@
 
 namespace dermis {
 
+struct GridMediumView;  // materials/grid_medium.h
+
 struct SubsurfaceExit {
   enum class Kind {
     ThroughLobe,  // leaves at `hit` through the exit lobe Sw (bsdf.h, materials/rough_exit_lobe.h)
@@ -102,6 +104,10 @@ struct SubsurfaceEntry {
   // is the value at one of them; integrator.h PathStart::wavelengths); null: RGB. A method
   // reads its parameters at them (coefficients.h medium_at_wavelengths).
   const SampledWavelengths* wavelengths = nullptr;
+  // The object's grid interior medium at the path's colours or wavelengths
+  // (SubsurfaceParams::interior), which the walk follows by null collisions
+  // (heterogeneous_walk.h); null: the material's own parameters.
+  const GridMediumView* interior = nullptr;
 };
 
 }  // namespace dermis

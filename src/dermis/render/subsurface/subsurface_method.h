@@ -48,6 +48,9 @@ struct SubsurfaceMaterial {
   int strategy_count() const {
     if (const auto* probe = std::get_if<ProbeMethod>(&method)) return probe->strategy_count();
     if (!std::holds_alternative<WalkMethod>(method)) return 1;
+    // A grid interior's walk samples the phase function alone (heterogeneous_walk.h): its
+    // strategies would be one.
+    if (params.interior_medium >= 0) return 1;
     const bool share_given = params.guided_share_pinned();
     // One channel per walk has no channel preference to choose.
     const bool channels_given =

@@ -12,6 +12,7 @@
 #include "dermis/geometry/shading_normal.h"
 #include "dermis/materials/bsdf.h"
 #include "dermis/materials/fresnel.h"
+#include "dermis/render/subsurface/heterogeneous_walk.h"
 
 namespace dermis {
 
@@ -181,7 +182,7 @@ bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Sub
     initial[channel] = 1;
   }
   bool exited = false;
-  if (!medium_per_entry_ && !entry.wavelengths) {
+  if (entry.interior || (!medium_per_entry_ && !entry.wavelengths)) {  // a grid interior: its own coefficients
     exited = walk(entry, settings_[strategy], steps_[strategy], initial, sampler, out);
   } else {
     // The entry point's own medium, at the path's wavelengths on a spectral path: the
@@ -213,8 +214,9 @@ bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Sub
 }
 
 bool WalkMethod::samples_refracted_light(const SubsurfaceEntry& entry) const {
-  return entry.lights_from_inside && boundary_ == SubsurfaceParams::Boundary::Dielectric && !roughness_.textured() &&
-         !roughness_.constant().rough();
+  // Not in a grid interior: the chance and the flight's weight read one medium's coefficients.
+  return entry.lights_from_inside && !entry.interior && boundary_ == SubsurfaceParams::Boundary::Dielectric &&
+         !roughness_.textured() && !roughness_.constant().rough();
 }
 
 RGB WalkMethod::refracted_light_at(const SubsurfaceEntry& entry, const RefractedLight& light,
@@ -362,7 +364,11 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
     // depth over the mean free path for the few walks that graze).
     const bool grazing = std::abs(dot(dir, start_n)) < kGrazingCos;
     const Vec3 walk_start = grazing ? offset_ray_origin(start, start_n, dir) : start;
-    if (!sss::random_walk(step, settings, guide, walk_start, dir, sampler, tracer, res, weight, at_collision)) {
+    const bool walked =
+        entry.interior
+            ? heterogeneous_walk(*entry.interior, settings, walk_start, dir, sampler, tracer, res, weight, out.gathered)
+            : sss::random_walk(step, settings, guide, walk_start, dir, sampler, tracer, res, weight, at_collision);
+    if (!walked) {
       out.truncated = res.truncated;
       return false;
     }
