@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """What a grid interior costs the random walk (issue 67, item 3), in one run with the renders
 interleaved (this machine is shared and noisy). A unit sphere of subsurface material (the
-`dielectric` boundary, eta 1.4) under a sky and a distant light, filled:
+`dielectric` boundary, eta 1.4, given) under a sky and a distant light, filled:
 - "homogeneous": with a homogeneous medium (the homogeneous walk, its pilot and guiding);
 - "constant grid": with a uniformgrid of constant density 1 and the same coefficients, which
   the walk follows by null collisions (render/subsurface/heterogeneous_walk.h): the same
@@ -40,8 +40,10 @@ BOX = '"point3 p0" [-1.2 -1.2 -1.2] "point3 p1" [1.2 1.2 1.2]'
 
 
 def material(interior, method=""):
-    return (f'Material "subsurface" "string interior" "{interior}" "float eta" 1.4 {method}\n'
-            'Shape "sphere"\n')
+    # The `dielectric` boundary, given: beside the distant light the walk's default would be
+    # the diffuse one (docs/materials.md, "Which boundary"), not the volumetric method's glass.
+    return (f'Material "subsurface" "string interior" "{interior}" "float eta" 1.4 "string boundary" "dielectric" '
+            f'{method}\nShape "sphere"\n')
 
 
 def scenes(out):
@@ -84,9 +86,15 @@ def main():
     out = args.out or tempfile.mkdtemp(prefix="dermis-grid-interior-")
     os.makedirs(out, exist_ok=True)
     files = scenes(out)
-    exr = os.path.join(out, "o.exr")
-    ref = {"homogeneous": render(args.dermis, files["homogeneous"], exr, args.ref_spp, args.res, 1000)[1]}
-    ref["volumetric"] = render(args.dermis, files["veined grid, volumetric"], exr, args.ref_spp, args.res, 1000)[1]
+    # A file per render: OpenImageIO's image cache would hand back an earlier file's pixels
+    # under a name read before.
+    def exr(name, seed):
+        return os.path.join(out, f"{name.replace(' ', '_').replace(',', '')}-{seed}.exr")
+
+    ref = {"homogeneous": render(args.dermis, files["homogeneous"], exr("homogeneous", "ref"), args.ref_spp, args.res,
+                                 1000)[1]}
+    ref["volumetric"] = render(args.dermis, files["veined grid, volumetric"], exr("volumetric", "ref"), args.ref_spp,
+                               args.res, 1000)[1]
     against = {"homogeneous": "homogeneous", "constant grid": "homogeneous", "veined grid, walk": "volumetric",
                "veined grid, volumetric": "volumetric"}
     mask = ref["homogeneous"].sum(axis=2) != ref["homogeneous"].sum(axis=2)[0, 0]  # the sphere's pixels
@@ -94,7 +102,7 @@ def main():
     errors = {name: [] for name in files}
     for seed in range(args.seeds):
         for name, scene in files.items():  # interleaved
-            t, image = render(args.dermis, scene, exr, args.spp, args.res, seed + 1)
+            t, image = render(args.dermis, scene, exr(name, seed + 1), args.spp, args.res, seed + 1)
             times[name].append(t)
             errors[name].append(float(np.mean((image - ref[against[name]])[mask] ** 2)))
     print(f"{args.spp} spp at {args.res}, {args.seeds} seeds, references at {args.ref_spp} spp; scenes in {out}\n")

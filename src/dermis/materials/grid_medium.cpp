@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "dermis/materials/medium.h"
 #include "dermis/materials/noise.h"
 #include "dermis/spectral/blackbody.h"
 #include "dermis/spectral/spectrum_at.h"
@@ -159,6 +160,11 @@ RGB GridMediumView::majorant(int cell) const {
   const GridMedium::MajorantCell& c = grid->majorants[std::size_t(cell)];
   if (grid->kind != GridMedium::Kind::RGBGrid) return (sigma_a_unit + sigma_s_unit) * c.rgb[0];
   return (wavelengths ? RGB(c.any_wavelength) : c.rgb) * sigma_a_unit[0];
+}
+
+RGB GridMediumView::channel_preference() const {
+  if (grid->kind == GridMedium::Kind::RGBGrid) return RGB(1);
+  return HomogeneousMedium::from_coefficients(sigma_a_unit, sigma_s_unit, 1, g).channel_preference;
 }
 
 MajorantTraversal::MajorantTraversal(const GridMediumView& m, const Ray& ray, float t_max) : m_(&m) {

@@ -105,6 +105,10 @@ struct GridMediumView {
   RGB density_emission(Vec3 unit) const;
   // The majorant of cell i, per slot.
   RGB majorant(int cell) const;
+  // The preference of delta tracking's channel choice (null_scattering.h) for channels of
+  // little absorption (HomogeneousMedium::channel_preference), which a density scales alike
+  // everywhere; an rgbgrid's albedo varies from sample to sample: none (1).
+  RGB channel_preference() const;
 };
 
 // One stretch [t0, t1) of a ray inside one majorant cell.

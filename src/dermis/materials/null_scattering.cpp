@@ -19,7 +19,8 @@ void renormalise(RGB& a) {
 }  // namespace
 
 NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, const Ray& ray, float t_max,
-                                                   const RGB& beta, const RGB& preference, float u_channel, Rng& rng) {
+                                                   const RGB& beta, const RGB& preference, float u_channel, Rng& rng,
+                                                   Absorption absorption) {
   NullScatteringFlight f;
   RGB q;
   float qsum = 0;
@@ -59,10 +60,13 @@ NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, cons
       }
       const float u = rng.uniform();
       const float p_absorb = k.sigma_a[c] / majorant, p_scatter = k.sigma_s[c] / majorant;
-      if (u < p_absorb) return f;  // absorbed: the path ends
+      const bool weighted = absorption == Absorption::Weighted;
+      if (!weighted && u < p_absorb) return f;  // absorbed: the path ends
       if (u < p_absorb + p_scatter) {
+        // Channel k's integrand a[k] T_k sigma_s,k; its density a[k] T_k sigma_s,k (analog) or
+        // a[k] T_k sigma_t,k (weighted: every real collision scatters).
         const RGB fk = a * tr * k.sigma_s;
-        const float pdf = mixture(fk);
+        const float pdf = mixture(weighted ? a * tr * (k.sigma_a + k.sigma_s) : fk);
         if (!(pdf > 0)) return f;
         f.valid = f.scattered = true;
         f.t = t;

@@ -37,10 +37,18 @@ struct NullScatteringFlight {
 // The most tentative collisions one flight or one transmittance estimate takes.
 inline constexpr int kMaxTentativeCollisions = 1 << 24;
 
+// What a real collision does: Analog, an absorption (the path ends) with probability
+// sigma_a / sigma_t and a scattering otherwise, as pbrt-v4's volpath; Weighted, always a
+// scattering, its weight carrying sigma_s / sigma_t (survival biasing: channel k's density of
+// the collision is then sigma_t,k T_k, its integrand sigma_s,k T_k), which a random walk
+// takes: a walk ended by an absorption in one channel carries nothing in the others.
+enum class Absorption { Analog, Weighted };
+
 // beta: the path throughput and `preference` a per-channel factor (both choose the channel);
 // u_channel uniform in [0, 1); rng draws the distances and events.
 NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, const Ray& ray, float t_max,
-                                                   const RGB& beta, const RGB& preference, float u_channel, Rng& rng);
+                                                   const RGB& beta, const RGB& preference, float u_channel, Rng& rng,
+                                                   Absorption absorption = Absorption::Analog);
 
 // An unbiased estimate of the transmittance along [0, t_max) in every channel by ratio
 // tracking (Cramer 1978; Novak et al. 2014 sec. 4.2) against the largest channel's majorant,

@@ -83,7 +83,8 @@ TEST(NullScattering, RatioTrackingMatchesTheOpticalDepth) {
 // Delta tracking with the one-sample balance heuristic over channels: in every channel the
 // flights' weights reproduce the probability to pass (the transmittance), to scatter
 // (int sigma_s T dt) and the mean scattering distance (int t sigma_s T dt), whichever channel
-// drew each flight; with a throughput that prefers one channel strongly, too.
+// drew each flight; with a throughput that prefers one channel strongly, too; with absorption
+// as an event and as a weight.
 TEST(NullScattering, DeltaTrackingIsUnbiasedInEveryChannel) {
   Fixture f;
   const Ray ray{Vec3(-0.5f, -0.3f, 0.1f), normalize(Vec3(1, 0.6f, 0.3f))};
@@ -107,27 +108,30 @@ TEST(NullScattering, DeltaTrackingIsUnbiasedInEveryChannel) {
     }
     for (int c = 0; c < 3; ++c) pass[c] = std::exp(-tau[c]);
   }
-  for (const RGB& beta : {RGB(1), RGB(0.05f, 1, 0.2f)})
-    for (const RGB& preference : {RGB(1), RGB(1, 3, 0.5f)}) {
-      Rng rng(12, 1), channels(13, 2);
-      std::vector<NullScatteringFlight> flights;
-      for (int i = 0; i < 200000; ++i)
-        flights.push_back(sample_null_scattering_flight(f.view, ray, t_max, beta, preference, channels.uniform(), rng));
-      auto over_flights = [&](const std::function<RGB(const NullScatteringFlight&)>& value) {
-        std::size_t i = 0;
-        return estimate(int(flights.size()), [&] { return value(flights[i++]); });
-      };
-      expect_within_4_sigma(
-          over_flights([](const NullScatteringFlight& fl) { return fl.valid && !fl.scattered ? fl.weight : RGB(0); }),
-          pass, "pass");
-      expect_within_4_sigma(
-          over_flights([](const NullScatteringFlight& fl) { return fl.valid && fl.scattered ? fl.weight : RGB(0); }),
-          scatter, "scatter");
-      expect_within_4_sigma(over_flights([](const NullScatteringFlight& fl) {
-                              return fl.valid && fl.scattered ? fl.weight * fl.t : RGB(0);
-                            }),
-                            mean_t, "distance");
-    }
+  for (const Absorption absorption : {Absorption::Analog, Absorption::Weighted})
+    for (const RGB& beta : {RGB(1), RGB(0.05f, 1, 0.2f)})
+      for (const RGB& preference : {RGB(1), RGB(1, 3, 0.5f)}) {
+        SCOPED_TRACE(absorption == Absorption::Analog ? "analog absorption" : "weighted absorption");
+        Rng rng(12, 1), channels(13, 2);
+        std::vector<NullScatteringFlight> flights;
+        for (int i = 0; i < 200000; ++i)
+          flights.push_back(
+              sample_null_scattering_flight(f.view, ray, t_max, beta, preference, channels.uniform(), rng, absorption));
+        auto over_flights = [&](const std::function<RGB(const NullScatteringFlight&)>& value) {
+          std::size_t i = 0;
+          return estimate(int(flights.size()), [&] { return value(flights[i++]); });
+        };
+        expect_within_4_sigma(
+            over_flights([](const NullScatteringFlight& fl) { return fl.valid && !fl.scattered ? fl.weight : RGB(0); }),
+            pass, "pass");
+        expect_within_4_sigma(
+            over_flights([](const NullScatteringFlight& fl) { return fl.valid && fl.scattered ? fl.weight : RGB(0); }),
+            scatter, "scatter");
+        expect_within_4_sigma(over_flights([](const NullScatteringFlight& fl) {
+                                return fl.valid && fl.scattered ? fl.weight * fl.t : RGB(0);
+                              }),
+                              mean_t, "distance");
+      }
 }
 
 // A channel with no medium passes with weight one over the box, and an absorbing-only

@@ -183,10 +183,6 @@ void SceneParser::read_nanovdb_medium(const ParamList& pl, MediumDesc& m) {
   read_temperature_mapping(pl, m);
 }
 
-}  // namespace dermis
-
-namespace dermis {
-
 void SceneParser::resolve_subsurface_interiors() {
   for (MaterialDesc& md : s_.materials) {
     SubsurfaceParams& sp = md.subsurface;

@@ -11,13 +11,8 @@ VertexOutcome shade_grid_volume(PathContext& ctx, PathState& st, float t_hit) {
   const RenderScene& sc = ctx.sc;
   Sampler& sampler = ctx.sampler;
   const GridMediumView m = grid_medium_view(sc, st.medium, st.wavelengths, true);
-  // The flight's channel follows the throughput times the medium's preference for channels
-  // of little absorption (medium.h), which a density scales alike everywhere; an rgbgrid's
-  // albedo varies from sample to sample: no preference.
-  const RGB preference =
-      m.grid->kind == GridMedium::Kind::RGBGrid
-          ? RGB(1)
-          : HomogeneousMedium::from_coefficients(m.sigma_a_unit, m.sigma_s_unit, 1, m.g).channel_preference;
+  // The flight's channel follows the throughput times the medium's preference.
+  const RGB preference = m.channel_preference();
   const Vec2 u_flight = sampler.get2d();
   Rng rng = tracking_rng(u_flight.y, st.ray);
   const NullScatteringFlight flight =

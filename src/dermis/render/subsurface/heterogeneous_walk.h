@@ -3,13 +3,16 @@
 // its line up to the boundary the tracer finds there; its tentative collisions follow the
 // majorant grid, and each is a real scattering or a null one (delta tracking with the
 // one-sample balance heuristic over the channels: materials/null_scattering.h; Woodcock et
-// al. 1965, Miller et al. 2019). A flight that passes the boundary leaves the medium, and the
+// al. 1965, Miller et al. 2019), every real collision a scattering weighted by the albedo
+// (Absorption::Weighted: no walk ends by absorption but by roulette, as the homogeneous
+// walk's). A flight that passes the boundary leaves the medium, and the
 // caller applies the boundary's rules as for the homogeneous walk (walk_method.cpp): the
 // result is the homogeneous walk's (sss/walk/random_walk.h WalkResult). Flights sample the
 // phase function (Henyey & Greenstein 1941); the guided flights of the homogeneous walk
 // follow a half-space of one medium (Dwivedi's), which a varying one is not.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -32,23 +35,30 @@ namespace dermis {
 // sss::random_walk, asked here for the nearest boundary along a whole line (max_t
 // infinite): the tracking needs the segment's end before it starts. `rng`: a random stream
 // or a pixel sampler (uniform()). The medium's emission met on the way, times the
-// throughput, is added to `emitted`.
-template <class Random, class Tracer>
+// throughput, is added to `emitted`. on_collision(position, incoming propagation direction,
+// throughput per channel) is called at every scattering event (after its weight, which
+// holds the medium's sigma_s there, and the roulette; before the next direction is drawn),
+// as sss::random_walk's.
+template <class Random, class Tracer, class OnCollision = sss::NoCollisionHook>
 bool heterogeneous_walk(const GridMediumView& medium, const sss::WalkSettings& settings, Vec3 start_p, Vec3 dir_in,
-                        Random& rng, Tracer&& tracer, sss::WalkResult& out, RGB initial, RGB& emitted) {
+                        Random& rng, Tracer&& tracer, sss::WalkResult& out, RGB initial, RGB& emitted,
+                        OnCollision&& on_collision = {}) {
   out = sss::WalkResult{};
   RGB throughput = initial;
   if (!(throughput.max() > 0)) return false;
   Vec3 position = start_p, direction = normalize(dir_in);
   Vec3 incoming;  // the direction of the flight that ended at `position` (after a scattering)
+  // Each flight's channel follows the throughput times the medium's preference (as the
+  // volumetric path tracer's: path/grid_volume_vertex.cpp).
+  const RGB preference = medium.channel_preference();
   for (int steps = 0;;) {
     const sss::BoundaryHit hit = tracer(position, direction, std::numeric_limits<double>::infinity());
     if (!hit.hit) return false;  // no boundary ahead: lost
     const Ray ray{position, direction};
     const float u_channel = rng.uniform();
     Rng tracking = tracking_rng(rng.uniform(), ray);
-    const NullScatteringFlight flight =
-        sample_null_scattering_flight(medium, ray, hit.t, throughput, RGB(1), u_channel, tracking);
+    const NullScatteringFlight flight = sample_null_scattering_flight(medium, ray, hit.t, throughput, preference,
+                                                                      u_channel, tracking, Absorption::Weighted);
     emitted += throughput * flight.emitted;
     if (!flight.valid) {
       out.truncated = flight.stalled;
@@ -77,6 +87,7 @@ bool heterogeneous_walk(const GridMediumView& medium, const sss::WalkSettings& s
       if (rng.uniform() * settings.roulette_threshold >= m) return false;
       throughput *= settings.roulette_threshold / m;
     }
+    on_collision(Vec3d(position), Vec3d(direction), std::array<double, 3>{throughput[0], throughput[1], throughput[2]});
     incoming = direction;
     const float cos_theta = sample_henyey_greenstein_cos(rng.uniform(), medium.g);
     const double phi = 2 * std::numbers::pi * double(rng.uniform());

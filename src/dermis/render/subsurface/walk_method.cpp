@@ -12,6 +12,7 @@
 #include "dermis/geometry/shading_normal.h"
 #include "dermis/materials/bsdf.h"
 #include "dermis/materials/fresnel.h"
+#include "dermis/materials/null_scattering.h"
 #include "dermis/render/subsurface/heterogeneous_walk.h"
 
 namespace dermis {
@@ -47,6 +48,17 @@ float refracted_light_chance(const sss::MixtureWalkStep<3>& step, const SurfaceH
   double transmittance = 0;
   for (std::size_t c = 0; c < 3; ++c) transmittance = std::max(transmittance, std::exp(-step.sigma_t()[c] * depth));
   return std::clamp(float(transmittance) / kRefractedLightFullTransmittance, kRefractedLightLeastChance, 1.0f);
+}
+// In a grid interior the medium between y and the plane is not one sigma_t: light is sampled
+// at every scattering event (a chance of one).
+float refracted_light_chance(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3>& step, const SurfaceHit& plane,
+                             Vec3 y) {
+  return entry.interior ? 1.0f : refracted_light_chance(step, plane, y);
+}
+
+// The Henyey-Greenstein anisotropy the walk scatters with: the grid interior's, or the step's.
+float phase_g(const SubsurfaceEntry& entry, const sss::MixtureWalkStep<3>& step) {
+  return entry.interior ? entry.interior->g : float(step.g());
 }
 
 // The plane light is refracted through at the scattering event y, a function of y alone:
@@ -214,15 +226,14 @@ bool WalkMethod::sample_exit(const SubsurfaceEntry& entry, Sampler& sampler, Sub
 }
 
 bool WalkMethod::samples_refracted_light(const SubsurfaceEntry& entry) const {
-  // Not in a grid interior: the chance and the flight's weight read one medium's coefficients.
-  return entry.lights_from_inside && !entry.interior && boundary_ == SubsurfaceParams::Boundary::Dielectric &&
-         !roughness_.textured() && !roughness_.constant().rough();
+  return entry.lights_from_inside && boundary_ == SubsurfaceParams::Boundary::Dielectric && !roughness_.textured() &&
+         !roughness_.constant().rough();
 }
 
 RGB WalkMethod::refracted_light_at(const SubsurfaceEntry& entry, const RefractedLight& light,
                                    const sss::MixtureWalkStep<3>& step, const SurfaceHit& plane, Vec3 y, Vec3 incoming,
                                    const std::array<double, 3>& throughput, Sampler& sampler) const {
-  const float chance = refracted_light_chance(step, plane, y);
+  const float chance = refracted_light_chance(entry, step, plane, y);
   if (chance < 1 && !(sampler.uniform() < chance)) return RGB(0);
   const float u1 = sampler.uniform(), u2 = sampler.uniform();
   const Vec3 n_ref = refracted_light_normal(entry, y, eta_);
@@ -239,15 +250,25 @@ RGB WalkMethod::refracted_light_at(const SubsurfaceEntry& entry, const Refracted
   const RGB Le = light.lights().emission(x.p, x.ng, *out);
   if (Le.is_black()) return RGB(0);
   const float transmitted = 1 - fresnel_dielectric(dot(-v, ns), eta_);
-  const float phase = henyey_greenstein(dot(incoming, v), float(step.g()));
+  const float phase = henyey_greenstein(dot(incoming, v), phase_g(entry, step));
   const float p = p_light * chance;                 // the technique's density, taken or not
   const float w = p * p / (p * p + phase * phase);  // Veach 1997, eq. 9.13
   const double t = length(x.p - y);
   RGB sum;
-  // The scattering event's albedo (the walk applies it with the flight that follows:
-  // walk_step.h, F_k) and the flight's transmittance, exp(-sigma_t t), per channel.
-  for (std::size_t c = 0; c < 3; ++c)
-    sum[int(c)] = float(throughput[c] * step.albedo()[c] * std::exp(-step.sigma_t()[c] * t));
+  if (entry.interior) {
+    // A grid interior: the scattering event's sigma_s is in the throughput already
+    // (heterogeneous_walk.h), and the flight's transmittance is ratio tracking's unbiased
+    // estimate (null_scattering.h).
+    const Ray flight{y, v};
+    Rng rng = tracking_rng(sampler.uniform(), flight);
+    const RGB tr = ratio_tracking_transmittance(*entry.interior, flight, float(t), rng);
+    for (std::size_t c = 0; c < 3; ++c) sum[int(c)] = float(throughput[c] * tr[int(c)]);
+  } else {
+    // The scattering event's albedo (the walk applies it with the flight that follows:
+    // walk_step.h, F_k) and the flight's transmittance, exp(-sigma_t t), per channel.
+    for (std::size_t c = 0; c < 3; ++c)
+      sum[int(c)] = float(throughput[c] * step.albedo()[c] * std::exp(-step.sigma_t()[c] * t));
+  }
   return sum * Le * (phase * transmitted * w / p);
 }
 
@@ -364,10 +385,10 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
     // depth over the mean free path for the few walks that graze).
     const bool grazing = std::abs(dot(dir, start_n)) < kGrazingCos;
     const Vec3 walk_start = grazing ? offset_ray_origin(start, start_n, dir) : start;
-    const bool walked =
-        entry.interior
-            ? heterogeneous_walk(*entry.interior, settings, walk_start, dir, sampler, tracer, res, weight, out.gathered)
-            : sss::random_walk(step, settings, guide, walk_start, dir, sampler, tracer, res, weight, at_collision);
+    const bool walked = entry.interior ? heterogeneous_walk(*entry.interior, settings, walk_start, dir, sampler, tracer,
+                                                            res, weight, out.gathered, at_collision)
+                                       : sss::random_walk(step, settings, guide, walk_start, dir, sampler, tracer, res,
+                                                          weight, at_collision);
     if (!walked) {
       out.truncated = res.truncated;
       return false;
@@ -423,8 +444,8 @@ bool WalkMethod::walk(const SubsurfaceEntry& entry, const sss::WalkSettings& set
       if (refracted_light && res.from_collision)
         out.emission_weight =
             light->walk_weight(res.last_collision, refracted_light_normal(entry, res.last_collision, eta_), d,
-                               henyey_greenstein(dot(res.last_incoming, d), float(step.g())),
-                               refracted_light_chance(step, in, res.last_collision));
+                               henyey_greenstein(dot(res.last_incoming, d), phase_g(entry, step)),
+                               refracted_light_chance(entry, step, in, res.last_collision));
       return true;
     }
     // Internal reflection: the walk goes on from the boundary.
