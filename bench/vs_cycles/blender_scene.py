@@ -119,6 +119,16 @@ def world():
     bg = w.node_tree.nodes["Background"]
     bg.inputs["Color"].default_value = (*(sc["sky"] or (0.0, 0.0, 0.0)), 1.0)
     bg.inputs["Strength"].default_value = 1.0  # radiance = colour x strength
+    env = sc.get("environment")
+    if env:
+        # The HDR environment's lat-long map (environments.py), linear, looked up at the
+        # nearest pixel as pbrt-v4's infinite light looks up its equal-area map; world
+        # importance sampling is Cycles' default (Auto).
+        tex = w.node_tree.nodes.new("ShaderNodeTexEnvironment")
+        tex.image = bpy.data.images.load(env["latlong"])
+        tex.image.colorspace_settings.name = "Non-Color"
+        tex.interpolation = "Closest"
+        w.node_tree.links.new(tex.outputs["Color"], bg.inputs["Color"])
     scene.world = w
 
 
@@ -285,8 +295,9 @@ camera()
 world()
 for L in sc["lights"]:
     key_light(L)
-obj = shape()
-material(obj)
+if sc.get("shape"):  # none: the lights alone (environments.py's check)
+    obj = shape()
+    material(obj)
 
 c = scene.cycles
 info = dict(

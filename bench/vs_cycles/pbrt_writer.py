@@ -3,7 +3,7 @@
 import os
 
 from bench.harness.paths import ROOT
-from bench.vs_cycles import scenes
+from bench.vs_cycles import environments, scenes
 
 
 def _v(xs):
@@ -30,8 +30,11 @@ WorldBegin
 
 
 def lights(sc):
-    """The sky (none: a black background) and the one-sided quad lights."""
+    """The sky (none: a black background) or the HDR environment, and the one-sided quad lights."""
     out = f'\nLightSource "infinite" "rgb L" [ {_v(sc["sky"])} ]\n' if sc["sky"] else "\n"
+    if sc.get("environment"):
+        env = environments.attach(sc["environment"])
+        out += f'LightSource "infinite" "string filename" "{env["equal_area"]}"\n'
     for L in sc["lights"]:
         p = "  ".join(_v(c) for c in L["corners"])
         out += f"""AttributeBegin

@@ -13,6 +13,7 @@ for the family, over the whole image too).
   /usr/bin/python3 -m bench.vs_cycles.run --set heldout           # eight held-out configurations, ~11 min
   /usr/bin/python3 -m bench.vs_cycles.run --set textured          # six with a checkerboard reflectance, ~9 min
   /usr/bin/python3 -m bench.vs_cycles.run --set closeup           # the family's twelve framed close, ~25 min
+  /usr/bin/python3 -m bench.vs_cycles.run --set lighting          # HDR environments and area lights (issue 66), 45 scenes
   /usr/bin/python3 -m bench.vs_cycles.run --scenes medium-matched,calibration --spp 16,64
 
 Measurement (as bench/sss_methods.py): E[(A - R)^2] = Var A + bias^2 + Var R, and the
@@ -39,7 +40,7 @@ from bench.harness import docs_page, progress, provenance, render
 from bench.harness.exr import read_exr
 from bench.harness.paths import DERMIS, IMAGES as DOCS_IMAGES, RESULTS, ROOT
 from bench.harness.pictures import strip, write_png
-from bench.vs_cycles import cycles_log, pbrt_writer
+from bench.vs_cycles import cycles_log, environments, pbrt_writer
 from bench.vs_cycles import scenes as S
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -50,11 +51,13 @@ DOC = {"family": os.path.join(RESULTS, "results-vs-cycles.md"),
        "heldout": os.path.join(RESULTS, "results-vs-cycles-heldout.md"),
        "textured": os.path.join(RESULTS, "results-vs-cycles-textured.md"),
        "closeup": os.path.join(RESULTS, "results-vs-cycles-closeup.md"),
+       "lighting": os.path.join(RESULTS, "results-vs-cycles-lighting.md"),
        "classic": os.path.join(RESULTS, "results-vs-cycles-classic.md")}
 IMAGES = {"family": os.path.join(DOCS_IMAGES, "vs-cycles"),
           "heldout": os.path.join(DOCS_IMAGES, "vs-cycles-heldout"),
           "textured": os.path.join(DOCS_IMAGES, "vs-cycles-textured"),
           "closeup": os.path.join(DOCS_IMAGES, "vs-cycles-closeup"),
+          "lighting": os.path.join(DOCS_IMAGES, "vs-cycles-lighting"),
           "classic": os.path.join(DOCS_IMAGES, "vs-cycles")}
 
 
@@ -329,6 +332,8 @@ def make_highlights(args, sc, work, mask):
 
 def run_scene(args, name):
     sc = json.loads(json.dumps(S.SCENES[name]))  # a copy
+    if sc.get("environment"):  # its two maps, written into the run's folder once
+        environments.attach(sc["environment"], os.path.join(args.out, "environments"))
     if args.res:
         sc["res"] = list(args.res)
     if sc["material"]["kind"] == "subsurface":
@@ -520,14 +525,14 @@ def probe_cost_targets(entries):
 def config_set(entries):
     """Which set the entries are: the held-out configurations (h01 ...), the textured ones
     (t01 ...) or the family's."""
-    for prefix, name in (("h", "heldout"), ("t", "textured"), ("c", "closeup")):
+    for prefix, name in (("h", "heldout"), ("t", "textured"), ("c", "closeup"), ("l", "lighting")):
         if all(e["config"].startswith(prefix) for e in entries):
             return name
     return "family"
 
 
 SET_TITLES = {"family": "scene family", "heldout": "held-out configurations", "textured": "textured configurations",
-              "closeup": "close-ups"}
+              "closeup": "close-ups", "lighting": "lighting axis"}
 
 
 def family_chart(entries, path):
@@ -767,7 +772,8 @@ FINDINGS_MARKER = "<!-- findings: written by hand below this line; kept when run
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--set", choices=["family", "heldout", "textured", "closeup", "classic"], default="family",
+    ap.add_argument("--set", choices=["family", "heldout", "textured", "closeup", "lighting", "classic"],
+                    default="family",
                     help="family (default): the scene family of issue 40, chosen before tuning (scenes.FAMILY); "
                          "heldout: eight other configurations on the family's geometries, never used for tuning "
                          "(scenes.HELDOUT; the family's settings, report docs/results/results-vs-cycles-heldout.md); "
@@ -775,6 +781,9 @@ def main():
                          "family's settings, report docs/results/results-vs-cycles-textured.md); "
                          "closeup: the family's twelve configurations framed close, the object about three quarters "
                          "of the frame (scenes.CLOSEUP; report docs/results/results-vs-cycles-closeup.md); "
+                         "lighting: the lighting axis of issue 66, two HDR environments and an area light of three "
+                         "sizes on one configuration per geometry and on three media (scenes.LIGHTING; report "
+                         "docs/results/results-vs-cycles-lighting.md); "
                          "classic: the seven scenes of issue 15")
     ap.add_argument("--scenes", default="", help=f"comma-separated scene names instead of --set, from "
                     f"{', '.join(S.SCENES)}")
@@ -804,7 +813,7 @@ def main():
     ap.add_argument("--note", default="", help="a sentence for the report (e.g. the state of the machine)")
     args = ap.parse_args()
     argv = sys.argv[1:]
-    family = args.set in ("family", "heldout", "textured", "closeup") and not args.scenes
+    family = args.set in ("family", "heldout", "textured", "closeup", "lighting") and not args.scenes
     if not args.spp:
         args.spp = "4,16" if args.quick else "16,64" if family else "16,64,256"
     if not args.seeds:
@@ -833,7 +842,7 @@ def main():
         sys.exit(f"{args.dermis} not found: build first (make build)")
     names = [n for n in args.scenes.split(",") if n] or list(
         {"family": S.FAMILY, "heldout": S.HELDOUT, "textured": S.TEXTURED, "closeup": S.CLOSEUP,
-         "classic": S.DEFAULT_SCENES}[args.set])
+         "lighting": S.LIGHTING, "classic": S.DEFAULT_SCENES}[args.set])
     for n in names:
         if n not in S.SCENES:
             sys.exit(f"unknown scene {n}; known: {', '.join(S.SCENES)}")

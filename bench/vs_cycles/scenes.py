@@ -86,11 +86,15 @@ BUST_GEOM = dict(
 )
 
 
-def scene(name, geom, material, checks, dermis, ref_factor=1.0, sky=SKY, res=RES):
+def scene(name, geom, material, checks, dermis, ref_factor=1.0, sky=SKY, res=RES, environment=None):
     """ref_factor multiplies the reference time of the run (run.py --reference-time); sky
-    None: no environment light (a black background)."""
-    return dict(name=name, res=list(res), sky=sky, max_depth=MAX_DEPTH, material=material, checks=checks,
-                dermis=dermis, ref_factor=ref_factor, **geom)
+    None: no uniform environment light (a black background); environment: the name of an HDR
+    environment (environments.py) lighting the scene."""
+    sc = dict(name=name, res=list(res), sky=sky, max_depth=MAX_DEPTH, material=material, checks=checks,
+              dermis=dermis, ref_factor=ref_factor, **geom)
+    if environment:
+        sc["environment"] = dict(name=environment)
+    return sc
 
 
 # `dermis`: the Dermis variants rendered for the scene, label -> extra material parameters
@@ -231,11 +235,59 @@ def ellipsoid_mesh(center, semi_axes, segments, rings):
     return verts, faces
 
 
+# ---------------------------------------------------------------- the lighting axis (issue 66)
+#
+# The lights artists use, chosen and committed before any change made against them (never
+# tuned per scene): two HDR environments made by the harness (environments.py: an outdoor
+# sky with a sun of 2 degrees' radius, a studio with three soft boxes), and a square area
+# light alone, no environment, subtending about 0.005, 0.05 and 0.2 sr at the object (from
+# the family's key direction and distance; its radiance such that the irradiance it gives,
+# L times its solid angle, is the same for the three, the sun's). Applied to one
+# configuration per geometry (both methods) and to the media: the family's index-matched and
+# in-glass media and a dense, strongly scattering, chromatic one (mfp 2-4 % of the sphere's
+# diameter, albedo 0.94-0.98, the channels' extinction 2x apart) in an index-matched sphere.
+
+HDR_LIGHTINGS = {"hdr-outdoor": "outdoor", "hdr-studio": "studio"}
+AREA_LIGHTINGS = {"area-0.005": 0.005, "area-0.05": 0.05, "area-0.2": 0.2}  # solid angle at the object, sr
+AREA_IRRADIANCE = 1.2  # L x solid angle, as the outdoor sun's (environments.py)
+AREA_COLOUR = [1.0, 0.85, 0.65]  # the key's colour (KEY), its largest channel 1
+LIGHTINGS = list(HDR_LIGHTINGS) + list(AREA_LIGHTINGS)
+# (geometry, mfp / size, material): one family configuration per geometry (f01, f09, f11).
+LIGHTING_CONFIGS = [("sphere", 0.1, "skin"), ("bust", 0.1, "wax"), ("fin", 1.0, "milk")]
+# Dense medium (per mm): sigma_t 0.6, 0.9, 1.2 (mfp 1.7-0.8 mm in the 40 mm sphere), albedo
+# 0.98, 0.96, 0.94.
+DENSE_MEDIUM = dict(sigma_a=[0.012, 0.036, 0.072], sigma_s=[0.588, 0.864, 1.128], g=0.3)
+LIGHTING_MEDIA = ["matched", "glass", "dense"]
+
+
+def square_side(solid_angle, distance):
+    """The side of a square, facing a point on its axis at `distance`, that subtends
+    `solid_angle` there: Omega = 4 asin(s^2 / (s^2 + 4 d^2))."""
+    q = math.sin(solid_angle / 4)
+    return 2 * distance * math.sqrt(q / (1 - q))
+
+
+def area_light(g, solid_angle):
+    """The area light of a geometry subtending `solid_angle` at the object's centre, where its
+    key light is (FAMILY_GEOMETRY), facing it."""
+    corners = g["key"]["corners"]
+    center = [sum(c[i] for c in corners) / 4 for i in range(3)]
+    distance = math.sqrt(sum(x * x for x in center))
+    L = AREA_IRRADIANCE / solid_angle
+    return quad_light(center, [0.0, 0.0, 0.0], square_side(solid_angle, distance), [L * c for c in AREA_COLOUR])
+
+
 def _family_lights(g, balance):
+    """The uniform sky (or None), the quad lights and the HDR environment (or None) of a light
+    balance: the family's four, or the lighting axis' (LIGHTINGS)."""
+    if balance in HDR_LIGHTINGS:
+        return None, [], HDR_LIGHTINGS[balance]
+    if balance in AREA_LIGHTINGS:
+        return None, [area_light(g, AREA_LIGHTINGS[balance])], None
     sky = SKY if balance in ("sky", "both", "back") else None
     lights = {"sky": [], "key": [g["key"]], "both": [g["key"]], "back": [g["back"]]}[balance]
     assert all(lights), f"no {balance} light for this geometry"
-    return sky, lights
+    return sky, lights, None
 
 
 def _family_scenes(configs=None, materials=None, prefix="f", kind="Family", media=True, checker=None, fov=None,
@@ -251,7 +303,7 @@ def _family_scenes(configs=None, materials=None, prefix="f", kind="Family", medi
     out = {}
     for k, (geo, balance, scale, mat) in enumerate(configs, 1):
         g, m = FAMILY_GEOMETRY[geo], materials[mat]
-        sky, lights = _family_lights(g, balance)
+        sky, lights, environment = _family_lights(g, balance)
         mean = sum(m["ratio"]) / 3.0
         mfp = [scale * g["size"] * r / mean for r in m["ratio"]]
         base = f"{prefix}{k:02d}-{geo}-{balance}-{scale:g}-{mat}"
@@ -274,13 +326,13 @@ def _family_scenes(configs=None, materials=None, prefix="f", kind="Family", medi
                        f"(mfp {', '.join(f'{x:.3g}' for x in mfp)} mm), albedo {mat}"
                        + (f" in a 3D checkerboard with {checker:g} x it (cells {g['checker_cell']:g} mm)" if checker else "")
                        + f"; Dermis `{' and `'.join(v + '`' for v in variants)} vs Cycles {cycles}.", variants,
-                       sky=sky, res=FAMILY_RES)
+                       sky=sky, res=FAMILY_RES, environment=environment)
             sc["family"] = dict(info, method="walk" if method == "randomwalk" else "disk")
             out[name] = sc
     if not media:
         return out
     g = FAMILY_GEOMETRY["sphere"]
-    sky, lights = _family_lights(g, "both")
+    sky, lights, _ = _family_lights(g, "both")
     geom = dict(shape=g["shape"], camera=g["camera"], lights=lights)
     for k, boundary in enumerate(FAMILY_MEDIA, len(FAMILY_CONFIGS) + 1):
         name = f"f{k:02d}-medium-{boundary}"
@@ -360,6 +412,35 @@ CLOSEUP_FOV = {"sphere": 11.0, "bust": 8.0, "fin": 13.0}
 CLOSEUP = _family_scenes(FAMILY_CONFIGS, FAMILY_MATERIALS, prefix="c", kind="Close-up", media=False,
                          fov=CLOSEUP_FOV, lines=True)
 SCENES.update(CLOSEUP)
+
+def _lighting_scenes():
+    """The lighting axis: each lighting (LIGHTINGS) on LIGHTING_CONFIGS (walk and disk twins)
+    and on LIGHTING_MEDIA; configurations l01, l02 ... (lighting-major)."""
+    out = {}
+    configs = [(geo, lighting, scale, mat) for lighting in LIGHTINGS for geo, scale, mat in LIGHTING_CONFIGS]
+    out.update(_family_scenes(configs, prefix="l", kind="Lighting", media=False))
+    g = FAMILY_GEOMETRY["sphere"]
+    k = len(configs)
+    for lighting in LIGHTINGS:
+        sky, lights, environment = _family_lights(g, lighting)
+        geom = dict(shape=g["shape"], camera=g["camera"], lights=lights)
+        for medium in LIGHTING_MEDIA:
+            k += 1
+            name = f"l{k:02d}-medium-{medium}-{lighting}"
+            src = SCENES[f"medium-{'matched' if medium == 'dense' else medium}"]
+            material = dict(src["material"], **DENSE_MEDIUM) if medium == "dense" else src["material"]
+            checks = (f"Lighting configuration l{k:02d}, {lighting}: " +
+                      ("the dense chromatic medium (sigma_t 0.6, 0.9, 1.2 per mm, albedo 0.98-0.94) in the "
+                       "index-matched sphere; " if medium == "dense" else "") + src["checks"])
+            sc = scene(name, geom, material, checks, src["dermis"], sky=sky, res=FAMILY_RES, environment=environment)
+            sc["family"] = dict(config=f"l{k:02d}", geometry="sphere", balance=lighting, scale=None,
+                                albedo=f"medium ({medium})", method="walk" if medium == "glass" else "volumetric")
+            out[name] = sc
+    return out
+
+
+LIGHTING = _lighting_scenes()
+SCENES.update(LIGHTING)
 
 # ---------------------------------------------------------------- parameter conversions
 

@@ -2,13 +2,16 @@
 every configuration's Dermis file loads and renders. Run by ctest (bench.vs_cycles_family)
 with DERMIS=<path of the dermis binary>; Blender is not needed."""
 
+import json
+import math
 import os
 
+import numpy as np
 import pytest
 
 from bench.harness import render
 from bench.harness.exr import read_exr
-from bench.vs_cycles import pbrt_writer
+from bench.vs_cycles import environments, pbrt_writer
 from bench.vs_cycles import scenes as S
 
 
@@ -160,3 +163,64 @@ def test_the_highlight_scene_shows_only_the_quad_lights_mirror_image(tmp_path):
     assert covered.sum() > 500 and 0 < (lit & covered).sum() < 0.02 * covered.sum()
     scene = brightest_channel("scene", pbrt_writer.scene_text(sc, *next(iter(sc["dermis"].items()))), 64)
     assert scene[lit & covered].max() >= scene[covered].max()  # the brightest pixel is a highlight
+
+
+def test_the_lighting_axis_spans_environments_and_area_light_sizes(tmp_path):
+    """run.py --set lighting (issue 66): each lighting on one configuration per geometry (walk
+    and disk twins) and on the three media; an HDR environment alone or an area light alone;
+    the area lights subtend their solid angle at the object (the exact solid angle of a
+    square on its axis, by quadrature) and give the same irradiance; and the scenes render."""
+    # The family's geometries and materials under the new lights: each is a family configuration's.
+    assert {tuple(c) for c in S.LIGHTING_CONFIGS} <= {(g, s, m) for g, _, s, m in S.FAMILY_CONFIGS}
+    by_lighting = {}
+    for name, sc in S.LIGHTING.items():
+        by_lighting.setdefault(sc["family"]["balance"], []).append(name)
+        if sc["family"]["balance"] in S.HDR_LIGHTINGS:
+            assert sc["sky"] is None and sc["lights"] == [] and sc["environment"]["name"] in environments.ENVIRONMENTS
+            continue
+        assert sc["sky"] is None and "environment" not in sc and len(sc["lights"]) == 1
+        corners = np.array(sc["lights"][0]["corners"])
+        centre, side = corners.mean(axis=0), np.linalg.norm(corners[1] - corners[0])
+        # Solid angle at the origin by a midpoint rule over the square (200 x 200 cells).
+        u, v = (corners[1] - corners[0]) / side, (corners[3] - corners[0]) / side
+        t = (np.arange(200) + 0.5) / 200 * side
+        p = corners[0] + t[:, None, None] * u + t[None, :, None] * v
+        r = np.linalg.norm(p, axis=-1)
+        n = np.cross(u, v)
+        omega = float((np.abs(p @ n) / r ** 3).sum() * (side / 200) ** 2)
+        expected = S.AREA_LIGHTINGS[sc["family"]["balance"]]
+        assert abs(omega / expected - 1) < 0.01, (name, omega)
+        assert abs(max(sc["lights"][0]["radiance"]) * expected - S.AREA_IRRADIANCE) < 1e-9
+        assert np.linalg.norm(centre) > 2 * side or expected > 0.1  # far from the object but for the largest
+    assert sorted(by_lighting) == sorted(S.LIGHTINGS)
+    assert all(len(v) == 2 * len(S.LIGHTING_CONFIGS) + len(S.LIGHTING_MEDIA) for v in by_lighting.values())
+    for name in ("l01-sphere-hdr-outdoor-0.1-skin-walk", "l20-medium-glass-hdr-studio", "l27-medium-dense-area-0.05",
+                 "l15-fin-area-0.2-1-milk-disk"):
+        sc = json.loads(json.dumps(S.LIGHTING[name]))
+        if "environment" in sc:
+            sc["environment"]["directory"] = str(tmp_path / "environments")
+        renders_without_warning(sc, tmp_path)
+
+
+def test_the_environments_two_maps_are_one_function_of_direction():
+    """environments.py: the equal-area square and the lat-long map of each environment hold the
+    same light (their integrals over the sphere within 0.1 %), the sun where it is in both, and
+    the equal-area directions are pbrt-v4's (unit, the upper hemisphere in the central diamond)."""
+    for name, f in environments.ENVIRONMENTS.items():
+        n = environments.EQUAL_AREA_SIZE
+        d = environments.equal_area_directions(n)
+        assert np.allclose(np.linalg.norm(d, axis=1), 1)
+        c = (np.arange(n) + 0.5) / n * 2 - 1
+        l1 = (np.abs(c)[None, :] + np.abs(c)[:, None]).ravel()
+        assert np.all(d[l1 < 1, 2] > 0) and np.all(d[l1 > 1, 2] < 0)
+        square = f(d).sum(axis=0) * 4 * math.pi / n ** 2
+        w, h = environments.LATLONG_SIZE
+        theta = (np.arange(h) + 0.5) / h * math.pi
+        solid = (2 * math.pi / w) * (math.pi / h) * np.repeat(np.sin(theta), w)
+        latlong = (f(environments.latlong_directions(w, h)) * solid[:, None]).sum(axis=0)
+        assert np.allclose(square, latlong, rtol=1e-3), (name, square, latlong)
+    sun = environments.SUN_DIRECTION
+    phi, theta = math.atan2(sun[1], sun[0]), math.acos(sun[2])
+    u, v = 0.5 - phi / (2 * math.pi), theta / math.pi  # Cycles' equirectangular mapping
+    d = environments.latlong_directions(1024, 512).reshape(512, 1024, 3)[int(v * 512), int(u * 1024)]
+    assert math.degrees(math.acos(min(1.0, float(d @ sun)))) < 0.5
