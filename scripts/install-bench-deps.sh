@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the optional benchmark dependencies (not needed by `make demo` or `make test`):
-# Blender, whose Cycles renderer bench/vs_cycles/run.py compares Dermis against, the
+# Blender, whose Cycles renderer bench/vs_cycles/run.py compares Dermis against (and
+# python3-openvdb, which writes the grid medium's twin as a .vdb for it), the
 # Python modules the benchmark scripts use, and Chromium, in which the study report's
 # browser test (python/tests/test_report_browser.py) opens the page headless.
 # Idempotent and non-interactive: packages already present are not touched, and apt is
@@ -8,7 +9,7 @@
 set -euo pipefail
 
 packages=(
-  blender
+  blender python3-openvdb
   python3-numpy python3-pil python3-matplotlib
   python3-openimageio openimageio-tools
   chromium

@@ -203,6 +203,44 @@ def shape():
     raise ValueError(s["kind"])
 
 
+def grid_volume(m):
+    """The grid medium (grid_twin.py) as a Volume object of its .vdb: Volume Scatter and Volume
+    Absorption as for the homogeneous medium (material() below), their densities times the
+    grid's "density" attribute; ray marched (Cycles' default step, the voxel size)."""
+    bpy.ops.object.volume_import(filepath=m["vdb"])
+    obj = bpy.context.selected_objects[0]
+    obj.data.grids.load()
+    mat = bpy.data.materials.new("grid")
+    mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    attr = nt.nodes.new("ShaderNodeAttribute")
+    attr.attribute_name = "density"
+    ss, sa = m["sigma_s"], m["sigma_a"]
+    ds, da = max(ss), max(sa)
+    shaders = []
+    for node, colour, scale in (("ShaderNodeVolumeScatter", [x / ds for x in ss], ds),
+                                ("ShaderNodeVolumeAbsorption", [1.0 - x / da for x in sa], da)):
+        v = nt.nodes.new(node)
+        v.inputs["Color"].default_value = (*colour, 1.0)
+        mul = nt.nodes.new("ShaderNodeMath")
+        mul.operation = "MULTIPLY"
+        mul.inputs[1].default_value = scale
+        nt.links.new(attr.outputs["Fac"], mul.inputs[0])
+        nt.links.new(mul.outputs["Value"], v.inputs["Density"])
+        if node == "ShaderNodeVolumeScatter":
+            v.inputs["Anisotropy"].default_value = m["g"]
+        shaders.append(v)
+    add = nt.nodes.new("ShaderNodeAddShader")
+    nt.links.new(shaders[0].outputs["Volume"], add.inputs[0])
+    nt.links.new(shaders[1].outputs["Volume"], add.inputs[1])
+    nt.links.new(add.outputs["Shader"], out.inputs["Volume"])
+    mat.cycles.volume_sampling = "MULTIPLE_IMPORTANCE"
+    obj.data.materials.clear()
+    obj.data.materials.append(mat)
+
+
 def fresnel_f0(eta):
     return ((eta - 1.0) / (eta + 1.0)) ** 2
 
@@ -295,7 +333,9 @@ camera()
 world()
 for L in sc["lights"]:
     key_light(L)
-if sc.get("shape"):  # none: the lights alone (environments.py's check)
+if sc["material"] and sc["material"]["kind"] == "grid":
+    grid_volume(sc["material"])
+elif sc.get("shape"):  # none: the lights alone (environments.py's check)
     obj = shape()
     material(obj)
 

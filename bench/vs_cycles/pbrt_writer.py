@@ -3,7 +3,7 @@
 import os
 
 from bench.harness.paths import ROOT
-from bench.vs_cycles import environments, scenes
+from bench.vs_cycles import environments, grid_twin, scenes
 
 
 def _v(xs):
@@ -55,6 +55,13 @@ def shape_text(shape):
         p = " ".join(_v(v) for v in verts)
         i = " ".join(" ".join(str(k) for k in f) for f in faces)
         return f'Shape "trianglemesh" "point3 P" [ {p} ]\n    "integer indices" [ {i} ]'
+    if shape["kind"] == "box":  # an axis-aligned box, its triangles facing out
+        lo, hi = shape["min"], shape["max"]
+        corners = [[(hi if (k >> a) & 1 else lo)[a] for a in range(3)] for k in range(8)]
+        quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+        p = " ".join(_v(c) for c in corners)
+        i = " ".join(f"{a} {b} {c}  {a} {c} {d}" for a, b, c, d in quads)
+        return f'Shape "trianglemesh" "point3 P" [ {p} ]\n    "integer indices" [ {i} ]'
     if shape["kind"] == "obj":
         return f'Shape "objmesh" "string filename" "{os.path.join(ROOT, shape["path"])}"'
     raise ValueError(shape["kind"])
@@ -81,7 +88,7 @@ def material_text(mat, extra):
     if k == "medium" and mat["boundary"] == "glass":
         return (f'Material "subsurface" "rgb sigma_a" [ {_v(mat["sigma_a"])} ] "rgb sigma_s" [ {_v(mat["sigma_s"])} ]\n'
                 f'      "float g" {mat["g"]:g} "float eta" {mat["eta"]:g} {extra}')
-    if k == "medium" and mat["boundary"] == "matched":
+    if k in ("medium", "grid") and mat["boundary"] == "matched":
         return ('Material "interface"\n  MediumInterface "m" ""')
     if k == "diffuse":
         return f'Material "diffuse" "rgb reflectance" [ {_v(mat["reflectance"])} ]'
@@ -94,6 +101,13 @@ def scene_text(sc, variant_label, extra):
     if mat["kind"] == "medium" and mat["boundary"] == "matched":
         pre = (f'\nMakeNamedMedium "m" "string type" "homogeneous" "rgb sigma_a" [ {_v(mat["sigma_a"])} ]\n'
                f'    "rgb sigma_s" [ {_v(mat["sigma_s"])} ] "float g" {mat["g"]:g}\n')
+    if mat["kind"] == "grid":
+        lo, hi, n = mat["box"][0], mat["box"][1], mat["n"]
+        pre = (f'\nMakeNamedMedium "m" "string type" "uniformgrid" "rgb sigma_a" [ {_v(mat["sigma_a"])} ]\n'
+               f'    "rgb sigma_s" [ {_v(mat["sigma_s"])} ] "float g" {mat["g"]:g}\n'
+               f'    "point3 p0" [ {lo:g} {lo:g} {lo:g} ] "point3 p1" [ {hi:g} {hi:g} {hi:g} ]\n'
+               f'    "integer nx" {n} "integer ny" {n} "integer nz" {n}\n'
+               f'    "float density" [ {grid_twin.pbrt_values(mat)} ]\n')
     obj = f"\nAttributeBegin\n  {material_text(mat, extra)}\n  {shape_text(sc['shape'])}\nAttributeEnd\n"
     return header(sc, f"Dermis variant '{variant_label}'") + pre + lights(sc) + obj
 
@@ -104,7 +118,7 @@ def highlight_text(sc, spp):
     specular highlights, whose pixel-area noise both renderers share). None where the object
     has no reflecting boundary (an index-matched medium) or the scene no quad light."""
     mat = sc["material"]
-    if not sc["lights"] or (mat["kind"] == "medium" and mat["boundary"] == "matched"):
+    if not sc["lights"] or mat.get("boundary") == "matched":
         return None
     eta = mat.get("eta", 1.0)
     obj = (f'\nAttributeBegin\n  Material "conductor" "rgb eta" [ {eta:g} {eta:g} {eta:g} ] "rgb k" [ 0 0 0 ]'

@@ -40,7 +40,7 @@ from bench.harness import docs_page, progress, provenance, render
 from bench.harness.exr import read_exr
 from bench.harness.paths import DERMIS, IMAGES as DOCS_IMAGES, RESULTS, ROOT
 from bench.harness.pictures import strip, write_png
-from bench.vs_cycles import cycles_log, environments, pbrt_writer
+from bench.vs_cycles import cycles_log, environments, grid_twin, pbrt_writer
 from bench.vs_cycles import scenes as S
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -334,6 +334,8 @@ def run_scene(args, name):
     sc = json.loads(json.dumps(S.SCENES[name]))  # a copy
     if sc.get("environment"):  # its two maps, written into the run's folder once
         environments.attach(sc["environment"], os.path.join(args.out, "environments"))
+    if sc["material"]["kind"] == "grid":  # its .vdb for Blender (grid_twin.py)
+        grid_twin.attach(sc["material"], os.path.join(args.out, "grids"))
     if args.res:
         sc["res"] = list(args.res)
     if sc["material"]["kind"] == "subsurface":
@@ -716,6 +718,10 @@ def write_report(args, results, info, total, path, image_dir, argv):
         elif m["kind"] == "medium":
             w(f"Medium: sigma_a {v3(m['sigma_a'], '{:g}')}, sigma_s {v3(m['sigma_s'], '{:g}')} per mm, HG g {m['g']:g}; "
               + ("index-matched boundary." if m["boundary"] == "matched" else f"smooth dielectric, IOR {m['eta']:g}.") + "\n")
+        elif m["kind"] == "grid":
+            w(f"Grid medium: {m['n']}^3 densities (grid_twin.py, seed {m['seed']}) over the box "
+              f"[{m['box'][0]:g}, {m['box'][1]:g}]^3 mm, sigma_a {v3(m['sigma_a'], '{:g}')}, sigma_s "
+              f"{v3(m['sigma_s'], '{:g}')} per mm per unit density, HG g {m['g']:g}; index-matched.\n")
         w("| renderer | spp | seeds | time (s) | other time (s) | MSE (ref. noise removed) | lowest–highest seed | ref. variance removed | efficiency |")
         w("|---|---|---|---|---|---|---|---|---|")
         fams = list(r["dermis"].items()) + [("Cycles", r["cycles"])]

@@ -140,6 +140,19 @@ SCENES = {
         {"diffuse": ""}, ref_factor=0.25),
 }
 
+# The grid medium's twin (issue 67, item 4): a 32^3 density grid (grid_twin.py: a noisy puff,
+# empty on its two outer layers) in a 48 mm box at the sphere's place, sigma_a and sigma_s
+# per unit density, under the sky and the key light; Dermis enters it through an
+# index-matched box, Cycles renders it as a Volume object read from its .vdb.
+GRID_MEDIUM = dict(kind="grid", boundary="matched", n=32, seed=67, box=[-24.0, 24.0], sigma_a=[0.02, 0.05, 0.10],
+                   sigma_s=[0.40, 0.32, 0.24], g=0.3)
+SCENES["medium-grid"] = scene(
+    "medium-grid", dict(SPHERE_GEOM, shape=dict(kind="box", min=[-24.0] * 3, max=[24.0] * 3)), GRID_MEDIUM,
+    "A heterogeneous medium: a 32^3 density grid; Dermis `uniformgrid` inside an index-matched box (volumetric "
+    "path tracer: delta and ratio tracking) vs Cycles Volume Scatter + Volume Absorption on a Volume object of the "
+    "same densities (OpenVDB, trilinear). The two references must agree.",
+    {"volpath interface": ""})
+
 DEFAULT_SCENES = ["sphere-walk", "sphere-burley", "bust-walk", "bust-burley", "medium-matched", "medium-glass",
                   "calibration"]
 

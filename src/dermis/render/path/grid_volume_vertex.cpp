@@ -16,7 +16,7 @@ VertexOutcome shade_grid_volume(PathContext& ctx, PathState& st, float t_hit) {
   const Vec2 u_flight = sampler.get2d();
   Rng rng = tracking_rng(u_flight.y, st.ray);
   const NullScatteringFlight flight =
-      sample_null_scattering_flight(m, st.ray, t_hit, st.beta, preference, u_flight.x, rng);
+      sample_null_scattering_flight(m, st.ray, t_hit, st.beta, preference, u_flight.x, rng, Absorption::Weighted);
   if (st.depth < sc.settings.max_depth) st.L += st.beta * flight.emitted;  // as pbrt-v4, below the depth limit
   if (flight.stalled) ++ctx.counters.truncated;
   if (!flight.valid) return VertexOutcome::kStop;
