@@ -5,6 +5,8 @@
 #include <cmath>
 #include <functional>
 
+#include "support/rgb_estimate.h"
+
 namespace dermis {
 namespace {
 
@@ -20,7 +22,7 @@ struct Fixture {
     grid.p0 = Vec3(0, 0, 0);
     grid.p1 = Vec3(2, 1, 1);
     grid.build_majorants();
-    view = {&grid, RGB(0.3f, 0.1f, 0.6f), RGB(0.9f, 1.8f, 0.4f), 0, nullptr};
+    view = {&grid, RGB(0.3f, 0.1f, 0.6f), RGB(0.9f, 1.8f, 0.4f), 0, nullptr, false, RGB(0)};
   }
 };
 
@@ -39,23 +41,8 @@ RGB optical_depth(const GridMediumView& m, const Ray& ray, float t) {
   return tau;
 }
 
-// Mean and standard error per channel of n draws of f.
-struct Estimate {
-  double mean[3] = {0, 0, 0}, se[3] = {0, 0, 0};
-};
-Estimate estimate(int n, const std::function<RGB()>& f) {
-  double s[3] = {0, 0, 0}, s2[3] = {0, 0, 0};
-  for (int i = 0; i < n; ++i) {
-    const RGB v = f();
-    for (int c = 0; c < 3; ++c) s[c] += v[c], s2[c] += double(v[c]) * v[c];
-  }
-  Estimate e;
-  for (int c = 0; c < 3; ++c) {
-    e.mean[c] = s[c] / n;
-    e.se[c] = std::sqrt(std::max(0.0, s2[c] / n - e.mean[c] * e.mean[c]) / (n - 1));
-  }
-  return e;
-}
+using Estimate = testing::RgbEstimate;
+const auto estimate = testing::estimate_rgb;
 
 void expect_within_4_sigma(const Estimate& e, const double expected[3], const char* what) {
   for (int c = 0; c < 3; ++c)

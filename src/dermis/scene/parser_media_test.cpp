@@ -10,6 +10,18 @@ namespace {
 using test::has_warning;
 using test::parse_world;
 
+// The world `body` is refused with a SceneError at line:column whose message holds `what`.
+void error_at(const std::string& body, int line, int column, const std::string& what) {
+  try {
+    parse_world(body);
+    ADD_FAILURE() << "no error for " << body;
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.loc().line, line) << e.what();
+    EXPECT_EQ(e.loc().column, column) << e.what();
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+  }
+}
+
 TEST(ParserGridMedia, UniformgridRgbgridAndCloud) {
   SceneDesc s = parse_world(
       "Translate 1 2 3\n"
@@ -71,16 +83,6 @@ TEST(ParserGridMedia, Emission) {
 }
 
 TEST(ParserGridMedia, BadGridsAreErrorsAtTheValue) {
-  auto error_at = [](const std::string& body, int line, int column, const std::string& what) {
-    try {
-      parse_world(body);
-      ADD_FAILURE() << "no error for " << body;
-    } catch (const SceneError& e) {
-      EXPECT_EQ(e.loc().line, line) << e.what();
-      EXPECT_EQ(e.loc().column, column) << e.what();
-      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-    }
-  };
   const std::string grid = "MakeNamedMedium \"m\" \"string type\" \"uniformgrid\" ";
   error_at(grid + "\"integer nx\" 2 \"float density\" [1 2 3]\n", 2, 80, "\"density\" has 3 values; the grid nx x ny");
   error_at(grid + "\"integer nx\" 3 \"float density\" [1 -2 3]\n", 2, 83, "must be finite and at least 0 (value 1");
@@ -117,16 +119,6 @@ TEST(ParserSubsurfaceInterior, HomogeneousCopiedGridKept) {
 }
 
 TEST(ParserSubsurfaceInterior, ErrorsAtTheName) {
-  auto error_at = [](const std::string& body, int line, int column, const std::string& what) {
-    try {
-      parse_world(body);
-      ADD_FAILURE() << "no error for " << body;
-    } catch (const SceneError& e) {
-      EXPECT_EQ(e.loc().line, line) << e.what();
-      EXPECT_EQ(e.loc().column, column) << e.what();
-      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-    }
-  };
   const std::string grid = "MakeNamedMedium \"g\" \"string type\" \"uniformgrid\" \"float density\" [1]\n";
   error_at("Material \"subsurface\" \"string interior\" \"nowhere\"\n", 2, 41, "unknown medium \"nowhere\"");
   error_at(grid + "Material \"subsurface\" \"string interior\" \"g\" \"string method\" \"disk\"\n", 3, 41,

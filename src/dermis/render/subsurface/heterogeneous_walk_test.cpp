@@ -6,27 +6,13 @@
 #include <functional>
 
 #include "dermis/sss/walk/analytic_boundaries.h"
+#include "support/rgb_estimate.h"
 
 namespace dermis {
 namespace {
 
-// Mean and standard error per channel of n draws of f.
-struct Estimate {
-  double mean[3] = {0, 0, 0}, se[3] = {0, 0, 0};
-};
-Estimate estimate(int n, const std::function<RGB()>& f) {
-  double s[3] = {0, 0, 0}, s2[3] = {0, 0, 0};
-  for (int i = 0; i < n; ++i) {
-    const RGB v = f();
-    for (int c = 0; c < 3; ++c) s[c] += v[c], s2[c] += double(v[c]) * v[c];
-  }
-  Estimate e;
-  for (int c = 0; c < 3; ++c) {
-    e.mean[c] = s[c] / n;
-    e.se[c] = std::sqrt(std::max(0.0, s2[c] / n - e.mean[c] * e.mean[c]) / (n - 1));
-  }
-  return e;
-}
+using Estimate = testing::RgbEstimate;
+const auto estimate = testing::estimate_rgb;
 
 // A density grid over the box [-1.2, 1.2]^3 around the unit ball. Its samples sit at the
 // cells' centres, as pbrt-v4's, and between the outermost ones and the box the interpolation
