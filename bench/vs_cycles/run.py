@@ -577,6 +577,11 @@ def write_family_section(w, entries, image_dir, rel_images):
         w("The reflectance a 3D checkerboard of the material's and 0.6 × it, the mfp constant, on the family's "
           "geometries and lights (`bench/vs_cycles/scenes.py`, TEXTURED_CONFIGS; Cycles' Subsurface Radius follows "
           "each square's reflectance through a second checker). Never used to tune Dermis.\n")
+    elif config_set(entries) == "lighting":
+        w("## The lighting axis: efficiency Dermis ÷ Cycles per configuration\n")
+        w("Two HDR environments and an area light of three sizes, each alone, on one family configuration per "
+          "geometry and on three media (`bench/vs_cycles/scenes.py`, LIGHTINGS, LIGHTING_CONFIGS, LIGHTING_MEDIA; "
+          "issue 66), chosen before any tuning for them. Per lighting below: a table and a chart.\n")
     elif config_set(entries) == "closeup":
         w("## The close-ups: efficiency Dermis ÷ Cycles per configuration\n")
         w("The family's twelve configurations, each camera's field of view narrowed until the object covers about "
@@ -622,6 +627,40 @@ def write_family_section(w, entries, image_dir, rel_images):
     os.makedirs(image_dir, exist_ok=True)
     family_chart(entries, os.path.join(image_dir, "family-efficiency.png"))
     w(f"![efficiency ratio per configuration]({rel_images}/family-efficiency.png)\n")
+    if config_set(entries) == "lighting":
+        write_per_lighting(w, entries, image_dir, rel_images)
+
+
+def write_per_lighting(w, entries, image_dir, rel_images):
+    """Issue 66, item 4: per lighting, every method's efficiency against Cycles (a table and a
+    chart), and for the walk its MSE per sample and cost per sample against Cycles'."""
+    w("## Per lighting\n")
+    w("| lighting | walk (default): geometric mean [lowest] | walk: MSE × spp ÷ Cycles' | walk: cost per sample "
+      "÷ Cycles' | disk | volumetric path tracer |")
+    w("|---|---|---|---|---|---|")
+    lightings = [b for b in S.LIGHTINGS if any(e["balance"] == b for e in entries)]
+
+    def summary(xs):
+        return f"{gmean(xs):.3g} [{min(xs):.3g}]" if xs else "—"
+    for b in lightings:
+        es = [e for e in entries if e["balance"] == b]
+        walk = [e for e in es if e["kind"] == "walk"]
+        w(f"| {b} | {summary([e['obj'] for e in walk])} | {summary([e['mse'] for e in walk])} | "
+          f"{summary([e['cost'] for e in walk])} | {summary([e['obj'] for e in es if e['kind'] == 'disk'])} | "
+          f"{summary([e['obj'] for e in es if e['kind'] == 'volumetric'])} |")
+    w("")
+    for b in lightings:
+        es = [e for e in entries if e["balance"] == b]
+        w(f"### {b}\n")
+        w("| config | geometry | albedo | method | obj | img | cost/sample | MSE×spp |")
+        w("|---|---|---|---|---|---|---|---|")
+        for e in es:
+            w(f"| {e['config']} | {e['geometry']} | {e['albedo']} | {e['kind']}{' (default)' if e['default'] else ''} "
+              f"| **{e['obj']:.3g}** [{e['obj_min']:.3g}] | {e['img']:.3g} [{e['img_min']:.3g}] | {e['cost']:.3g} "
+              f"| {e['mse']:.3g} |")
+        w("")
+        family_chart(es, os.path.join(image_dir, f"lighting-{b}.png"))
+        w(f"![efficiency ratio under {b}]({rel_images}/lighting-{b}.png)\n")
 
 
 def write_report(args, results, info, total, path, image_dir, argv):
