@@ -23,9 +23,9 @@ import subprocess
 import tempfile
 
 import numpy as np
-import OpenImageIO as oiio
 
 from bench.harness import paths
+from bench.harness.exr import read_exr
 from bench.harness.render import command, render_stats
 
 HEAD = """LookAt 0 0 -4  0 0 0  0 1 0
@@ -71,7 +71,7 @@ def render(binary, scene, out, spp, res, seed):
                        stderr=subprocess.PIPE)
     if p.returncode != 0:
         raise RuntimeError(p.stderr)
-    return render_stats(p.stderr).seconds, oiio.ImageBuf(out).get_pixels(oiio.FLOAT)[..., :3].astype(np.float64)
+    return render_stats(p.stderr).seconds, read_exr(out).rgb
 
 
 def main():
@@ -86,8 +86,7 @@ def main():
     out = args.out or tempfile.mkdtemp(prefix="dermis-grid-interior-")
     os.makedirs(out, exist_ok=True)
     files = scenes(out)
-    # A file per render: OpenImageIO's image cache would hand back an earlier file's pixels
-    # under a name read before.
+    # A file per render, kept for inspection.
     def exr(name, seed):
         return os.path.join(out, f"{name.replace(' ', '_').replace(',', '')}-{seed}.exr")
 

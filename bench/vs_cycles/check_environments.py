@@ -19,9 +19,9 @@ import sys
 import tempfile
 
 import numpy as np
-import OpenImageIO as oiio
 
 from bench.harness import paths
+from bench.harness.exr import read_exr
 from bench.harness.render import command
 from bench.vs_cycles import environments, pbrt_writer
 
@@ -55,10 +55,6 @@ def pixel_elevations(sc):
     d = f + X[..., None] * right + Y[..., None] * up
     d /= np.linalg.norm(d, axis=-1, keepdims=True)
     return np.arcsin(np.clip(d[..., 2], -1, 1))
-
-
-def read(path):
-    return oiio.ImageBuf(path).get_pixels(oiio.FLOAT)[..., :3].astype(np.float64)
 
 
 def main():
@@ -101,7 +97,8 @@ def main():
     print("| environment | view | pixels | mean Dermis / Cycles | median rel. diff | 99th pct rel. diff |")
     print("|---|---|---:|---:|---:|---:|")
     for sc in scenes:
-        d, c = read(os.path.join(out, sc["name"] + "-dermis.exr")), read(os.path.join(out, sc["name"] + "-cycles.exr"))
+        d = read_exr(os.path.join(out, sc["name"] + "-dermis.exr")).rgb
+        c = read_exr(os.path.join(out, sc["name"] + "-cycles.exr")).rgb
         mask = np.abs(pixel_elevations(sc)) > HORIZON_MARGIN
         ld, lc = d.mean(axis=2)[mask], c.mean(axis=2)[mask]
         rel = np.abs(ld - lc) / np.maximum(lc, 1e-4)
