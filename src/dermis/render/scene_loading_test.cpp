@@ -112,7 +112,7 @@ TEST(SceneLoading, PlyStagesReportMonotoneProgressPlainAndGzip) {
     ASSERT_EQ(desc.shapes.size(), 1u);
     EXPECT_EQ(desc.shapes[0].mesh.indices.size(), 3u * 2 * 399 * 399);
     r.expect_monotone_stages();
-    EXPECT_EQ(r.last("loading s.pbrt"), 1.0);
+    EXPECT_EQ(r.last("parsing s.pbrt"), 1.0);
     EXPECT_EQ(r.last(std::string("loading ") + file), 1.0);
     // Every 16384 elements of 478k: more than 20 reports in between.
     EXPECT_GE(r.count(std::string("reading ") + file), 20u) << file;

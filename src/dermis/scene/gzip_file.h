@@ -1,8 +1,9 @@
-// Reading scene and mesh files whole, inflating gzip-compressed ones through zlib
-// (pbrt-v4 scenes ship ".pbrt.gz" includes and ".ply.gz" meshes).
+// Reading scene and mesh files, inflating gzip-compressed ones through zlib (pbrt-v4
+// scenes ship ".pbrt.gz" includes and ".ply.gz" meshes): whole, or a chunk at a time.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -29,6 +30,30 @@ class FileReadError : public std::runtime_error {
  private:
   std::string path_;
   std::string reason_;
+};
+
+// A file's contents a chunk at a time, never whole (a scene's grid medium may be hundreds of
+// megabytes of text): its bytes, or for a file that starts with the gzip magic (whatever its
+// name) their inflation, member after member (trailing zero padding is ignored). Throws
+// FileReadError as read_file_contents does: when the file cannot be opened, on opening;
+// when it cannot be read on, is corrupt or inflates past `max_decompressed`, from next().
+class FileChunks {
+ public:
+  explicit FileChunks(const std::string& path, uint64_t max_decompressed = kMaxDecompressedBytes);
+  ~FileChunks();
+  FileChunks(const FileChunks&) = delete;
+  FileChunks& operator=(const FileChunks&) = delete;
+
+  // The next bytes of the contents; empty at their end. Valid until the next call.
+  std::string_view next();
+  // The fraction of the file's bytes read so far (compressed bytes for gzip).
+  double fraction_read() const;
+  // About how many bytes the contents hold (gzip: its trailer's word, if plausible; else 0).
+  uint64_t size_hint() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 // The contents of `path`. A file that starts with the gzip magic (whatever its name) is

@@ -166,5 +166,35 @@ TEST(GzipFile, FifosAndDevicesAreRefusedWithoutBeingOpened) {
   }
 }
 
+// FileChunks hands a file out a piece at a time (never whole: a scene's grid of millions of
+// values is parsed as it inflates): the pieces make up the contents, the fraction read grows
+// to 1, and corruption near the end is met only when the reading gets there.
+TEST(GzipFile, FileChunksStreamPlainAndGzip) {
+  test::TempDir dir;
+  std::string big;
+  while (big.size() < (size_t(5) << 20)) big += sample_text();
+  for (const std::string& path : {dir.write("big.pbrt", big), dir.write("big.pbrt.gz", gzip(big, 1))}) {
+    FileChunks chunks(path);
+    std::string got;
+    std::size_t pieces = 0;
+    double fraction = 0;
+    for (std::string_view c = chunks.next(); !c.empty(); c = chunks.next()) {
+      EXPECT_LE(c.size(), std::size_t(1) << 20) << path;
+      EXPECT_GE(chunks.fraction_read(), fraction) << path;
+      fraction = chunks.fraction_read();
+      got.append(c);
+      ++pieces;
+    }
+    EXPECT_EQ(got, big) << path;
+    EXPECT_GE(pieces, 5u) << path;
+    EXPECT_EQ(chunks.fraction_read(), 1.0) << path;
+  }
+  std::string cut = gzip(big, 1);
+  cut.resize(cut.size() - 100);
+  FileChunks chunks(dir.write("cut.pbrt.gz", cut));
+  EXPECT_FALSE(chunks.next().empty());
+  EXPECT_THROW(while (!chunks.next().empty()){}, FileReadError);
+}
+
 }  // namespace
 }  // namespace dermis

@@ -88,7 +88,6 @@ void add_value(ParsedParam& p, ValueKind kind, const Token& t, const TokenStream
       }
       break;
   }
-  p.value_pos.emplace_back(t.line, t.column);
 }
 
 }  // namespace
@@ -96,8 +95,21 @@ void add_value(ParsedParam& p, ValueKind kind, const Token& t, const TokenStream
 size_t ParsedParam::size() const { return param.numbers.size() + param.strings.size() + param.bools.size(); }
 
 SourceLoc ParsedParam::value_at(size_t i) const {
-  if (i >= value_pos.size()) return value_loc;
-  return {value_loc.file, value_pos[i].first, value_pos[i].second};
+  if (!value_origin || i >= size()) return value_loc;
+  try {
+    Lexer lexer(value_origin->reopen(), value_loc.file);
+    lexer.skip_to(value_offset, value_loc.line, value_loc.column);
+    Token t;
+    if (!lexer.next(t)) return value_loc;
+    if (t.kind == Token::Kind::LBracket && !lexer.next(t)) return value_loc;
+    for (size_t k = 0; k < i; ++k)
+      if (!lexer.next(t)) return value_loc;
+    // A list that ran on into an included file, or a text changed since: not this list's value.
+    if (t.kind == Token::Kind::LBracket || t.kind == Token::Kind::RBracket) return value_loc;
+    return {value_loc.file, t.line, t.column};
+  } catch (const std::exception&) {
+    return value_loc;
+  }
 }
 
 ParamList ParamList::parse(TokenStream& ts) {
@@ -127,6 +139,8 @@ ParamList ParamList::parse(TokenStream& ts) {
     const Token* v = ts.peek();
     if (!v) throw SceneError(ts.end_loc(), fmt::format("missing value of parameter \"{}\"", excerpt(decl.text)));
     p.value_loc = ts.loc(*v);
+    p.value_offset = v->offset;
+    p.value_origin = ts.origin(*v);
     p.base_dir = ts.base_dir();
     p.file_access = ts.file_access();
     if (v->kind == Token::Kind::LBracket) {

@@ -17,16 +17,20 @@
 namespace dermis {
 
 struct ParsedParam {
-  Param param;                                    // as written (type spelled as in the file)
-  std::string type;                               // canonical type: integer float point2 vector2 point3 vector3
-                                                  // normal3 rgb spectrum blackbody bool string texture
-  SourceLoc value_loc;                            // first token of the value ('[' or the single value)
-  std::vector<std::pair<int, int>> value_pos;     // line and column of every value
-  std::string base_dir;                           // where a file named in the value (a .spd spectrum) is looked for
-  std::shared_ptr<const FileAccess> file_access;  // which files it may reach; null: any
+  Param param;                                     // as written (type spelled as in the file)
+  std::string type;                                // canonical type: integer float point2 vector2 point3 vector3
+                                                   // normal3 rgb spectrum blackbody bool string texture
+  SourceLoc value_loc;                             // first token of the value ('[' or the single value)
+  uint64_t value_offset = 0;                       // that token's byte in its text
+  std::shared_ptr<const TextOrigin> value_origin;  // the text, read again by value_at (null: never)
+  std::string base_dir;                            // where a file named in the value (a .spd spectrum) is looked for
+  std::shared_ptr<const FileAccess> file_access;   // which files it may reach; null: any
   mutable bool used = false;
 
   size_t size() const;  // number of values of whatever kind
+  // Where value i is: found by reading the list again from its text (no value keeps its
+  // position: a grid's millions of values would need more than their own bytes), for
+  // messages; value_loc when it cannot be.
   SourceLoc value_at(size_t i) const;
 };
 

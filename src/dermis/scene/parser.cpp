@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 
 #include "dermis/scene/gzip_file.h"
@@ -27,15 +28,33 @@ std::string resolve_path(const std::string& file, const std::string& dir) {
 
 namespace {
 
-// The file's text (inflated when it is gzip data); on failure, empty with `why` set.
-std::string read_text(const std::string& path, std::string& why, LoadStage& stage) {
-  try {
-    return read_file_contents(path, kMaxDecompressedBytes, &stage);
-  } catch (const FileReadError& e) {
-    why = e.reason();
-    return {};
+// A scene file read a chunk at a time (inflated when it is gzip data); a read error met on
+// the way (gzip data found corrupt midway) is reported as an unreadable file is, at the same
+// place.
+class SceneFileText final : public TextSource {
+ public:
+  using ErrorAt = std::function<SceneError(const std::string& why)>;
+  SceneFileText(const std::string& path, ErrorAt error) : error_(std::move(error)), chunks_(open(path)) {}
+  std::string_view next_chunk() override {
+    try {
+      return chunks_->next();
+    } catch (const FileReadError& e) {
+      throw error_(e.reason());
+    }
   }
-}
+  double fraction_read() const override { return chunks_->fraction_read(); }
+
+ private:
+  std::unique_ptr<FileChunks> open(const std::string& path) const {
+    try {
+      return std::make_unique<FileChunks>(path);
+    } catch (const FileReadError& e) {
+      throw error_(e.reason());
+    }
+  }
+  ErrorAt error_;
+  std::unique_ptr<FileChunks> chunks_;
+};
 
 // The directives this parser knows (pbrt-v4's), for suggestions.
 constexpr const char* kDirectives[] = {"Identity",
@@ -97,10 +116,10 @@ std::string describe(const Token* t) {
 
 // ---------------------------------------------------------------- files
 
-// The tokens of a scene file (main, Included or Imported), with a precise error when it
+// A scene file (main, Included or Imported) opened to be read, with a precise error when it
 // cannot be read, would close a cycle, or nests too deep.
-std::vector<Token> SceneParser::read_scene_file(const std::string& path, const SourceLoc* from,
-                                                const std::vector<std::string>& chain) {
+OpenText SceneParser::open_scene_file(const std::string& path, const SourceLoc* from,
+                                      const std::vector<std::string>& chain) {
   std::string canonical = resolve_path(path, ".");
   if (std::find(chain.begin(), chain.end(), canonical) != chain.end()) {
     std::string text;
@@ -113,18 +132,19 @@ std::vector<Token> SceneParser::read_scene_file(const std::string& path, const S
     throw SceneError(*from, fmt::format("Include nested more than {} files deep (at '{}'); is the scene generating "
                                         "its own includes?",
                                         kMaxIncludeDepth, canonical));
-  std::string why;
-  LoadStage loading(monitor_, "loading " + fs::path(canonical).filename().string());
-  std::string text = read_text(canonical, why, loading);
-  if (!why.empty()) {
-    if (from) throw SceneError(*from, fmt::format("could not read included file '{}': {}", canonical, why));
-    throw SceneError({path, 1, 1}, fmt::format("could not read scene file '{}': {}", path, why));
-  }
-  loading.finish();
-  LoadStage parsing(monitor_, "parsing " + fs::path(canonical).filename().string());
-  std::vector<Token> tokens = tokenize(text, from ? canonical : path, &parsing);
-  parsing.finish();
-  return tokens;
+  SceneFileText::ErrorAt error = [path, canonical, at = from ? *from : SourceLoc{path, 1, 1},
+                                  included = from != nullptr](const std::string& why) {
+    if (included) return SceneError(at, fmt::format("could not read included file '{}': {}", canonical, why));
+    return SceneError(at, fmt::format("could not read scene file '{}': {}", path, why));
+  };
+  OpenText text;
+  text.file = from ? canonical : path;
+  text.source = std::make_unique<SceneFileText>(canonical, error);
+  text.origin = std::make_shared<TextOrigin>(TextOrigin{text.file, [canonical, error]() -> std::unique_ptr<TextSource> {
+                                                          return std::make_unique<SceneFileText>(canonical, error);
+                                                        }});
+  text.stage = std::make_unique<LoadStage>(monitor_, "parsing " + fs::path(canonical).filename().string());
+  return text;
 }
 
 void SceneParser::parse_file(const std::string& path, const SourceLoc* from) {
@@ -132,14 +152,14 @@ void SceneParser::parse_file(const std::string& path, const SourceLoc* from) {
   // directory of the main scene file, in included files too.
   main_dir_ = fs::path(resolve_path(path, ".")).parent_path().string();
   file_access_ = std::make_shared<const FileAccess>(access_options_, main_dir_);
-  TokenStream ts(read_scene_file(path, from, {}), path);
+  TokenStream ts(open_scene_file(path, from, {}));
   run(ts, main_dir_);
 }
 
 void SceneParser::parse_text(const std::string& text, const std::string& name, const std::string& base_dir) {
   main_dir_ = resolve_path(".", base_dir);
   file_access_ = std::make_shared<const FileAccess>(access_options_, main_dir_);
-  TokenStream ts(tokenize(text, name), name);
+  TokenStream ts(open_text(text, name));
   run(ts, main_dir_);
 }
 
@@ -179,15 +199,13 @@ void SceneParser::include(const Token& d, TokenStream& ts) {
   if (d.text == "Include") {
     // pbrt-v4: the included tokens continue this stream (a parameter list may run on
     // past the end of the included file), sharing the graphics state.
-    std::vector<Token> tokens = read_scene_file(path, &loc, chain);
-    ts.include(std::move(tokens), path);
+    ts.include(open_scene_file(path, &loc, chain));
     return;
   }
   // Import (pbrt-v4: world block only): a separate stream whose graphics state does not
   // leak out; what it defines (shapes, named materials, textures, media, lights) does.
   require_world(d, ts);
-  std::vector<Token> tokens = read_scene_file(path, &loc, chain);
-  TokenStream imported(std::move(tokens), path);
+  TokenStream imported(open_scene_file(path, &loc, chain));
   const GraphicsState saved = gs_;
   const std::size_t blocks = blocks_.size();
   std::swap(outer_files_, chain);

@@ -361,7 +361,7 @@ MaterialDesc SceneParser::rebuild_material(const MaterialDesc& old, const std::s
   float_textures_.clear();
   for (std::size_t i = 0; i < s_.textures.size(); ++i)
     (s_.textures[i].is_float ? float_textures_ : spectrum_textures_)[s_.textures[i].name] = int(i);
-  TokenStream changes_ts(tokenize(params_text, source_name), source_name);
+  TokenStream changes_ts(open_text(params_text, source_name));
   changes_ts.set_base_dir(s_.base_directory);
   ParamList changes = ParamList::parse(changes_ts);
   if (!changes_ts.at_end()) {

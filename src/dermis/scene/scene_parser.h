@@ -88,8 +88,7 @@ class SceneParser {
   void sampler(const Token& d, TokenStream& ts);
   void integrator(const Token& d, TokenStream& ts);
   void include(const Token& d, TokenStream& ts);
-  std::vector<Token> read_scene_file(const std::string& path, const SourceLoc* from,
-                                     const std::vector<std::string>& chain);
+  OpenText open_scene_file(const std::string& path, const SourceLoc* from, const std::vector<std::string>& chain);
   // A file named in the scene at `at`, resolved as pbrt-v4 does: against the main scene
   // file's directory (then, with a warning, beside the file that names it); an error when
   // the file access is confined and it lies outside (`what` names it in the message).

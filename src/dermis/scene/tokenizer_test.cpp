@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <memory>
 
 namespace dermis {
 namespace {
@@ -104,6 +105,82 @@ TEST(Tokenizer, LongTextShowsProgressAndStopsOnCancel) {
   };
   LoadStage stage(&monitor, "parsing");
   EXPECT_THROW(tokenize(text, "f.pbrt", &stage), Interrupted);
+}
+
+// A text handed out `size` bytes at a time: every token may straddle two chunks.
+class SmallChunks final : public TextSource {
+ public:
+  SmallChunks(std::string text, std::size_t size) : text_(std::move(text)), size_(size) {}
+  std::string_view next_chunk() override {
+    const std::string_view chunk = std::string_view(text_).substr(std::min(at_, text_.size()), size_);
+    at_ += chunk.size();
+    return chunk;
+  }
+  double fraction_read() const override { return double(at_) / double(text_.size()); }
+
+ private:
+  std::string text_;
+  std::size_t size_, at_ = 0;
+};
+
+// Read in chunks of 1, 2, 3 and 7 bytes, a text gives the tokens it gives whole: kinds, text,
+// numbers, lines, columns and byte offsets.
+TEST(Tokenizer, ChunkBoundariesChangeNoToken) {
+  const std::string text =
+      "Shape \"sphere\"  # comment [ \"x\"\r\n  \"float radius\" [ -2.5e1 ]\n\"a\\\"b\" ident_2 [1 2.5 .5 +3]# end";
+  const std::vector<Token> whole = tokenize(text, "f");
+  ASSERT_EQ(whole.size(), 14u);
+  EXPECT_EQ(whole[6].text, "a\"b");
+  EXPECT_EQ(text.substr(whole[7].offset, 7), "ident_2");
+  for (std::size_t size : {1, 2, 3, 7}) {
+    Lexer lexer(std::make_unique<SmallChunks>(text, size), "f");
+    std::vector<Token> parts;
+    for (Token t; lexer.next(t);) parts.push_back(t);
+    ASSERT_EQ(parts.size(), whole.size()) << size;
+    for (std::size_t i = 0; i < whole.size(); ++i) {
+      EXPECT_EQ(parts[i].kind, whole[i].kind) << size << " " << i;
+      EXPECT_EQ(parts[i].text, whole[i].text) << size << " " << i;
+      EXPECT_EQ(parts[i].number, whole[i].number) << size << " " << i;
+      EXPECT_EQ(parts[i].line, whole[i].line) << size << " " << i;
+      EXPECT_EQ(parts[i].column, whole[i].column) << size << " " << i;
+      EXPECT_EQ(parts[i].offset, whole[i].offset) << size << " " << i;
+    }
+    EXPECT_EQ(lexer.end_loc().line, 3);
+    EXPECT_EQ(lexer.end_loc().column, 29);  // just after the last ']'
+  }
+}
+
+// skip_to goes on from a token read before, at its line and column.
+TEST(Tokenizer, SkipToResumesAtAToken) {
+  const std::string text = "A [ 1\n 2\n\n  3 ]";
+  const std::vector<Token> whole = tokenize(text, "f");
+  ASSERT_EQ(whole.size(), 6u);
+  for (std::size_t size : {1, 4, 100}) {
+    Lexer lexer(std::make_unique<SmallChunks>(text, size), "f");
+    lexer.skip_to(whole[3].offset, whole[3].line, whole[3].column);
+    Token t;
+    ASSERT_TRUE(lexer.next(t));
+    EXPECT_EQ(t.text, "2");
+    ASSERT_TRUE(lexer.next(t));
+    EXPECT_EQ(t.text, "3");
+    EXPECT_EQ(t.line, 4);
+    EXPECT_EQ(t.column, 3);
+  }
+}
+
+// An included text's tokens come before the rest of the including one; peek looks through a
+// finished text to the one that goes on.
+TEST(TokenStream, IncludedTextComesFirst) {
+  TokenStream ts(open_text("A [ 1", "outer"));
+  EXPECT_EQ(ts.next().text, "A");
+  ts.include(open_text("B 2", "inner"));
+  std::vector<std::string> seen;
+  while (!ts.at_end()) {
+    const Token& t = ts.next();
+    seen.push_back(ts.loc(t).file + ":" + t.text);
+  }
+  EXPECT_EQ(seen, (std::vector<std::string>{"inner:B", "inner:2", "outer:[", "outer:1"}));
+  EXPECT_EQ(ts.end_loc().column, 6);
 }
 
 }  // namespace
