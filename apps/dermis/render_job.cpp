@@ -254,7 +254,10 @@ std::optional<std::string> open_checkpoints(const RenderArgs& a, const std::stri
   try {
     if (group.size() > 1)
       throw std::invalid_argument("--checkpoint and --resume work with one process only (not with dermis-mpi yet)");
-    key.scene_hash = fingerprint(read_file_contents(a.scene));
+    key.scene_hash = kFingerprintOfNothing;  // the scene's text, hashed a chunk at a time (never held whole)
+    FileChunks scene_text(a.scene);
+    for (std::string_view c = scene_text.next(); !c.empty(); c = scene_text.next())
+      key.scene_hash = fingerprint(c, key.scene_hash);
     key.seed = render_seed(a, desc);
     key.sampler = desc.settings.sampler;
     key.full_width = scene.film.xres;

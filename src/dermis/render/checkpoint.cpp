@@ -49,9 +49,8 @@ Header header_of(const CheckpointKey& k) {
 
 }  // namespace
 
-uint64_t fingerprint(const std::string& bytes) {
-  uint64_t h = 14695981039346656037ull;  // FNV-1a offset basis and prime (Fowler, Noll, Vo)
-  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+uint64_t fingerprint(std::string_view bytes, uint64_t h) {
+  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;  // FNV-1a's prime (Fowler, Noll, Vo)
   return h;
 }
 

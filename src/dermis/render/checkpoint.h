@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "dermis/core/sampler.h"
 #include "dermis/render/film.h"
@@ -23,8 +24,10 @@ struct CheckpointKey {
   PixelBounds pixels{0, 0, 0, 0};
 };
 
-// FNV-1a (64-bit) of a byte string: the scene's fingerprint.
-uint64_t fingerprint(const std::string& bytes);
+// FNV-1a (64-bit) of a byte string: the scene's fingerprint. `h`: the fingerprint of the
+// bytes before these (a file hashed a chunk at a time).
+inline constexpr uint64_t kFingerprintOfNothing = 14695981039346656037ull;  // FNV-1a's offset basis
+uint64_t fingerprint(std::string_view bytes, uint64_t h = kFingerprintOfNothing);
 
 // Writes the film to `path` through a temporary file renamed over it, so that an
 // interrupted write never leaves a truncated checkpoint. Throws std::runtime_error

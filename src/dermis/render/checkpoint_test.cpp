@@ -71,6 +71,7 @@ TEST(Checkpoint, AnUnwritableFolderIsAnErrorAndLeavesNothing) {
 TEST(Checkpoint, FingerprintIsFnv1a) {
   EXPECT_EQ(fingerprint(""), 14695981039346656037ull);
   EXPECT_EQ(fingerprint("a"), 0xaf63dc4c8601ec8cull);  // the published FNV-1a 64 test vector
+  EXPECT_EQ(fingerprint("scene text"), fingerprint(" text", fingerprint("scene")));  // in pieces
 }
 
 }  // namespace
