@@ -32,17 +32,25 @@ Distribution1D::Distribution1D(std::span<const float> f) : func_(f.begin(), f.en
   } else {
     for (std::size_t i = 1; i <= n; ++i) cdf_[i] /= integral_;
   }
+  guide_.resize(n);
+  std::size_t i = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    while (i + 1 < n && cdf_[i + 1] <= double(j) / double(n)) ++i;
+    guide_[j] = uint32_t(i);
+  }
 }
 
-static std::size_t find_interval(const std::vector<double>& cdf, double u) {
-  // Largest i with cdf[i] <= u, clamped to [0, n-1].
-  auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
-  std::size_t i = std::size_t(std::max<std::ptrdiff_t>(0, (it - cdf.begin()) - 1));
-  return std::min(i, cdf.size() - 2);
+std::size_t Distribution1D::find_bin(double u) const {
+  const std::size_t n = func_.size();
+  std::size_t i = guide_[std::min(n - 1, std::size_t(std::max(0.0, u) * double(n)))];
+  // u * n may round up onto the next cutpoint: step back, then on to u's bin.
+  while (i > 0 && cdf_[i] > u) --i;
+  while (i + 1 < n && cdf_[i + 1] <= u) ++i;
+  return i;
 }
 
 float Distribution1D::sample_continuous(float u, float* pdf, std::size_t* bin) const {
-  std::size_t i = find_interval(cdf_, u);
+  std::size_t i = find_bin(u);
   // Skip zero-width bins that upper_bound may land on at their boundary.
   while (cdf_[i + 1] - cdf_[i] <= 0 && i + 1 < func_.size()) ++i;
   double du = u - cdf_[i];
@@ -60,7 +68,7 @@ float Distribution1D::sample_continuous(float u, float* pdf, std::size_t* bin) c
 }
 
 std::size_t Distribution1D::sample_discrete(float u, float* pmf, float* u_remapped) const {
-  std::size_t i = find_interval(cdf_, u);
+  std::size_t i = find_bin(u);
   while (cdf_[i + 1] - cdf_[i] <= 0 && i + 1 < func_.size()) ++i;
   double width = cdf_[i + 1] - cdf_[i];
   if (pmf) *pmf = float(width);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -124,6 +125,35 @@ TEST(Distribution1D, ZeroBinsAreNeverSampled) {
     const std::size_t i = d.sample_discrete(u, &pmf);
     ASSERT_GT(f[i], 0) << "u = " << u;
     ASSERT_GT(pmf, 0) << "u = " << u;
+  }
+}
+
+// The cutpoint search finds the bin a binary search over the same CDF finds (the CDF built
+// here as the constructor builds it), for every u probed: at the bins' edges, at the
+// cutpoints j/n and between them, for functions with zero bins, spikes and a long tail.
+TEST(Distribution1D, GuidedSearchFindsTheBinABinarySearchFinds) {
+  Rng rng(11, 0);
+  for (std::size_t n : {1u, 2u, 5u, 64u, 1000u, 1024u}) {
+    std::vector<float> f(n);
+    for (float& v : f) {
+      const float r = rng.uniform();
+      v = r < 0.3f ? 0.0f : r < 0.35f ? 1e4f * rng.uniform() : 1e-6f + rng.uniform();
+    }
+    std::vector<double> cdf(n + 1, 0.0);
+    for (std::size_t i = 0; i < n; ++i) cdf[i + 1] = cdf[i] + double(f[i]) / double(n);
+    for (std::size_t i = 1; i <= n; ++i) cdf[i] /= cdf[n];
+    std::vector<float> us = probing_numbers(f);
+    for (std::size_t j = 0; j <= n; ++j)
+      for (float du : {-1e-7f, 0.0f, 1e-7f}) us.push_back(float(double(j) / double(n)) + du);
+    for (int k = 0; k < 2000; ++k) us.push_back(rng.uniform());
+    Distribution1D d(f);
+    for (float u : us) {
+      if (!(u >= 0 && u < 1)) continue;
+      std::size_t expected = std::size_t(std::upper_bound(cdf.begin(), cdf.end(), double(u)) - cdf.begin()) - 1;
+      expected = std::min(expected, n - 1);
+      while (cdf[expected + 1] - cdf[expected] <= 0 && expected + 1 < n) ++expected;  // as sample_discrete skips
+      ASSERT_EQ(d.sample_discrete(u), expected) << "n = " << n << ", u = " << u;
+    }
   }
 }
 

@@ -38,11 +38,10 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<float> pixels,
     : width_(width),
       height_(height),
       mapping_(mapping),
-      pixels_(std::move(pixels)),
       light_to_world_(light_to_world),
       world_to_light_(light_to_world.inverse()),
       scale_(scale) {
-  if (width <= 0 || height <= 0 || pixels_.size() != std::size_t(width) * height * 3)
+  if (width <= 0 || height <= 0 || pixels.size() != std::size_t(width) * height * 3)
     throw std::invalid_argument("environment map: bad image size");
   if (mapping == Mapping::EqualArea && width != height)
     throw std::invalid_argument(fmt::format(
@@ -56,7 +55,7 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<float> pixels,
     for (int x = 0; x < width; ++x) {
       const Vec2 uv{(float(x) + 0.5f) / float(width), (float(y) + 0.5f) / float(height)};
       const float da = solid_angle_density(uv);  // per unit uv area
-      const float* p = &pixels_[3 * (std::size_t(y) * width + x)];
+      const float* p = &pixels[3 * (std::size_t(y) * width + x)];
       float lum = std::max(0.0f, RGB(p[0], p[1], p[2]).luminance() * scale);
       if (!std::isfinite(lum * da))  // the sampling table is in floats, as is the radiance
         throw std::invalid_argument(fmt::format(
@@ -72,6 +71,14 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<float> pixels,
   average_ = solid_angle > 0 ? float(sum / solid_angle) : 0.0f;
   mean_arrival_ = sum > 0 ? arrival / float(sum) : Vec3(0, 0, 0);
   distribution_ = Distribution2D(weight, std::size_t(width), std::size_t(height));
+  texels_.resize(std::size_t(width) * height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t i = std::size_t(y) * width + x;
+      Texel& t = texels_[i];
+      std::copy_n(&pixels[3 * i], 3, t.rgb);
+      t.pdf_uv = distribution_.pdf({(float(x) + 0.5f) / float(width), (float(y) + 0.5f) / float(height)});
+    }
 }
 
 float EnvironmentMap::upper_hemisphere_illuminance() const {
@@ -80,7 +87,7 @@ float EnvironmentMap::upper_hemisphere_illuminance() const {
   double e = 0;
   for (int y = 0; y < height_; ++y)
     for (int x = 0; x < width_; ++x) {
-      const float* p = &pixels_[3 * (std::size_t(y) * width_ + x)];
+      const float* p = texels_[std::size_t(y) * width_ + x].rgb;
       const double lum = std::max(0.0f, RGB(p[0], p[1], p[2]).luminance() * scale_);
       if (lum == 0) continue;
       for (int j = 0; j < k; ++j)
@@ -114,16 +121,23 @@ Vec3 EnvironmentMap::uv_to_direction(Vec2 uv) const {
   return normalize(light_to_world_.vector(w));
 }
 
-RGB EnvironmentMap::texel(Vec2 uv) const {
+const EnvironmentMap::Texel& EnvironmentMap::texel_at(Vec2 uv) const {
   int x = std::clamp(int(uv.x * float(width_)), 0, width_ - 1);
   int y = std::clamp(int(uv.y * float(height_)), 0, height_ - 1);
-  const float* p = &pixels_[3 * (std::size_t(y) * width_ + x)];
-  return RGB(p[0], p[1], p[2]) * scale_;
+  return texels_[std::size_t(y) * width_ + x];
 }
 
-RGB EnvironmentMap::eval(Vec3 w) const { return texel(direction_to_uv(w)); }
+RGB EnvironmentMap::eval(Vec3 w) const { return radiance(texel_at(direction_to_uv(w))); }
 
-Vec3 EnvironmentMap::sample(Vec2 u, float* pdf) const {
+RGB EnvironmentMap::eval(Vec3 w, float* pdf) const {
+  const Vec2 uv = direction_to_uv(w);
+  const Texel& t = texel_at(uv);
+  const float da = solid_angle_density(uv);
+  *pdf = da == 0 ? 0 : t.pdf_uv / da;
+  return radiance(t);
+}
+
+Vec3 EnvironmentMap::sample(Vec2 u, float* pdf, RGB* L) const {
   float pdf_uv;
   Vec2 uv = distribution_.sample(u, &pdf_uv);
   const float da = solid_angle_density(uv);
@@ -132,6 +146,7 @@ Vec3 EnvironmentMap::sample(Vec2 u, float* pdf) const {
     return {0, 0, 1};
   }
   *pdf = pdf_uv / da;
+  if (L) *L = radiance(texel_at(uv));
   return uv_to_direction(uv);
 }
 
@@ -139,7 +154,7 @@ float EnvironmentMap::pdf(Vec3 w) const {
   Vec2 uv = direction_to_uv(w);
   const float da = solid_angle_density(uv);
   if (da == 0) return 0;
-  return distribution_.pdf(uv) / da;
+  return texel_at(uv).pdf_uv / da;
 }
 
 }  // namespace dermis

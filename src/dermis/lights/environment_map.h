@@ -31,8 +31,12 @@ class EnvironmentMap {
 
   // Radiance arriving from world direction w (pointing toward the environment).
   RGB eval(Vec3 w) const;
-  // Samples a world direction; pdf in solid angle.
-  Vec3 sample(Vec2 u, float* pdf) const;
+  // eval(w), and pdf(w) in `pdf`, from one look-up (a ray that escaped, weighed by MIS).
+  RGB eval(Vec3 w, float* pdf) const;
+  // Samples a world direction; pdf in solid angle; `L` (if given): the radiance from it, read
+  // at the sampled point of the image (as pbrt-v4's ImageInfiniteLight::SampleLi), not looked
+  // up again from the direction.
+  Vec3 sample(Vec2 u, float* pdf, RGB* L = nullptr) const;
   float pdf(Vec3 w) const;
   // Mean radiance over the sphere of directions (for light selection).
   float average_luminance() const { return average_; }
@@ -50,12 +54,20 @@ class EnvironmentMap {
   Vec3 uv_to_direction(Vec2 uv) const;
 
  private:
-  RGB texel(Vec2 uv) const;
+  // A pixel's radiance (before the scale) and the density, per unit uv area, with which
+  // sample() picks a point in it: together, so that a look-up of both (eval with the pdf)
+  // reads one cache line of a map far larger than the caches.
+  struct alignas(16) Texel {
+    float rgb[3];
+    float pdf_uv;
+  };
+  const Texel& texel_at(Vec2 uv) const;
+  RGB radiance(const Texel& t) const { return RGB(t.rgb[0], t.rgb[1], t.rgb[2]) * scale_; }
   // Solid angle per unit uv area at uv (the Jacobian of the mapping).
   float solid_angle_density(Vec2 uv) const;
   int width_, height_;
   Mapping mapping_;
-  std::vector<float> pixels_;
+  std::vector<Texel> texels_;  // row-major, top row first
   Transform light_to_world_, world_to_light_;
   float scale_;
   Distribution2D distribution_;

@@ -37,6 +37,15 @@ RGB infinite_light_radiance(const Light& l, Vec3 w) {
   return l.environment ? l.environment->eval(w) : l.emission;
 }
 
+RGB infinite_light_radiance(const Light& l, Vec3 w, Vec3 ref_n, float* pdf) {
+  if (!l.environment) {
+    *pdf = light_pdf(l, {}, w, {}, {}, ref_n);
+    return through_portal(l, w) ? l.emission : RGB(0);
+  }
+  const RGB L = l.environment->eval(w, pdf);
+  return through_portal(l, w) ? L : RGB(0);
+}
+
 bool light_sample(const Light& l, const std::vector<Shape>& shapes, Vec3 ref, Vec2 u, LightSample& s, Vec3 ref_n) {
   switch (l.type) {
     case Light::Type::Triangle: {
@@ -128,9 +137,8 @@ bool light_sample(const Light& l, const std::vector<Shape>& shapes, Vec3 ref, Ve
       return true;
     case Light::Type::Infinite: {
       if (l.environment) {
-        s.wi = l.environment->sample(u, &s.pdf);
+        s.wi = l.environment->sample(u, &s.pdf, &s.L);
         if (s.pdf == 0) return false;
-        s.L = l.environment->eval(s.wi);
       } else if (ref_n.x != 0 || ref_n.y != 0 || ref_n.z != 0) {
         const Vec3 local = sample_cosine_hemisphere(u);
         s.wi = Frame(ref_n).to_world(local);

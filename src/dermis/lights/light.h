@@ -73,6 +73,9 @@ float light_pdf(const Light& l, Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light, V
 RGB area_light_radiance(const Light& l, Vec3 n, Vec3 w);
 // Radiance of an infinite light arriving from direction w (toward the light).
 RGB infinite_light_radiance(const Light& l, Vec3 w);
+// The same, and in `pdf` light_pdf(l, ref, w, {}, {}, ref_n): an environment map looks its
+// pixel up once for both (a ray that escaped, weighed by MIS).
+RGB infinite_light_radiance(const Light& l, Vec3 w, Vec3 ref_n, float* pdf);
 // Total emitted power (approximate for lights at infinity, whose power grows with the
 // scene's radius), for light selection. In double: a light whose power is beyond the range
 // of 32-bit floats (a point light of I = 3e37: 4 pi I) is seen as such (scene_assembly.cpp

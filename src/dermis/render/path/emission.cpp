@@ -8,12 +8,13 @@ void add_emission_at_infinity(const PathContext& ctx, PathState& st) {
   const RenderScene& sc = ctx.sc;
   for (int li : sc.infinite_lights) {
     const Light& light = sc.lights[li];
-    RGB Le = infinite_light_radiance(light, st.ray.d);
+    float light_density;
+    RGB Le = infinite_light_radiance(light, st.ray.d, st.prev_n, &light_density);
     if (Le.is_black()) continue;
     Le = path_emission(Le, light, sc, ctx.start.wavelengths);
     float w = st.specular ? 1.0f
                           : power_heuristic(st.prev_pdf, sc.light_selection.pmf(li, st.prev_p, st.prev_n, st.prev_sky) *
-                                                             light_pdf(light, st.prev_p, st.ray.d, {}, {}, st.prev_n));
+                                                             light_density);
     st.L += st.beta * Le * (w * st.emission_weight);
   }
 }
