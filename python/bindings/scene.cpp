@@ -114,7 +114,10 @@ const char* material_type_name(MaterialDesc::Type t) {
 // as a tuple.
 py::object param_value(const Param& p) {
   py::list values;
-  for (double x : p.numbers) values.append(p.type == "integer" ? py::object(py::int_(int64_t(x))) : py::float_(x));
+  for (std::size_t i = 0; i < p.number_count(); ++i) {
+    const double x = p.number(i);
+    values.append(p.type == "integer" ? py::object(py::int_(int64_t(x))) : py::float_(x));
+  }
   for (const std::string& s : p.strings) values.append(s);
   for (bool b : p.bools) values.append(py::bool_(b));
   if (values.size() == 1) return values[0];

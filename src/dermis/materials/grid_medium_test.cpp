@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "dermis/core/rng.h"
 #include "dermis/materials/noise.h"
 #include "dermis/spectral/spectrum_at.h"
@@ -11,7 +13,7 @@ namespace {
 
 // pbrt-v4's SampledGrid: samples at cell centres, trilinear between them, zero beyond.
 TEST(VoxelGrid, ReadsAsPbrtV4sSampledGrid) {
-  VoxelGrid<float> g{4, 2, 1, {1, 2, 3, 4, 10, 20, 30, 40}};
+  VoxelGrid<float> g(4, 2, 1, make_shared_floats({1, 2, 3, 4, 10, 20, 30, 40}));
   EXPECT_FLOAT_EQ(g.lookup(Vec3(0.125f, 0.25f, 0.5f)), 1);   // sample (0, 0, 0)
   EXPECT_FLOAT_EQ(g.lookup(Vec3(0.625f, 0.75f, 0.5f)), 30);  // sample (2, 1, 0): x fastest
   EXPECT_FLOAT_EQ(g.lookup(Vec3(0.25f, 0.25f, 0.5f)), 1.5f);
@@ -36,10 +38,10 @@ GridMedium density_medium(VoxelGrid<float> d) {
 }
 
 VoxelGrid<float> random_density(int nx, int ny, int nz, uint64_t seed) {
-  VoxelGrid<float> d{nx, ny, nz, {}};
+  std::vector<float> values;
   Rng rng(seed, 1);
-  for (int i = 0; i < nx * ny * nz; ++i) d.values.push_back(rng.uniform() < 0.3f ? 0.0f : 3 * rng.uniform());
-  return d;
+  for (int i = 0; i < nx * ny * nz; ++i) values.push_back(rng.uniform() < 0.3f ? 0.0f : 3 * rng.uniform());
+  return VoxelGrid<float>(nx, ny, nz, make_shared_floats(values));
 }
 
 // Every point of the box reads at most its majorant cell's value, in every slot, for a
@@ -49,13 +51,16 @@ TEST(GridMedium, MajorantsBoundTheCoefficients) {
   GridMedium rgb = dens;
   rgb.kind = GridMedium::Kind::RGBGrid;
   rgb.density = {};
-  rgb.sigma_a_grid = {9, 5, 3, {}};
-  rgb.sigma_s_grid = {9, 5, 3, {}};
   Rng rng(4, 2);
+  std::vector<float> sigma_a, sigma_s;  // three floats per sample
   for (int i = 0; i < 9 * 5 * 3; ++i) {
-    rgb.sigma_a_grid.values.push_back(RGB(rng.uniform(), 0.2f * rng.uniform(), 2 * rng.uniform()));
-    rgb.sigma_s_grid.values.push_back(RGB(3 * rng.uniform(), rng.uniform(), 0));
+    const RGB a(rng.uniform(), 0.2f * rng.uniform(), 2 * rng.uniform());
+    const RGB s(3 * rng.uniform(), rng.uniform(), 0);
+    sigma_a.insert(sigma_a.end(), a.c, a.c + 3);
+    sigma_s.insert(sigma_s.end(), s.c, s.c + 3);
   }
+  rgb.sigma_a_grid = VoxelGrid<RGB>(9, 5, 3, make_shared_floats(sigma_a));
+  rgb.sigma_s_grid = VoxelGrid<RGB>(9, 5, 3, make_shared_floats(sigma_s));
   rgb.build_majorants();
   SampledWavelengths w = SampledWavelengths::sample_visible(0.3f);
   const GridMediumView views[] = {{&dens, RGB(0.5f, 1, 2), RGB(1, 0.1f, 3), 0, nullptr},

@@ -18,7 +18,7 @@ struct Fixture {
   GridMediumView view;
   Fixture() {
     grid.kind = GridMedium::Kind::Density;
-    grid.density = {6, 1, 1, {0.5f, 3, 0, 0, 1.5f, 2}};
+    grid.density = VoxelGrid<float>(6, 1, 1, make_shared_floats({0.5f, 3, 0, 0, 1.5f, 2}));
     grid.p0 = Vec3(0, 0, 0);
     grid.p1 = Vec3(2, 1, 1);
     grid.build_majorants();

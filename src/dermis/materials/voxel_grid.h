@@ -1,31 +1,57 @@
 // Values sampled on a regular grid over the unit cube and read with trilinear interpolation,
 // as pbrt-v4's SampledGrid reads a grid medium's values: sample (x, y, z) of an nx x ny x nz
 // grid sits at ((x + 1/2) / nx, (y + 1/2) / ny, (z + 1/2) / nz), x varying fastest in
-// `values`, and a sample outside the grid reads as zero (the value fades to zero over the
-// outer half-cell).
+// the values, and a sample outside the grid reads as zero (the value fades to zero over the
+// outer half-cell). T is float (one float per sample) or RGB (three), read from a FloatArray
+// shared with the scene's description: the grid's values exist once.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <vector>
+#include <memory>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
 
+#include "dermis/core/float_array.h"
+#include "dermis/core/rgb.h"
 #include "dermis/core/vec.h"
 
 namespace dermis {
 
 template <class T>
-struct VoxelGrid {
+class VoxelGrid {
+  static_assert(std::is_same_v<T, float> || std::is_same_v<T, RGB>, "a grid of floats or of colours");
+  static_assert(sizeof(RGB) == 3 * sizeof(float), "a colour is its three floats");
+
+ public:
+  static constexpr std::size_t kFloatsPerSample = sizeof(T) / sizeof(float);  // float: 1, RGB: 3
+
   int nx = 0, ny = 0, nz = 0;
-  std::vector<T> values;  // nx * ny * nz, x fastest, then y, then z
 
-  bool empty() const { return values.empty(); }
+  VoxelGrid() = default;
+  // nx * ny * nz samples of kFloatsPerSample floats each, x fastest, then y, then z (null or
+  // empty: an empty grid). std::invalid_argument when the count differs.
+  VoxelGrid(int nx, int ny, int nz, std::shared_ptr<const FloatArray> values)
+      : nx(nx), ny(ny), nz(nz), values_(std::move(values)), data_(values_ ? values_->data() : nullptr) {
+    if (!empty() && (nx < 1 || ny < 1 || nz < 1 ||
+                     values_->size() != std::size_t(nx) * std::size_t(ny) * std::size_t(nz) * kFloatsPerSample))
+      throw std::invalid_argument("VoxelGrid: the values are not nx * ny * nz samples");
+  }
 
-  // Sample (x, y, z), or T{} (zero) outside the grid.
-  const T& sample(int x, int y, int z) const {
-    static const T zero{};
-    if (x < 0 || y < 0 || z < 0 || x >= nx || y >= ny || z >= nz) return zero;
-    return values[(std::size_t(z) * std::size_t(ny) + std::size_t(y)) * std::size_t(nx) + std::size_t(x)];
+  bool empty() const { return !values_ || values_->empty(); }
+  const std::shared_ptr<const FloatArray>& values() const { return values_; }
+
+  // Sample (x, y, z), or T{} (zero) outside the grid: a plain read through the cached pointer.
+  T sample(int x, int y, int z) const {
+    if (x < 0 || y < 0 || z < 0 || x >= nx || y >= ny || z >= nz) return T{};
+    const float* v = data_ + ((std::size_t(z) * std::size_t(ny) + std::size_t(y)) * std::size_t(nx) + std::size_t(x)) *
+                                 kFloatsPerSample;
+    if constexpr (kFloatsPerSample == 1)
+      return *v;
+    else
+      return T(v[0], v[1], v[2]);
   }
 
   // The value at p in [0, 1]^3, each sample read through convert (a sample's value at a
@@ -42,7 +68,7 @@ struct VoxelGrid {
     return lerp(dz, lerp(dy, d00, d10), lerp(dy, d01, d11));
   }
   T lookup(Vec3 p) const {
-    return lookup(p, [](const T& v) { return v; });
+    return lookup(p, [](T v) { return v; });
   }
 
   // The largest of value(sample) over the samples whose interpolation reaches into the box
@@ -64,6 +90,10 @@ struct VoxelGrid {
         for (int x = first[0]; x <= last[0]; ++x) best = std::max(best, value(sample(x, y, z)));
     return best;
   }
+
+ private:
+  std::shared_ptr<const FloatArray> values_;
+  const float* data_ = nullptr;  // values_->data(), cached: sample() is on the render's hot path
 };
 
 }  // namespace dermis

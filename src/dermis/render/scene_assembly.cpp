@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <string>
+#include <type_traits>
 
 #include "dermis/render/image.h"
 #include "dermis/render/light_power_range.h"
@@ -639,12 +641,9 @@ GridMedium make_grid_medium(const MediumDesc& d) {
   g.medium_from_world = d.medium_to_world.inverse();
   g.p0 = d.p0;
   g.p1 = d.p1;
-  auto grid = [&d](auto& out, const auto& values) {
-    if (values.empty()) return;
-    out.nx = d.nx;
-    out.ny = d.ny;
-    out.nz = d.nz;
-    out.values = values;
+  // Each grid shares the description's values (a grid exists once in memory).
+  auto grid = [&d](auto& out, const std::shared_ptr<const FloatArray>& values) {
+    if (values) out = std::decay_t<decltype(out)>(d.nx, d.ny, d.nz, values);
   };
   grid(g.density, d.density);
   grid(g.sigma_a_grid, d.sigma_a_grid);
@@ -660,8 +659,8 @@ GridMedium make_grid_medium(const MediumDesc& d) {
   grid(g.temperature, d.temperature);
   g.temperature_offset = d.temperature_offset;
   g.temperature_scale = d.temperature_scale;
-  if (d.le_scale_grid.empty())
-    g.le_scale = {1, 1, 1, {1.0f}};  // pbrt-v4's default: one sample (a tent over the box)
+  if (!d.le_scale_grid)  // pbrt-v4's default: one sample (a tent over the box)
+    g.le_scale = VoxelGrid<float>(1, 1, 1, make_shared_floats({1.0f}));
   else
     grid(g.le_scale, d.le_scale_grid);
   g.cloud_density = d.cloud_density;

@@ -46,6 +46,23 @@ std::string type_list(std::initializer_list<const char*> types) {
   return s;
 }
 
+// One number more: past kLongNumberList values of a non-integer type, the list moves to floats
+// (Param::long_numbers) and grows there.
+void add_number(ParsedParam& p, double x) {
+  Param& q = p.param;
+  if (q.long_numbers) {
+    q.long_numbers->push_back(float(x));
+    return;
+  }
+  q.numbers.push_back(x);
+  if (q.numbers.size() <= kLongNumberList || p.type == "integer") return;
+  auto floats = std::make_shared<FloatArray>();
+  floats->reserve(q.numbers.size());
+  for (double d : q.numbers) floats->push_back(float(d));
+  q.long_numbers = std::move(floats);
+  std::vector<double>().swap(q.numbers);  // its memory given back, not only emptied
+}
+
 void add_value(ParsedParam& p, ValueKind kind, const Token& t, const TokenStream& ts) {
   SourceLoc loc = ts.loc(t);
   const std::string& name = p.param.name;
@@ -57,7 +74,7 @@ void add_value(ParsedParam& p, ValueKind kind, const Token& t, const TokenStream
       if (p.type == "integer" && t.number != std::floor(t.number))
         throw SceneError(loc,
                          fmt::format("parameter \"integer {}\" expects integers, found '{}'", name, excerpt(t.text)));
-      p.param.numbers.push_back(t.number);
+      add_number(p, t.number);
       break;
     case ValueKind::Strings:
       if (t.kind != Token::Kind::String)
@@ -78,8 +95,8 @@ void add_value(ParsedParam& p, ValueKind kind, const Token& t, const TokenStream
     }
     case ValueKind::NumbersOrString:
       if (t.kind == Token::Kind::Number && p.param.strings.empty()) {
-        p.param.numbers.push_back(t.number);
-      } else if (t.kind == Token::Kind::String && p.param.numbers.empty() && p.param.strings.empty()) {
+        add_number(p, t.number);
+      } else if (t.kind == Token::Kind::String && p.param.number_count() == 0 && p.param.strings.empty()) {
         p.param.strings.push_back(t.text);
       } else {
         throw SceneError(loc, fmt::format("parameter \"spectrum {}\" expects [wavelength value ...] pairs or one "
@@ -92,7 +109,7 @@ void add_value(ParsedParam& p, ValueKind kind, const Token& t, const TokenStream
 
 }  // namespace
 
-size_t ParsedParam::size() const { return param.numbers.size() + param.strings.size() + param.bools.size(); }
+size_t ParsedParam::size() const { return param.number_count() + param.strings.size() + param.bools.size(); }
 
 SourceLoc ParsedParam::value_at(size_t i) const {
   if (!value_origin || i >= size()) return value_loc;
@@ -160,6 +177,7 @@ ParamList ParamList::parse(TokenStream& ts) {
         add_value(p, kind, ts.next(), ts);
       }
       if (p.size() == 0) throw SceneError(p.value_loc, fmt::format("parameter \"{}\" has no values", decl.text));
+      if (p.param.long_numbers) p.param.long_numbers->shrink_to_fit();
     } else {
       add_value(p, kind, ts.next(), ts);
     }
@@ -233,22 +251,43 @@ std::optional<std::string> ParamList::get_texture(const std::string& name) const
   return p->param.strings[0];
 }
 
-std::vector<double> ParamList::get_numbers(const std::string& name, std::initializer_list<const char*> types,
+const ParsedParam* ParamList::find_numbers(const std::string& name, std::initializer_list<const char*> types,
                                            size_t arity) const {
   const ParsedParam* p = find(name);
-  if (!p) return {};
+  if (!p) return nullptr;
   expect_type(*p, types);
   if (!p->param.strings.empty()) throw SceneError(p->value_loc, fmt::format("parameter '{}' expects numbers", name));
-  if (arity > 1 && p->param.numbers.size() % arity != 0)
+  if (arity > 1 && p->param.number_count() % arity != 0)
     throw SceneError(p->value_loc, fmt::format("parameter \"{} {}\" needs a multiple of {} values, got {}",
-                                               p->param.type, name, arity, p->param.numbers.size()));
-  return p->param.numbers;
+                                               p->param.type, name, arity, p->param.number_count()));
+  return p;
+}
+
+std::vector<double> ParamList::get_numbers(const std::string& name, std::initializer_list<const char*> types,
+                                           size_t arity) const {
+  const ParsedParam* p = find_numbers(name, types, arity);
+  return p ? p->param.numbers_as_doubles() : std::vector<double>{};
+}
+
+std::shared_ptr<const FloatArray> ParamList::get_float_array(const std::string& name,
+                                                             std::initializer_list<const char*> types,
+                                                             size_t arity) const {
+  const ParsedParam* p = find_numbers(name, types, arity);
+  if (!p) return nullptr;
+  if (p->param.long_numbers) return p->param.long_numbers;
+  auto floats = std::make_shared<FloatArray>();
+  floats->reserve(p->param.numbers.size());
+  for (double d : p->param.numbers) floats->push_back(float(d));
+  return floats;
 }
 
 std::vector<Vec3> ParamList::get_vec3s(const std::string& name, std::initializer_list<const char*> types) const {
-  std::vector<double> v = get_numbers(name, types, 3);
-  std::vector<Vec3> out(v.size() / 3);
-  for (size_t i = 0; i < out.size(); ++i) out[i] = Vec3(float(v[3 * i]), float(v[3 * i + 1]), float(v[3 * i + 2]));
+  const ParsedParam* p = find_numbers(name, types, 3);
+  if (!p) return {};
+  const Param& q = p->param;
+  std::vector<Vec3> out(q.number_count() / 3);
+  for (size_t i = 0; i < out.size(); ++i)
+    out[i] = Vec3(float(q.number(3 * i)), float(q.number(3 * i + 1)), float(q.number(3 * i + 2)));
   return out;
 }
 
@@ -258,7 +297,7 @@ std::optional<Vec3> ParamList::get_vec3(const std::string& name, std::initialize
   std::vector<Vec3> v = get_vec3s(name, types);
   if (v.size() != 1)
     throw SceneError(p->value_loc, fmt::format("parameter \"{} {}\" expects 3 values, got {}", p->param.type, name,
-                                               p->param.numbers.size()));
+                                               p->param.number_count()));
   return v[0];
 }
 
@@ -284,6 +323,8 @@ std::string param_text(const Param& p) {
   };
   std::string text = quoted(p.type + " " + p.name) + " [";
   for (double x : p.numbers) text += fmt::format(" {}", x);  // shortest form that reads back exactly
+  if (p.long_numbers)
+    for (float x : *p.long_numbers) text += fmt::format(" {}", x);  // the float's shortest form
   for (const std::string& s : p.strings) text += " " + quoted(s);
   for (bool b : p.bools) text += b ? " true" : " false";
   return text + " ]";

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "dermis/core/float_array.h"
 #include "dermis/core/vec.h"
 #include "dermis/scene/diagnostics.h"
 #include "dermis/scene/scene_desc.h"
@@ -56,6 +57,10 @@ class ParamList {
   // `arity` values form one element: an error when the count is not a multiple of it.
   std::vector<double> get_numbers(const std::string& name, std::initializer_list<const char*> types,
                                   size_t arity) const;
+  // The same as floats, null when absent: a long list's own array (shared, never copied), or
+  // one made from a short list.
+  std::shared_ptr<const FloatArray> get_float_array(const std::string& name, std::initializer_list<const char*> types,
+                                                    size_t arity) const;
   std::vector<Vec3> get_vec3s(const std::string& name, std::initializer_list<const char*> types) const;
   std::optional<Vec3> get_vec3(const std::string& name, std::initializer_list<const char*> types) const;
 
@@ -73,6 +78,10 @@ class ParamList {
   const std::vector<ParsedParam>& items() const { return items_; }
 
  private:
+  // The numbers parameter `name`, checked as get_numbers checks it; null when absent.
+  const ParsedParam* find_numbers(const std::string& name, std::initializer_list<const char*> types,
+                                  size_t arity) const;
+
   std::vector<ParsedParam> items_;
 };
 

@@ -21,30 +21,26 @@ RGB coefficient_param(const ParamList& pl, const char* name, RGB def, Diagnostic
   return p ? spectrum_param_rgb(*p, diag, SpectrumType::Unbounded) : def;
 }
 
-// The grid's values of parameter `name` (`arity` numbers each): their count must be the
-// grid's, and each number finite and at least zero.
-std::vector<double> grid_values(const ParamList& pl, const MediumDesc& m, const char* name,
-                                std::initializer_list<const char*> types, std::size_t arity) {
-  std::vector<double> v = pl.get_numbers(name, types, arity);
-  if (v.empty()) return v;
+// The grid's values of parameter `name` (`arity` floats each), null when absent: their count
+// must be the grid's, and each value finite and at least zero. The parameter's own floats
+// when it is long (shared, not copied): a grid exists once.
+std::shared_ptr<const FloatArray> grid_values(const ParamList& pl, const MediumDesc& m, const char* name,
+                                              std::initializer_list<const char*> types, std::size_t arity) {
+  std::shared_ptr<const FloatArray> v = pl.get_float_array(name, types, arity);
+  if (!v) return v;
   const ParsedParam& p = *pl.find(name);
   const std::size_t expected = std::size_t(m.nx) * std::size_t(m.ny) * std::size_t(m.nz);
-  if (v.size() / arity != expected)
+  if (v->size() / arity != expected)
     throw SceneError(p.value_loc, fmt::format("medium \"{}\": \"{}\" has {} values; the grid nx x ny x nz = {} x {} x "
                                               "{} needs {}",
-                                              m.name, name, v.size() / arity, m.nx, m.ny, m.nz, expected));
-  for (std::size_t i = 0; i < v.size(); ++i)
-    if (!(v[i] >= 0) || !std::isfinite(v[i]))
+                                              m.name, name, v->size() / arity, m.nx, m.ny, m.nz, expected));
+  const float* values = v->data();
+  for (std::size_t i = 0; i < v->size(); ++i)
+    if (!(values[i] >= 0) || !std::isfinite(values[i]))
       throw SceneError(p.value_at(i), fmt::format("medium \"{}\": \"{}\" must be finite and at least 0 (value {} of "
                                                   "the grid is {})",
-                                                  m.name, name, i / arity, v[i]));
+                                                  m.name, name, i / arity, values[i]));
   return v;
-}
-
-std::vector<RGB> colours(const std::vector<double>& v) {
-  std::vector<RGB> out(v.size() / 3);
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = RGB(float(v[3 * i]), float(v[3 * i + 1]), float(v[3 * i + 2]));
-  return out;
 }
 
 // The box: pbrt-v4's Bounds3f(p0, p1), corners in any order, but with a volume.
@@ -98,14 +94,12 @@ void SceneParser::read_grid_emission(const ParamList& pl, MediumDesc& m) {
             pl.find("temperature")->param.loc,
             fmt::format("medium \"{}\": both \"Le\" and \"temperature\" given (pbrt-v4 takes one)", m.name));
     }
-    const std::vector<double> scale = grid_values(pl, m, "Lescale", {"float"}, 1);
-    m.le_scale_grid.assign(scale.begin(), scale.end());
-    const std::vector<double> kelvin = grid_values(pl, m, "temperature", {"float"}, 1);
-    m.temperature.assign(kelvin.begin(), kelvin.end());
+    m.le_scale_grid = grid_values(pl, m, "Lescale", {"float"}, 1);
+    m.temperature = grid_values(pl, m, "temperature", {"float"}, 1);
     read_temperature_mapping(pl, m);
   } else if (m.type == "rgbgrid") {
-    m.Le_grid = colours(grid_values(pl, m, "Le", {"rgb"}, 3));
-    if (!m.Le_grid.empty() && m.sigma_a_grid.empty())
+    m.Le_grid = grid_values(pl, m, "Le", {"rgb"}, 3);
+    if (m.Le_grid && !m.sigma_a_grid)
       throw SceneError(pl.find("Le")->value_loc,
                        fmt::format("rgbgrid medium \"{}\": \"Le\" needs \"rgb sigma_a\" (pbrt-v4)", m.name));
     m.Lescale = pl.get_float("Lescale", 1);
@@ -150,15 +144,14 @@ void SceneParser::read_grid_medium(const ParamList& pl, MediumDesc& m) {
   }
   read_grid_resolution(pl, m);
   if (m.type == "uniformgrid") {
-    const std::vector<double> d = grid_values(pl, m, "density", {"float"}, 1);
-    if (d.empty())
+    m.density = grid_values(pl, m, "density", {"float"}, 1);
+    if (!m.density)
       throw SceneError(m.loc,
                        fmt::format("uniformgrid medium \"{}\" needs \"float density\" (nx x ny x nz values)", m.name));
-    m.density.assign(d.begin(), d.end());
   } else {
-    m.sigma_a_grid = colours(grid_values(pl, m, "sigma_a", {"rgb"}, 3));
-    m.sigma_s_grid = colours(grid_values(pl, m, "sigma_s", {"rgb"}, 3));
-    if (m.sigma_a_grid.empty() && m.sigma_s_grid.empty())
+    m.sigma_a_grid = grid_values(pl, m, "sigma_a", {"rgb"}, 3);
+    m.sigma_s_grid = grid_values(pl, m, "sigma_s", {"rgb"}, 3);
+    if (!m.sigma_a_grid && !m.sigma_s_grid)
       throw SceneError(m.loc, fmt::format("rgbgrid medium \"{}\" needs \"rgb sigma_a\" and/or \"rgb sigma_s\" (nx x "
                                           "ny x nz colours each)",
                                           m.name));

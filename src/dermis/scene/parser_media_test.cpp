@@ -1,6 +1,11 @@
 // pbrt-v4's grid media as the parser records them, and their errors.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
 #include "dermis/scene/parser.h"
 #include "dermis/scene/scene_test_util.h"
 
@@ -9,6 +14,11 @@ namespace {
 
 using test::has_warning;
 using test::parse_world;
+
+// A grid's values (rgbgrid: three floats per colour); none when not given.
+std::vector<float> floats(const std::shared_ptr<const FloatArray>& grid) {
+  return grid ? std::vector<float>(grid->begin(), grid->end()) : std::vector<float>{};
+}
 
 // The world `body` is refused with a SceneError at line:column whose message holds `what`.
 void error_at(const std::string& body, int line, int column, const std::string& what) {
@@ -37,7 +47,7 @@ TEST(ParserGridMedia, UniformgridRgbgridAndCloud) {
   EXPECT_EQ(smoke.nx, 3);
   EXPECT_EQ(smoke.ny, 2);
   EXPECT_EQ(smoke.nz, 1);
-  EXPECT_EQ(smoke.density, (std::vector<float>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(floats(smoke.density), (std::vector<float>{0, 1, 2, 3, 4, 5}));
   EXPECT_EQ(smoke.p0, Vec3(0, 1, -1));  // the corners in any order, as pbrt-v4's Bounds3f
   EXPECT_EQ(smoke.p1, Vec3(1, 2, 1));
   EXPECT_EQ(smoke.sigma_a, RGB(1, 2, 3));
@@ -46,8 +56,8 @@ TEST(ParserGridMedia, UniformgridRgbgridAndCloud) {
   EXPECT_FLOAT_EQ(smoke.g, 0.5f);
   EXPECT_EQ(smoke.medium_to_world.point(Vec3(0, 0, 0)), Vec3(1, 2, 3));
   const MediumDesc& tint = s.media[1];
-  EXPECT_TRUE(tint.sigma_a_grid.empty());
-  EXPECT_EQ(tint.sigma_s_grid, (std::vector<RGB>{RGB(1, 2, 3), RGB(4, 5, 6)}));
+  EXPECT_FALSE(tint.sigma_a_grid);
+  EXPECT_EQ(floats(tint.sigma_s_grid), (std::vector<float>{1, 2, 3, 4, 5, 6}));
   const MediumDesc& sky = s.media[2];
   EXPECT_EQ(sky.type, "cloud");
   EXPECT_FLOAT_EQ(sky.wispiness, 0.5f);
@@ -66,10 +76,10 @@ TEST(ParserGridMedia, Emission) {
       "MakeNamedMedium \"hot\" \"string type\" \"uniformgrid\" \"float density\" [1] \"float temperature\" [2000]\n"
       "  \"float temperaturecutoff\" 100 \"float temperaturescale\" 2\n");
   EXPECT_EQ(s.media[0].Le, RGB(1, 0.5f, 0));
-  EXPECT_EQ(s.media[0].le_scale_grid, (std::vector<float>{0, 3}));
-  EXPECT_EQ(s.media[1].Le_grid, (std::vector<RGB>{RGB(0, 1, 2)}));
+  EXPECT_EQ(floats(s.media[0].le_scale_grid), (std::vector<float>{0, 3}));
+  EXPECT_EQ(floats(s.media[1].Le_grid), (std::vector<float>{0, 1, 2}));
   EXPECT_FLOAT_EQ(s.media[1].Lescale, 4);
-  EXPECT_EQ(s.media[2].temperature, (std::vector<float>{2000}));
+  EXPECT_EQ(floats(s.media[2].temperature), (std::vector<float>{2000}));
   EXPECT_FLOAT_EQ(s.media[2].temperature_offset, 100);  // pbrt-v4's alias of temperatureoffset
   EXPECT_FLOAT_EQ(s.media[2].temperature_scale, 2);
   EXPECT_FALSE(has_warning(s, "unused"));
@@ -94,6 +104,28 @@ TEST(ParserGridMedia, BadGridsAreErrorsAtTheValue) {
            "needs \"rgb sigma_a\" and/or \"rgb sigma_s\"");
   error_at("MakeNamedMedium \"m\" \"string type\" \"rgbgrid\" \"rgb sigma_a\" [1 2 3 4 5 6]\n", 2, 59,
            "\"sigma_a\" has 2 values");
+}
+
+// A grid longer than kLongNumberList values is read as floats (once), and its errors still
+// point at the offending value.
+TEST(ParserGridMedia, LongGridsAreFloatsAndErrorsAtTheValue) {
+  constexpr int n = 20;  // 8000 densities, 24000 colour floats: past kLongNumberList
+  auto medium = [](const std::string& type, const std::string& param, int per_cell, std::size_t bad) {
+    std::string text = "MakeNamedMedium \"" + type + "\" \"string type\" \"" + type +
+                       "\" \"integer nx\" 20 \"integer ny\" 20 \"integer nz\" 20 \"" + param + "\" [\n";
+    for (std::size_t i = 0; i < std::size_t(n * n * n * per_cell); ++i)
+      text += i == bad ? "-2\n" : std::to_string(i % 7) + ".1\n";  // value i on line 3 + i
+    return text + "]\n";
+  };
+  const SceneDesc s =
+      parse_world(medium("uniformgrid", "float density", 1, SIZE_MAX) + medium("rgbgrid", "rgb sigma_s", 3, SIZE_MAX));
+  const std::vector<float> density = floats(s.media[0].density), sigma_s = floats(s.media[1].sigma_s_grid);
+  ASSERT_EQ(density.size(), 8000u);
+  ASSERT_EQ(sigma_s.size(), 24000u);
+  EXPECT_EQ(density[7999], float(7999 % 7 + 0.1));
+  EXPECT_EQ(sigma_s[23999], float(23999 % 7 + 0.1));
+  error_at(medium("uniformgrid", "float density", 1, 6000), 6003, 1, "(value 6000 of the grid is -2)");
+  error_at(medium("rgbgrid", "rgb sigma_s", 3, 20000), 20003, 1, "(value 6666 of the grid is -2)");
 }
 
 // A subsurface material's "interior" names a medium: a homogeneous one's coefficients (scale

@@ -4,12 +4,14 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "dermis/core/float_array.h"
 #include "dermis/core/rgb.h"
 #include "dermis/core/sampler.h"
 #include "dermis/core/transform.h"
@@ -24,14 +26,30 @@ namespace dermis {
 // parameters are interpreted later (e.g. the subsurface material's methods).
 class ParamList;
 
+// Numbers past this count, of any type but integer, are held as floats (Param::long_numbers):
+// a grid medium's millions of values exist once, at 4 bytes each, as pbrt-v4 stores them
+// (Float); shorter lists (colours, spectra, small meshes) keep their exact doubles, 32 KiB at most.
+inline constexpr std::size_t kLongNumberList = 4096;
+
 struct Param {
   std::string type;  // integer, float, point2, vector2, point3, vector3, normal, normal3,
                      // rgb, spectrum, blackbody, bool, string, texture, point, vector, color
   std::string name;
+  // The numbers: in `numbers`, or, for a list of non-integers longer than kLongNumberList,
+  // in `long_numbers` as floats (`numbers` then empty), shared by every copy of the parameter.
   std::vector<double> numbers;
+  std::shared_ptr<FloatArray> long_numbers;
   std::vector<std::string> strings;
   std::vector<bool> bools;
   SourceLoc loc;
+
+  std::size_t number_count() const { return long_numbers ? long_numbers->size() : numbers.size(); }
+  double number(std::size_t i) const { return long_numbers ? double((*long_numbers)[i]) : numbers[i]; }
+  // Every number as a double: a copy (converted from floats for a long list).
+  std::vector<double> numbers_as_doubles() const {
+    if (!long_numbers) return numbers;
+    return std::vector<double>(long_numbers->begin(), long_numbers->end());
+  }
 };
 
 struct CameraDesc {
@@ -287,22 +305,24 @@ struct MediumDesc {
   Transform medium_to_world;      // the transformation current where the medium was made
   Vec3 p0{0, 0, 0}, p1{1, 1, 1};  // the box, in the medium's space
   int nx = 1, ny = 1, nz = 1;
-  std::vector<float> density;                             // uniformgrid: nx * ny * nz, x fastest
-  std::vector<RGB> sigma_a_grid, sigma_s_grid;            // rgbgrid (either may be empty: 1)
-  float cloud_density = 1, wispiness = 1, frequency = 5;  // cloud
+  // The grids: nx * ny * nz values (rgbgrid's colours: 3 floats each), x fastest; null: not
+  // given. Shared with the parameter they were read from and the renderer's grid: one copy.
+  std::shared_ptr<const FloatArray> density;                     // uniformgrid
+  std::shared_ptr<const FloatArray> sigma_a_grid, sigma_s_grid;  // rgbgrid (either may be null: 1)
+  float cloud_density = 1, wispiness = 1, frequency = 5;         // cloud
   // Emission: homogeneous: Le above (luminance 1 where a spectrum, whose samples are
   // SceneDesc::spectra[Le_data]) times Lescale; uniformgrid: Le times the grid le_scale_grid
-  // (empty: none given); rgbgrid: the colours Le_grid times Lescale.
+  // (null: none given); rgbgrid: the colours Le_grid times Lescale.
   int Le_data = -1;
-  std::vector<float> le_scale_grid;
-  std::vector<float> temperature;  // uniformgrid: nx * ny * nz (empty: none), emitting as a blackbody
+  std::shared_ptr<const FloatArray> le_scale_grid;
+  std::shared_ptr<const FloatArray> temperature;        // uniformgrid (null: none), emitting as a blackbody
   float temperature_offset = 0, temperature_scale = 1;  // uniformgrid, nanovdb
   // nanovdb: the .nvdb file (its float grids grid_name, the density, and temperature_name,
   // optional), read when the scene is assembled; errors point at the file name's value.
   std::string filename;
   SourceLoc filename_loc;
   std::string grid_name = "density", temperature_name = "temperature";
-  std::vector<RGB> Le_grid;
+  std::shared_ptr<const FloatArray> Le_grid;  // rgbgrid: 3 floats per cell (null: none)
   float Lescale = 1;
   SourceLoc loc;
 };

@@ -134,7 +134,7 @@ RGB blackbody_rgb(double kelvin) {
 namespace {
 
 void check_pairs(const ParsedParam& p) {
-  const auto& v = p.param.numbers;
+  const std::vector<double> v = p.param.numbers_as_doubles();
   if (v.size() < 2 || v.size() % 2 != 0)
     throw SceneError(p.value_loc, fmt::format("spectrum '{}' needs [wavelength value ...] pairs, got {} numbers",
                                               p.param.name, v.size()));
@@ -177,17 +177,17 @@ Pairs spectrum_file_pairs(const ParsedParam& p) {
 RGB spectrum_param_rgb(const ParsedParam& p, Diagnostics& diag, SpectrumType type) {
   p.used = true;
   if (p.type == "rgb") {
-    if (p.param.numbers.size() != 3)
+    if (p.param.number_count() != 3)
       throw SceneError(p.value_loc, fmt::format("parameter \"{} {}\" expects 3 values, got {}", p.param.type,
-                                                p.param.name, p.param.numbers.size()));
+                                                p.param.name, p.param.number_count()));
     return RGB(float(p.param.numbers[0]), float(p.param.numbers[1]), float(p.param.numbers[2]));
   }
   if (p.type == "blackbody") {
     const auto& v = p.param.numbers;
-    if (v.size() != 1 && v.size() != 2)
+    if (p.param.number_count() != 1 && p.param.number_count() != 2)
       throw SceneError(p.value_loc, fmt::format("parameter \"blackbody {}\" expects a temperature in kelvin, got "
                                                 "{} values",
-                                                p.param.name, v.size()));
+                                                p.param.name, p.param.number_count()));
     if (v[0] <= 0) throw SceneError(p.value_at(0), fmt::format("blackbody temperature must be positive, got {}", v[0]));
     RGB rgb = blackbody_rgb(v[0]);
     if (v.size() == 2) rgb *= float(v[1]);  // pbrt-v3's [T scale]
@@ -206,7 +206,7 @@ RGB spectrum_param_rgb(const ParsedParam& p, Diagnostics& diag, SpectrumType typ
       return spectrum_rgb(f.lambda, f.value, type);
     }
     check_pairs(p);
-    const Pairs s = split(p.param.numbers);
+    const Pairs s = split(p.param.numbers_as_doubles());
     diag.warn(p.param.loc, fmt::format("sampled spectrum '{}' reduced to RGB ({})", p.param.name, how));
     return spectrum_rgb(s.lambda, s.value, type);
   }
@@ -258,7 +258,7 @@ std::optional<std::vector<float>> spectrum_param_samples(const ParsedParam& p, S
   if (!p.param.strings.empty())
     return samples_of(at_every_nanometre(spectrum_file_pairs(p), SpectrumEnds::Zero), type, 1);
   check_pairs(p);
-  return samples_of(at_every_nanometre(split(p.param.numbers), SpectrumEnds::Zero), type, 1);
+  return samples_of(at_every_nanometre(split(p.param.numbers_as_doubles()), SpectrumEnds::Zero), type, 1);
 }
 
 float ior_param(const ParsedParam& p, Diagnostics& diag) {
@@ -282,7 +282,7 @@ float ior_param(const ParsedParam& p, Diagnostics& diag) {
                                          p.param.strings[0], p.param.name));
     } else {
       check_pairs(p);
-      s = split(p.param.numbers);
+      s = split(p.param.numbers_as_doubles());
       diag.warn(p.param.loc, fmt::format("sampled spectrum '{}' reduced to its mean over 400-700 nm", p.param.name));
     }
     return float(mean_over(s.lambda, s.value, SpectrumEnds::Zero, 400, 700));

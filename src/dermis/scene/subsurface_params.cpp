@@ -118,14 +118,14 @@ RGB checked(RGB v, const ParsedParam& p) {
 // An rgb, float, spectrum or blackbody value.
 RGB read_rgb(const ParsedParam& p, Diagnostics& diag) {
   if (p.type == "float") {
-    if (p.param.numbers.size() != 1)
+    if (p.param.number_count() != 1)
       throw SceneError(p.value_loc,
-                       fmt::format("\"{}\" needs 3 values (r g b) or 1, got {}", p.param.name, p.param.numbers.size()));
+                       fmt::format("\"{}\" needs 3 values (r g b) or 1, got {}", p.param.name, p.param.number_count()));
     return checked(RGB(float(p.param.numbers[0])), p);
   }
-  if (p.type == "rgb" && p.param.numbers.size() != 3)
+  if (p.type == "rgb" && p.param.number_count() != 3)
     throw SceneError(p.value_loc,
-                     fmt::format("\"{}\" needs 3 values (r g b) or 1, got {}", p.param.name, p.param.numbers.size()));
+                     fmt::format("\"{}\" needs 3 values (r g b) or 1, got {}", p.param.name, p.param.number_count()));
   if (p.type != "rgb" && p.type != "spectrum" && p.type != "blackbody")
     throw SceneError(p.value_loc, fmt::format("\"{}\" must be an rgb, spectrum, float or texture value, not \"{}\"",
                                               p.param.name, p.param.type));

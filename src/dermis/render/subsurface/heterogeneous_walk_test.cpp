@@ -24,7 +24,7 @@ GridMedium density_grid(int n, const std::function<float(int, int, int)>& densit
   for (int z = 0; z < n; ++z)
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x) values.push_back(density(x, y, z));
-  grid.density = {n, n, n, values};
+  grid.density = VoxelGrid<float>(n, n, n, make_shared_floats(values));
   grid.p0 = Vec3(-1.2f, -1.2f, -1.2f);
   grid.p1 = Vec3(1.2f, 1.2f, 1.2f);
   grid.build_majorants();
