@@ -5,6 +5,8 @@ the renders interleaved (this machine is shared and noisy):
   coefficients (asked: <= 1.5x);
 - the same grid with 90 % of its cells empty (density 1 only in the lowest tenth of its
   z-slices) against it filled (asked: <= 0.5x);
+- an (N/2)^3 `rgbgrid` of the homogeneous medium's colours (six floats a cell), for its
+  memory and cost;
 - the peak memory of loading and rendering each against the grid's own bytes (asked: <= the
   grid's bytes + 15 %): the whole process's, and what it holds beyond the homogeneous
   medium's process (the renderer itself, its film and threads), which is the grid's cost;
@@ -51,6 +53,21 @@ def grid_scene(path, n, filled_slices):
         f.write(" ]\n" + SPHERE)
 
 
+def rgbgrid_scene(path, n):
+    """An n^3 `rgbgrid` over the same box, sigma_a and sigma_s given per cell as the
+    homogeneous medium's colours (6 floats a cell), written in pieces."""
+    with open(path, "w") as f:
+        f.write(HEAD)
+        f.write(f'MakeNamedMedium "m" "string type" "rgbgrid" "integer nx" {n} "integer ny" {n} "integer nz" {n} '
+                f'"point3 p0" [-1.01 -1.01 -1.01] "point3 p1" [1.01 1.01 1.01] "float g" 0.3')
+        for name, colour in (("sigma_a", " 0.2 0.5 1"), ("sigma_s", " 2 1 0.5")):
+            f.write(f' "rgb {name}" [')
+            for _ in range(n):
+                f.write(colour * (n * n))
+            f.write(" ]")
+        f.write("\n" + SPHERE)
+
+
 def timed(cmd):
     """Wall time, the render stage's time and the peak RSS (bytes) of one dermis process."""
     t0 = time.perf_counter()
@@ -82,11 +99,13 @@ def main():
     out = args.out or tempfile.mkdtemp(prefix="dermis-grid-cost-")
     os.makedirs(out, exist_ok=True)
     scenes = {"homogeneous": os.path.join(out, "homogeneous.pbrt"), "grid filled": os.path.join(out, "filled.pbrt"),
-              "grid 90% empty": os.path.join(out, "sparse.pbrt")}
+              "grid 90% empty": os.path.join(out, "sparse.pbrt"), "rgbgrid filled": os.path.join(out, "rgbgrid.pbrt")}
     with open(scenes["homogeneous"], "w") as f:
         f.write(HEAD + f'MakeNamedMedium "m" "string type" "homogeneous" {COEFFICIENTS}\n' + SPHERE)
     grid_scene(scenes["grid filled"], args.n, args.n)
     grid_scene(scenes["grid 90% empty"], args.n, max(1, round(args.n / 10)))
+    rgb_n = args.n // 2  # six floats a cell: (n/2)^3 cells hold 3/4 of the density grid's bytes
+    rgbgrid_scene(scenes["rgbgrid filled"], rgb_n)
 
     def cmd(name, spp):
         return command(args.dermis, scenes[name], os.path.join(out, "o.exr"), spp=spp, res=args.res)
@@ -98,16 +117,18 @@ def main():
         for name in scenes:
             times[name].append(timed(cmd(name, args.spp))[1])
     median = {name: statistics.median(t) for name, t in times.items()}
-    grid_bytes = 4 * args.n ** 3
-    print(f"{args.n}^3 grid ({grid_bytes / 2**20:.0f} MiB of floats), {args.spp} spp at {args.res}, "
+    grid_bytes = {name: 4 * args.n ** 3 for name in scenes}
+    grid_bytes["rgbgrid filled"] = 4 * 6 * rgb_n ** 3
+    print(f"{args.n}^3 grid ({grid_bytes['grid filled'] / 2**20:.0f} MiB of floats; the rgbgrid {rgb_n}^3, "
+          f"{grid_bytes['rgbgrid filled'] / 2**20:.0f} MiB), {args.spp} spp at {args.res}, "
           f"{args.repeats} interleaved repeats; scenes in {out}\n")
     print("| scene | render stage (median) | load, whole process at 1 spp | peak memory | memory / grid bytes "
           "| beyond homogeneous / grid bytes |")
     print("|---|---:|---:|---:|---:|---:|")
     for name in scenes:
         grid = name != "homogeneous"
-        ratio = f"{memory[name] / grid_bytes:.2f}" if grid else "-"
-        beyond = f"{(memory[name] - memory['homogeneous']) / grid_bytes:.3f}" if grid else "-"
+        ratio = f"{memory[name] / grid_bytes[name]:.2f}" if grid else "-"
+        beyond = f"{(memory[name] - memory['homogeneous']) / grid_bytes[name]:.3f}" if grid else "-"
         print(f"| {name} | {median[name]:.2f} s | {loads[name]:.1f} s | {memory[name] / 2**20:.0f} MiB | {ratio} "
               f"| {beyond} |")
     print(f"\nconstant grid / homogeneous: {median['grid filled'] / median['homogeneous']:.2f}x (asked <= 1.5x)")

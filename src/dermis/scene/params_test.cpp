@@ -112,7 +112,6 @@ TEST(ParamsLongLists, WrittenAndReadBackTheSame) {
   EXPECT_EQ(back.param.number(4321), double(float(4321.1)));
 }
 
-
 // ParsedParam::value_at, below: a value's line and column, found by reading its list again
 // from its text (plain file, gzip file, text in memory), as the errors about one value name it.
 
