@@ -65,9 +65,17 @@ float GridMedium::density_at(Vec3 unit) const {
       return pbrt_v4_cloud_density(medium_point(unit), cloud_density, wispiness, frequency);
     case Kind::NanoVDB:
       return vdb_density->value(medium_point(unit));
-    default:
-      return density.lookup(unit);
+    default: {
+      const float uniform = majorants.empty() ? -1 : majorants[std::size_t(majorant_cell(unit))].uniform;
+      return uniform >= 0 ? uniform : density.lookup(unit);
+    }
   }
+}
+
+int GridMedium::majorant_cell(Vec3 unit) const {
+  int c[3];
+  for (int a = 0; a < 3; ++a) c[a] = std::clamp(int(unit[a] * float(majorant_res[a])), 0, majorant_res[a] - 1);
+  return (c[2] * majorant_res[1] + c[1]) * majorant_res[0] + c[0];
 }
 
 void GridMedium::build_majorants() {
@@ -109,6 +117,10 @@ void GridMedium::build_majorants() {
         if (kind == Kind::Density) {
           const float d = density.max_over(lo, hi, [](float v) { return v; });
           cell = {RGB(d), d};
+          // Widened by a little more than a float's rounding of a point into its cell.
+          const Vec3 margin(1e-5f, 1e-5f, 1e-5f);
+          float v;
+          if (density.uniform_over(lo - margin, hi + margin, v)) cell.uniform = v;
         } else {
           cell.rgb = channel_max(sigma_a_grid, lo, hi) + channel_max(sigma_s_grid, lo, hi);
           const float a = sigma_a_grid.empty() ? 1 : 2 * sigma_a_grid.max_over(lo, hi, biggest);
@@ -154,12 +166,6 @@ RGB GridMediumView::density_emission(Vec3 u) const {
   RGB Le;
   for (int i = 0; i < 3; ++i) Le[i] = normalized_blackbody(wavelengths->lambda[std::size_t(i)], kelvin) * s;
   return Le;
-}
-
-RGB GridMediumView::majorant(int cell) const {
-  const GridMedium::MajorantCell& c = grid->majorants[std::size_t(cell)];
-  if (grid->kind != GridMedium::Kind::RGBGrid) return (sigma_a_unit + sigma_s_unit) * c.rgb[0];
-  return (wavelengths ? RGB(c.any_wavelength) : c.rgb) * sigma_a_unit[0];
 }
 
 RGB GridMediumView::channel_preference() const {
@@ -213,7 +219,10 @@ bool MajorantTraversal::next(MajorantSegment& s) {
   const float t1 = std::min(next_t_[axis], t_end_);
   s.t0 = t_;
   s.t1 = t1;
-  s.sigma_maj = m_->majorant((cell_[2] * g.majorant_res[1] + cell_[1]) * g.majorant_res[0] + cell_[0]);
+  const int cell = (cell_[2] * g.majorant_res[1] + cell_[1]) * g.majorant_res[0] + cell_[0];
+  s.sigma_maj = m_->majorant(cell);
+  s.density = g.majorants[std::size_t(cell)].uniform;
+  s.exact = g.kind == GridMedium::Kind::Density && s.density >= 0;
   t_ = t1;
   if (t1 >= t_end_) {
     done_ = true;

@@ -62,14 +62,19 @@ struct GridMedium {
   // sigma_s per channel (`rgb`, before the scale) and a bound on it at any wavelength
   // (`any_wavelength`: an unbounded colour's spectrum never exceeds twice its largest
   // component, spectrum_at.h).
+  // Density: `uniform`, the density all over the cell where the grid holds one value there
+  // (a uniform region: no look-up of eight samples needed), else -1.
   struct MajorantCell {
     RGB rgb;
     float any_wavelength = 0;
+    float uniform = -1;
   };
   int majorant_res[3] = {1, 1, 1};
   std::vector<MajorantCell> majorants;
 
   void build_majorants();
+  // The majorant cell a point of the unit cube is in.
+  int majorant_cell(Vec3 unit) const;
   // A point of the world in the box's unit cube (outside [0, 1]^3: outside the medium).
   Vec3 unit_point(Vec3 p_world) const;
   // The density at a point of the unit cube (Density, Cloud, NanoVDB), and the point of the
@@ -103,8 +108,12 @@ struct GridMediumView {
   MediumCoefficients at(Vec3 p_world) const;
   // Density, Cloud: the emission at a point of the unit cube (Le or the temperature's blackbody, times le_scale).
   RGB density_emission(Vec3 unit) const;
-  // The majorant of cell i, per slot.
-  RGB majorant(int cell) const;
+  // The majorant of cell i, per slot (inline: the DDA reads it at every cell).
+  RGB majorant(int cell) const {
+    const GridMedium::MajorantCell& c = grid->majorants[std::size_t(cell)];
+    if (grid->kind != GridMedium::Kind::RGBGrid) return (sigma_a_unit + sigma_s_unit) * c.rgb[0];
+    return (wavelengths ? RGB(c.any_wavelength) : c.rgb) * sigma_a_unit[0];
+  }
   // The preference of delta tracking's channel choice (null_scattering.h) for channels of
   // little absorption (HomogeneousMedium::channel_preference), which a density scales alike
   // everywhere; an rgbgrid's albedo varies from sample to sample: none (1).
@@ -115,6 +124,10 @@ struct GridMediumView {
 struct MajorantSegment {
   float t0 = 0, t1 = 0;
   RGB sigma_maj;
+  // The majorant is the medium's own extinction all along the stretch (a uniform cell of a
+  // density grid, of density `density`): its transmittance is exp(-sigma_maj (t1 - t0)).
+  bool exact = false;
+  float density = 0;
 };
 
 // The majorant cells a ray crosses within [0, t_max), in order (3D DDA).

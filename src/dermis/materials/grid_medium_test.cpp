@@ -81,6 +81,40 @@ TEST(GridMedium, MajorantsBoundTheCoefficients) {
     }
 }
 
+// A density grid uniform over part of its box (one value in a block of samples, random
+// elsewhere, and random over its outer layer, where the grid's zero padding enters): the
+// cells inside the block read their one value without a look-up, and everywhere, including
+// at the cells' faces and at points a rounding away from them, density_at reads what the
+// trilinear look-up reads (to float rounding: the interpolation of equal values).
+TEST(GridMedium, UniformCellsReadTheirValueAsTheLookUpWould) {
+  const int n = 48;
+  std::vector<float> values;
+  Rng rng(9, 3);
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const bool block = x >= 4 && x < 40 && y >= 2 && y < 47 && z >= 6 && z < 30;
+        values.push_back(block ? 2.5f : 3 * rng.uniform());
+      }
+  const GridMedium g = density_medium(VoxelGrid<float>(n, n, n, make_shared_floats(values)));
+  int uniform = 0;
+  for (const GridMedium::MajorantCell& c : g.majorants) uniform += c.uniform >= 0;
+  EXPECT_GT(uniform, 16 * 16 * 16 / 8);
+  EXPECT_LT(uniform, 16 * 16 * 16 / 2);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 50000; ++i) points.emplace_back(rng.uniform(), rng.uniform(), rng.uniform());
+  for (int i = 0; i <= 16; ++i)  // on and beside the cells' faces
+    for (float d : {-1e-7f, 0.0f, 1e-7f}) {
+      const float f = std::clamp(float(i) / 16 + d, 0.0f, 1.0f);
+      points.emplace_back(f, rng.uniform(), rng.uniform());
+      points.emplace_back(rng.uniform(), f, rng.uniform());
+      points.emplace_back(rng.uniform(), rng.uniform(), f);
+    }
+  for (const Vec3& u : points)
+    ASSERT_NEAR(g.density_at(u), g.density.lookup(u), 1e-6f * std::max(1.0f, g.density.lookup(u)))
+        << u.x << " " << u.y << " " << u.z;
+}
+
 // The cells a ray crosses: contiguous stretches from where it enters the box to where it
 // leaves it (or t_max), each inside the cell whose majorant it carries.
 TEST(GridMedium, TraversalVisitsTheCellsAlongTheRay) {

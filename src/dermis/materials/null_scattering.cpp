@@ -1,5 +1,6 @@
 #include "dermis/materials/null_scattering.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 
@@ -50,7 +51,10 @@ NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, cons
       }
       t += step;
       const RGB tr = exp(seg.sigma_maj * -step);
-      const MediumCoefficients k = m.at(ray.o + ray.d * t);
+      // In a uniform cell the coefficients are known without a look-up (the same values).
+      const MediumCoefficients k = seg.exact && !m.emissive
+                                       ? MediumCoefficients{m.sigma_a_unit * seg.density, m.sigma_s_unit * seg.density}
+                                       : m.at(ray.o + ray.d * t);
       ++f.null_collisions;
       if (m.emissive) {
         // sigma_a Le at a tentative collision, whatever its event: channel k's density of the
@@ -91,12 +95,30 @@ NullScatteringFlight sample_null_scattering_flight(const GridMediumView& m, cons
 
 RGB ratio_tracking_transmittance(const GridMediumView& m, const Ray& ray, float t_max, Rng& rng, bool* stalled) {
   RGB tr(1);
+  RGB depth(0);  // the optical depth of the uniform stretches not yet multiplied into tr
+  // Russian roulette once the estimate falls below 5 %; the uniform stretches' depth is first
+  // folded in (one exp for several cells) when it alone would bring it there.
+  auto roulette = [&](bool fold) {
+    if (fold) {
+      for (int j = 0; j < 3; ++j) tr[j] *= std::exp(-depth[j]);
+      depth = RGB(0);
+    }
+    if (tr.max() >= 0.05f) return false;
+    if (rng.uniform() < 0.75f) return true;
+    tr /= 0.25f;
+    return false;
+  };
   int collisions = 0;
   MajorantTraversal cells(m, ray, t_max);
   MajorantSegment seg;
   while (cells.next(seg)) {
     const float majorant = seg.sigma_maj.max();
     if (!(majorant > 0)) continue;
+    if (seg.exact) {  // a uniform stretch: its transmittance in closed form (Beer-Lambert), exact
+      depth += seg.sigma_maj * (seg.t1 - seg.t0);
+      if (std::min({depth[0], depth[1], depth[2]}) > 3 && roulette(true)) return RGB(0);  // exp(-3) < 5 %
+      continue;
+    }
     for (float t = seg.t0;;) {
       const float next = t + exponential_quantile(rng.uniform()) / majorant;
       if (!(next < seg.t1)) break;
@@ -107,12 +129,10 @@ RGB ratio_tracking_transmittance(const GridMediumView& m, const Ray& ray, float 
       t = next;
       const MediumCoefficients k = m.at(ray.o + ray.d * t);
       for (int j = 0; j < 3; ++j) tr[j] *= std::max(1 - (k.sigma_a[j] + k.sigma_s[j]) / majorant, 0.0f);
-      if (tr.max() < 0.05f) {  // Russian roulette
-        if (rng.uniform() < 0.75f) return RGB(0);
-        tr /= 0.25f;
-      }
+      if (roulette(false)) return RGB(0);
     }
   }
+  for (int j = 0; j < 3; ++j) tr[j] *= std::exp(-depth[j]);
   return tr;
 }
 

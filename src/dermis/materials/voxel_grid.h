@@ -91,6 +91,25 @@ class VoxelGrid {
     return best;
   }
 
+  // Whether lookup() reads one value all over the box [lo, hi] of the unit cube, and which:
+  // every sample whose interpolation reaches into the box holds it, and none of them lies
+  // outside the grid (whose zeros would enter).
+  bool uniform_over(Vec3 lo, Vec3 hi, T& value) const {
+    const int res[3] = {nx, ny, nz};
+    int first[3], last[3];
+    for (int a = 0; a < 3; ++a) {
+      first[a] = int(std::floor(lo[a] * float(res[a]) - 0.5f));
+      last[a] = int(std::floor(hi[a] * float(res[a]) - 0.5f)) + 1;
+      if (first[a] < 0 || last[a] > res[a] - 1) return false;
+    }
+    value = sample(first[0], first[1], first[2]);
+    for (int z = first[2]; z <= last[2]; ++z)
+      for (int y = first[1]; y <= last[1]; ++y)
+        for (int x = first[0]; x <= last[0]; ++x)
+          if (!(sample(x, y, z) == value)) return false;
+    return true;
+  }
+
  private:
   std::shared_ptr<const FloatArray> values_;
   const float* data_ = nullptr;  // values_->data(), cached: sample() is on the render's hot path
