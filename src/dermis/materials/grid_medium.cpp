@@ -55,6 +55,11 @@ Vec3 GridMedium::unit_point(Vec3 p_world) const {
   return Vec3((p.x - p0.x) / (p1.x - p0.x), (p.y - p0.y) / (p1.y - p0.y), (p.z - p0.z) / (p1.z - p0.z));
 }
 
+Vec3 GridMedium::unit_vector(Vec3 v_world) const {
+  const Vec3 v = medium_from_world.vector(v_world);
+  return Vec3(v.x / (p1.x - p0.x), v.y / (p1.y - p0.y), v.z / (p1.z - p0.z));
+}
+
 Vec3 GridMedium::medium_point(Vec3 unit) const {
   return p0 + Vec3(unit.x * (p1.x - p0.x), unit.y * (p1.y - p0.y), unit.z * (p1.z - p0.z));
 }
@@ -177,8 +182,7 @@ MajorantTraversal::MajorantTraversal(const GridMediumView& m, const Ray& ray, fl
   const GridMedium& g = *m.grid;
   // The ray in the unit cube of the box (t unchanged: the direction is not renormalised).
   const Vec3 o = g.unit_point(ray.o);
-  const Vec3 o_plus_d = g.unit_point(ray.o + ray.d);
-  const Vec3 d = o_plus_d - o;
+  const Vec3 d = g.unit_vector(ray.d);
   float t0 = 0, t1 = t_max;
   for (int a = 0; a < 3; ++a) {  // the slabs 0 <= o + t d <= 1
     if (d[a] == 0) {

@@ -77,6 +77,8 @@ struct GridMedium {
   int majorant_cell(Vec3 unit) const;
   // A point of the world in the box's unit cube (outside [0, 1]^3: outside the medium).
   Vec3 unit_point(Vec3 p_world) const;
+  // A vector of the world in the unit cube's measure (a ray's direction there).
+  Vec3 unit_vector(Vec3 v_world) const;
   // The density at a point of the unit cube (Density, Cloud, NanoVDB), and the point of the
   // medium's space it stands for.
   float density_at(Vec3 unit) const;
